@@ -1,0 +1,35 @@
+// Composes the derive stages; each stage only sees the plain results of the ones before it.
+#include "derivation.hpp"
+
+#include <fmt/format.h>
+
+namespace pogear {
+
+Derivation derive_topology(Topology topology, const std::optional<std::vector<std::string>>& keep,
+                           const SourceLocation& keep_where) {
+  Derivation d;
+  d.topology = std::move(topology);
+  d.radius = derive_radius_matrix(d.topology, d.symbols);
+  d.elastic = assemble_elastic_model(d.topology, d.radius, d.symbols);
+  SourceLocation where = keep_where;
+  if (keep) {
+    d.keep = *keep;
+  } else if (!d.topology.default_keep.empty()) {
+    d.keep = d.topology.default_keep;
+    where = d.topology.keep_where;
+  } else {
+    // No choice made: take the first valid set, so derive always shows a reduced model.
+    const auto valid = valid_keep_sets(evaluate_matrix(d.elastic.R, numeric_substitutions(d.symbols, d.radius.values)), 1);
+    if (!valid.empty())
+      for (int b : valid[0]) d.keep.push_back(d.topology.bodies[b].name);
+  }
+  d.rigid = reduce_to_rigid(d.topology, d.radius, d.elastic, d.keep, where, d.symbols);
+  return d;
+}
+
+Derivation derive_model(const std::string& model_path, const std::optional<std::vector<std::string>>& keep,
+                        const SourceLocation& keep_where) {
+  return derive_topology(parse_topology(model_path), keep, keep_where);
+}
+
+}  // namespace pogear

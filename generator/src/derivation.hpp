@@ -1,0 +1,27 @@
+// The derive pipeline end to end: model file -> topology -> R -> elastic model -> rigid model.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rigid_model.hpp"
+
+namespace pogear {
+
+struct Derivation {
+  Topology topology;
+  Symbols symbols;
+  RadiusMatrix radius;
+  ElasticModel elastic;
+  RigidModel rigid;
+  std::vector<std::string> keep;
+};
+
+// `keep` overrides the model's default; `keep_where` locates it in messages.
+Derivation derive_model(const std::string& model_path, const std::optional<std::vector<std::string>>& keep,
+                        const SourceLocation& keep_where);
+Derivation derive_topology(Topology topology, const std::optional<std::vector<std::string>>& keep,
+                           const SourceLocation& keep_where);
+
+}  // namespace pogear

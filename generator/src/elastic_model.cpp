@@ -1,0 +1,45 @@
+// L = diag(J, K^-1), A = [-B_J - R^T B_K R, -R^T; R, 0], B = [I; 0].
+#include "elastic_model.hpp"
+
+namespace pogear {
+
+ElasticModel assemble_elastic_model(const Topology& t, const RadiusMatrix& rm, Symbols& s) {
+  const unsigned n = t.bodies.size();
+  const unsigned m = t.meshes.size();
+  ElasticModel e;
+  e.J = GiNaC::matrix(n, n);
+  e.B_J = GiNaC::matrix(n, n);
+  e.K = GiNaC::matrix(m, m);
+  e.B_K = GiNaC::matrix(m, m);
+  for (unsigned k = 0; k < n; ++k) {
+    e.velocities.push_back("omega_" + t.bodies[k].name);
+    e.torques.push_back("tau_" + t.bodies[k].name);
+    e.J(k, k) = symbol(s, t.bodies[k].inertia);
+    e.B_J(k, k) = symbol(s, t.bodies[k].friction);
+  }
+  for (unsigned i = 0; i < m; ++i) {
+    e.forces.push_back("F_" + t.meshes[i].name);
+    e.K(i, i) = symbol(s, t.meshes[i].stiffness);
+    e.B_K(i, i) = symbol(s, t.meshes[i].damping);
+  }
+  e.R = rm.R;
+  const GiNaC::matrix Rt = e.R.transpose();
+  const GiNaC::matrix damping = e.B_J.add(Rt.mul(e.B_K).mul(e.R));
+
+  e.L = GiNaC::matrix(n + m, n + m);
+  e.A = GiNaC::matrix(n + m, n + m);
+  e.B = GiNaC::matrix(n + m, n);
+  for (unsigned i = 0; i < n; ++i) {
+    e.L(i, i) = e.J(i, i);
+    e.B(i, i) = 1;
+    for (unsigned j = 0; j < n; ++j) e.A(i, j) = (-damping(i, j)).expand();
+    for (unsigned j = 0; j < m; ++j) e.A(i, n + j) = -Rt(i, j);
+  }
+  for (unsigned i = 0; i < m; ++i) {
+    e.L(n + i, n + i) = 1 / e.K(i, i);
+    for (unsigned j = 0; j < n; ++j) e.A(n + i, j) = e.R(i, j);
+  }
+  return e;
+}
+
+}  // namespace pogear

@@ -1,0 +1,26 @@
+// pogear's own expression printer. GiNaC orders terms by hash, and its hashes change from run to
+// run, so everything pogear writes goes through this walk that orders sums and products stably.
+#pragma once
+
+#include <string>
+
+#include <ginac/ginac.h>
+
+namespace pogear {
+
+enum class Notation {
+  ginac,  // GiNaC's input syntax: `J_c+J_p*r_c^2/r_p^2`; parses back with GiNaC::parser
+  text,   // the same with spaces, for terminals: `J_c + J_p*r_c^2/r_p^2`
+  latex,  // amsmath: `J_{c} + \frac{J_{p} r_{c}^{2}}{r_{p}^{2}}`
+  cpp,    // C++ with doubles: small integer powers as products, `1.0/(...)`
+};
+
+std::string print_expression(const GiNaC::ex& e, Notation notation);
+
+// `omega_c` -> `\omega_{c}`, `r_s1` -> `r_{s1}`, `domega_c` -> `\dot{\omega}_{c}`.
+std::string latex_symbol(const std::string& name);
+
+// Shortest decimal that reads back as the same double, always with a '.' or an exponent.
+std::string cpp_double(double v);
+
+}  // namespace pogear

@@ -1,0 +1,278 @@
+// R is read off the velocity of each body at each contact point in the side view:
+// u_k(y) = s_k omega_k (y - a_k) + u_carrier(a_k); a mesh's spring elongates at u_i - u_j.
+#include "radius_matrix.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "printer.hpp"
+
+namespace pogear {
+namespace {
+
+using GiNaC::ex;
+
+// Axis heights in the side view. A fixed axis has an unknown height until a mesh places it.
+struct Heights {
+  std::vector<ex> symbolic;                  // per body
+  std::vector<std::optional<double>> value;  // per body, numeric when known
+};
+
+std::optional<double> value_of(const ex& e, Symbols& s, const std::map<std::string, double>& values) {
+  const ex v = e.subs(numeric_substitutions(s, values)).evalf();
+  if (!GiNaC::is_a<GiNaC::numeric>(v)) return std::nullopt;
+  return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
+}
+
+std::map<std::string, double> given_values(const Topology& t) {
+  std::map<std::string, double> v;
+  for (const auto& p : t.parameters) v[p.name] = p.value.si;
+  return v;
+}
+
+Heights axis_heights(const Topology& t, Symbols& s, const std::map<std::string, double>& values) {
+  const std::size_t n = t.bodies.size();
+  Heights h{std::vector<ex>(n), std::vector<std::optional<double>>(n)};
+  std::vector<bool> placed(n, false);
+  // Carriers may themselves be carried; resolve in dependency order (no cycles: checked on parse).
+  std::function<void(int)> place = [&](int k) {
+    if (placed[k]) return;
+    placed[k] = true;
+    const Body& b = t.bodies[k];
+    switch (b.axis) {
+      case AxisKind::central:
+        h.symbolic[k] = 0;
+        break;
+      case AxisKind::fixed:
+        h.symbolic[k] = symbol(s, "__height_" + b.name);
+        break;
+      case AxisKind::carried: {
+        const int c = find_body(t, b.carrier);
+        place(c);
+        h.symbolic[k] = h.symbolic[c] + b.side * symbol(s, b.distance);
+        break;
+      }
+    }
+    h.value[k] = value_of(h.symbolic[k], s, values);
+  };
+  for (std::size_t k = 0; k < n; ++k) place(static_cast<int>(k));
+  return h;
+}
+
+// The sign of a height difference, when the numbers are missing, from lengths being positive.
+std::optional<int> sign_of(const ex& diff, Symbols& s, const std::map<std::string, double>& values) {
+  if (auto v = value_of(diff, s, values)) return *v > 0 ? 1 : (*v < 0 ? -1 : 0);
+  const ex e = diff.subs(numeric_substitutions(s, values)).expand();
+  int sign = 0;
+  const auto terms = GiNaC::is_a<GiNaC::add>(e) ? GiNaC::exvector(e.begin(), e.end()) : GiNaC::exvector{e};
+  for (const ex& term : terms) {
+    ex coeff = term;
+    if (GiNaC::is_a<GiNaC::mul>(term)) {
+      coeff = 1;
+      for (const ex& f : term)
+        if (GiNaC::is_a<GiNaC::numeric>(f)) coeff *= f;
+    } else if (!GiNaC::is_a<GiNaC::numeric>(term)) {
+      coeff = 1;
+    }
+    const int c = GiNaC::ex_to<GiNaC::numeric>(coeff.evalf()).to_double() > 0 ? 1 : -1;
+    if (sign != 0 && c != sign) return std::nullopt;
+    sign = c;
+  }
+  return sign;
+}
+
+ContactSides contact_sides(const Topology& t, int mi, Heights& h, Symbols& s,
+                           const std::map<std::string, double>& values) {
+  const Mesh& m = t.meshes[mi];
+  const int bi = m.first.body;
+  const int bj = m.second.body;
+  const Wheel& wi = wheel(t, m.first);
+  const Wheel& wj = wheel(t, m.second);
+  if (wi.internal && wj.internal)
+    throw InputError(m.where, fmt::format("{}: two internal wheels cannot mesh; one of {} and {} must have "
+                                          "external teeth", describe_mesh(t, mi), wi.name, wj.name));
+  // is_j_above: +1 when body j's axis is drawn above body i's.
+  std::optional<int> j_above;
+  const bool fi = t.bodies[bi].axis == AxisKind::fixed && !h.value[bi];
+  const bool fj = t.bodies[bj].axis == AxisKind::fixed && !h.value[bj];
+  if (fj && !fi) j_above = t.bodies[bj].side;
+  else if (fi && !fj) j_above = -t.bodies[bi].side;
+  else if (fi && fj)
+    throw InputError(m.where, fmt::format("{}: neither axis height is known yet; mesh a fixed-axis gear with a "
+                                          "central or carried wheel first", describe_mesh(t, mi)));
+  else
+    j_above = sign_of(h.symbolic[bj] - h.symbolic[bi], s, values);
+  if (!j_above)
+    throw InputError(m.where, fmt::format("{}: cannot tell which axis is drawn higher; give the numeric values "
+                                          "of the axis distances", describe_mesh(t, mi)));
+  if (*j_above == 0)
+    throw InputError(m.where, fmt::format("{}: {} and {} turn about the same axis, so they cannot mesh; put one "
+                                          "on a carrier or a fixed axis", describe_mesh(t, mi),
+                                          wheel_label(t, m.first), wheel_label(t, m.second)));
+  ContactSides c;
+  if (wi.internal) {
+    c.first = c.second = *j_above;  // contact on the far side of j, seen from the ring's axis
+  } else if (wj.internal) {
+    c.first = c.second = -*j_above;
+  } else {
+    c.first = *j_above;  // external pair: they touch between their axes
+    c.second = -*j_above;
+  }
+  // A fixed axis is placed by its first mesh: contact heights must agree.
+  auto place = [&](int fixed_body, int other_body, int side_fixed, int side_other, const Wheel& wf, const Wheel& wo) {
+    h.symbolic[fixed_body] = h.symbolic[other_body] + side_other * symbol(s, wo.radius) - side_fixed * symbol(s, wf.radius);
+    h.value[fixed_body] = value_of(h.symbolic[fixed_body], s, values);
+  };
+  if (fi) place(bi, bj, c.first, c.second, wi, wj);
+  if (fj) place(bj, bi, c.second, c.first, wj, wi);
+  return c;
+}
+
+// Velocity of body k's material point at `offset` from its own axis, as coefficients of omega.
+void add_point_velocity(const Topology& t, Symbols& s, int k, const ex& offset, const ex& factor,
+                        std::vector<ex>& row) {
+  const Body& b = t.bodies[k];
+  row[k] += factor * b.arrow * offset;
+  if (b.axis == AxisKind::carried) {
+    const int c = find_body(t, b.carrier);
+    add_point_velocity(t, s, c, b.side * symbol(s, b.distance), factor, row);
+  }
+}
+
+// Priority when solving the contact equations: what a designer reads as derived comes first.
+int unknown_rank(const Topology& t, const std::string& name, int& order) {
+  for (int k = static_cast<int>(t.bodies.size()) - 1; k >= 0; --k) {
+    const Body& b = t.bodies[k];
+    order = k;
+    if (b.axis == AxisKind::carried && b.distance == name) return 2;
+    for (const auto& w : b.wheels)
+      if (w.radius == name) return w.internal ? 1 : 0;
+  }
+  order = -1;
+  return -1;
+}
+
+}  // namespace
+
+std::string describe_mesh(const Topology& t, int mesh) {
+  const Mesh& m = t.meshes[mesh];
+  return fmt::format("mesh {} ({} with {})", m.name, wheel_label(t, m.first), wheel_label(t, m.second));
+}
+
+RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
+  const auto n = t.bodies.size();
+  const auto m = t.meshes.size();
+  RadiusMatrix rm;
+  rm.values = given_values(t);
+  Heights h = axis_heights(t, s, rm.values);
+
+  rm.R = GiNaC::matrix(m, n);
+  std::vector<ex> contact_equations;  // a_i + side_i r_i - (a_j + side_j r_j) == 0, per mesh
+  for (std::size_t mi = 0; mi < m; ++mi) {
+    const Mesh& mesh = t.meshes[mi];
+    const ContactSides c = contact_sides(t, static_cast<int>(mi), h, s, rm.values);
+    rm.sides.push_back(c);
+    const ex ri = symbol(s, wheel(t, mesh.first).radius);
+    const ex rj = symbol(s, wheel(t, mesh.second).radius);
+    std::vector<ex> row(n, ex(0));
+    add_point_velocity(t, s, mesh.first.body, c.first * ri, +1, row);
+    add_point_velocity(t, s, mesh.second.body, c.second * rj, -1, row);
+    for (std::size_t k = 0; k < n; ++k) rm.R(mi, k) = row[k].expand();
+    contact_equations.push_back(
+        (h.symbolic[mesh.first.body] + c.first * ri - h.symbolic[mesh.second.body] - c.second * rj).expand());
+  }
+
+  // Solve the contact equations one at a time for the most "derived" unknown in each.
+  GiNaC::exmap solved;
+  std::map<std::string, int> solved_by;
+  for (std::size_t mi = 0; mi < m; ++mi) {
+    const ex e = contact_equations[mi].subs(solved).expand();
+    if (e.is_zero()) continue;
+    std::optional<GiNaC::realsymbol> best;
+    int best_rank = -2;
+    int best_order = -2;
+    for (const auto& [name, sym] : s.by_name) {
+      if (!e.has(sym)) continue;
+      int order = -1;
+      const int r = name.rfind("__height_", 0) == 0 ? 3 : unknown_rank(t, name, order);
+      if (std::tie(r, order) > std::tie(best_rank, best_order)) {
+        best = sym;
+        best_rank = r;
+        best_order = order;
+      }
+    }
+    if (!best || !GiNaC::is_a<GiNaC::numeric>(e.coeff(*best, 1)) || e.degree(*best) != 1)
+      throw InputError(t.meshes[mi].where, fmt::format("{}: its contact geometry cannot be satisfied",
+                                                       describe_mesh(t, static_cast<int>(mi))));
+    const ex value = (-e.coeff(*best, 0) / e.coeff(*best, 1)).expand();
+    for (auto& [sym, v] : solved) v = v.subs(*best == value).expand();
+    solved[*best] = value;
+    solved_by[GiNaC::ex_to<GiNaC::symbol>(*best).get_name()] = static_cast<int>(mi);
+  }
+
+  for (const auto& [sym, rhs] : solved) {
+    const std::string name = GiNaC::ex_to<GiNaC::symbol>(sym).get_name();
+    if (name.rfind("__height_", 0) == 0) continue;
+    rm.relations.push_back(GeometryRelation{name, rhs, solved_by[name]});
+  }
+  // Report relations in mesh order, which follows the drawing.
+  std::stable_sort(rm.relations.begin(), rm.relations.end(),
+                   [](const GeometryRelation& a, const GeometryRelation& b) { return a.mesh < b.mesh; });
+
+  // Every radius the relations leave free must be given; the dependent ones may be omitted.
+  for (std::size_t mi = 0; mi < m; ++mi)
+    for (WheelRef w : {t.meshes[mi].first, t.meshes[mi].second}) {
+      const std::string& r = wheel(t, w).radius;
+      const bool dependent = std::any_of(rm.relations.begin(), rm.relations.end(),
+                                         [&](const GeometryRelation& g) { return g.parameter == r; });
+      if (!dependent && !rm.values.count(r))
+        throw InputError(t.meshes[mi].where, fmt::format("missing parameter '{}' (the radius of {}); add it under "
+                                                         "[parameters], e.g. {} = \"10*cm\"",
+                                                         r, wheel_label(t, w), r));
+    }
+  for (const auto& b : t.bodies)
+    if (b.axis == AxisKind::carried && !rm.values.count(b.distance) &&
+        std::none_of(rm.relations.begin(), rm.relations.end(),
+                     [&](const GeometryRelation& g) { return g.parameter == b.distance; }))
+      throw InputError(b.where, fmt::format("missing parameter '{}' (the axis distance of {}); add it under "
+                                            "[parameters]", b.distance, b.name));
+
+  for (const auto& g : rm.relations) {
+    const auto implied = value_of(g.rhs, s, rm.values);
+    if (!implied) continue;  // depends on a missing free radius: reported above
+    const Parameter* p = find_parameter(t, g.parameter);
+    if (!p) {
+      if (!(*implied > 0))
+        throw InputError(t.meshes[g.mesh].where,
+                         fmt::format("{} makes '{}' = {} m, which is not positive; check the layout",
+                                     describe_mesh(t, g.mesh), g.parameter, *implied));
+      rm.values[g.parameter] = *implied;
+      rm.derived.push_back(g.parameter);
+      continue;
+    }
+    const double given = p->value.si;
+    const double gap = std::abs(given - *implied);
+    // The relations are exact identities of the drawing; values typed to a few digits still
+    // reproduce them to ~1e-15 relative, so 1e-9 only catches real inconsistencies.
+    if (gap > 1e-9 * std::max(std::abs(given), std::abs(*implied))) {
+      throw InputError(p->where,
+                       fmt::format("'{}' = {} ({} m) contradicts the geometry: {} implies {} = {} = {} m; "
+                                   "correct the value, or the layout if the drawing differs",
+                                   g.parameter, p->text, given, describe_mesh(t, g.mesh), g.parameter, print_expression(g.rhs, Notation::ginac),
+                                   *implied));
+    }
+  }
+  return rm;
+}
+
+GiNaC::exmap geometry_substitutions(const RadiusMatrix& rm, Symbols& s) {
+  GiNaC::exmap m;
+  for (const auto& g : rm.relations) m[symbol(s, g.parameter)] = g.rhs;
+  return m;
+}
+
+}  // namespace pogear

@@ -1,0 +1,315 @@
+// Every expression is printed by print_expression, so reports are identical from run to run.
+#include "report.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "printer.hpp"
+
+namespace pogear {
+namespace {
+
+using GiNaC::ex;
+
+// The quantities every report shows, printed once in one notation.
+struct Printed {
+  std::vector<std::string> velocities, forces, kept, torques;
+  std::vector<std::string> geometry;  // "r_c == r_p+r_s1"
+  std::vector<std::string> geometry_mesh;
+  std::vector<std::vector<std::string>> R, Q1, L1, A1, B1;
+  std::vector<std::pair<std::string, std::string>> closed_form;
+  std::vector<std::string> force_recovery;
+};
+
+std::vector<std::vector<std::string>> print_matrix(const GiNaC::matrix& m, Notation n) {
+  std::vector<std::vector<std::string>> out(m.rows());
+  for (unsigned i = 0; i < m.rows(); ++i)
+    for (unsigned j = 0; j < m.cols(); ++j) out[i].push_back(print_expression(m(i, j), n));
+  return out;
+}
+
+Printed print_all(const Derivation& d, Notation n) {
+  Printed p;
+  Symbols s = d.symbols;  // symbols are shared handles; the copy only avoids mutating d
+  auto name = [&](const std::string& x) { return n == Notation::latex ? latex_symbol(x) : x; };
+  for (const auto& v : d.elastic.velocities) p.velocities.push_back(name(v));
+  for (const auto& f : d.elastic.forces) p.forces.push_back(name(f));
+  for (const auto& t : d.elastic.torques) p.torques.push_back(name(t));
+  for (int k : d.rigid.kept) p.kept.push_back(name(d.elastic.velocities[k]));
+  for (const auto& g : d.radius.relations) {
+    p.geometry.push_back(print_expression(symbol(s, g.parameter) == g.rhs, n));
+    p.geometry_mesh.push_back(d.topology.meshes[g.mesh].name);
+  }
+  p.R = print_matrix(d.elastic.R, n);
+  p.Q1 = print_matrix(d.rigid.Q1, n);
+  p.L1 = print_matrix(d.rigid.L1, n);
+  p.A1 = print_matrix(d.rigid.A1, n);
+  p.B1 = print_matrix(d.rigid.B1, n);
+  if (d.rigid.kept.size() == 2) {
+    auto at = [&](const GiNaC::matrix& m, int i, int j) { return print_expression(m(i, j), n); };
+    p.closed_form = {{"J1", at(d.rigid.L1, 0, 0)}, {"J2", at(d.rigid.L1, 1, 1)}, {"J3", at(d.rigid.L1, 0, 1)},
+                     {"b1", at(d.rigid.A1, 0, 0)}, {"b2", at(d.rigid.A1, 1, 1)}, {"b3", at(d.rigid.A1, 0, 1)}};
+  }
+  for (const auto& f : d.rigid.force_recovery) p.force_recovery.push_back(print_expression(f, n));
+  return p;
+}
+
+std::string join(const std::vector<std::string>& v, const std::string& sep) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
+  return s;
+}
+
+std::string text_matrix(const std::string& label, const std::vector<std::vector<std::string>>& m) {
+  std::vector<std::size_t> width;
+  for (const auto& row : m)
+    for (std::size_t j = 0; j < row.size(); ++j) {
+      if (width.size() <= j) width.push_back(0);
+      width[j] = std::max(width[j], row[j].size());
+    }
+  std::string s = label + " =\n";
+  for (const auto& row : m) {
+    s += "  [";
+    for (std::size_t j = 0; j < row.size(); ++j) s += fmt::format(" {:<{}}", row[j], width[j]);
+    s += " ]\n";
+  }
+  return s;
+}
+
+std::string force_bodies(const Derivation& d) {
+  std::vector<std::string> S;
+  for (int b : d.rigid.force_bodies) S.push_back(d.topology.bodies[b].name);
+  return join(S, ", ");
+}
+
+std::string title_of(const Derivation& d) {
+  return d.topology.title.empty() ? d.topology.name : d.topology.name + ": " + d.topology.title;
+}
+
+std::string latex_matrix(const std::vector<std::vector<std::string>>& m) {
+  std::string s = "\\begin{bmatrix}\n";
+  for (const auto& row : m) s += "  " + join(row, " & ") + " \\\\\n";
+  return s + "\\end{bmatrix}";
+}
+
+std::string latex_vector(const std::vector<std::string>& v) {
+  return "\\begin{bmatrix} " + join(v, " \\\\ ") + " \\end{bmatrix}";
+}
+
+// LaTeX and Markdown share the mathematics; only the wrapping differs.
+struct MathDisplay {
+  std::string (*display)(const std::string& math);
+  std::string (*heading)(const std::string& text);
+  std::string (*paragraph)(const std::string& text);
+};
+
+std::string math_body(const Derivation& d, const MathDisplay& w) {
+  const Printed p = print_all(d, Notation::latex);
+  const std::size_t n = p.velocities.size();
+  std::string s;
+  s += w.heading("Variables");
+  s += w.display("\\boldsymbol{\\omega} = " + latex_vector(p.velocities) + ", \\quad \\boldsymbol{\\tau} = " +
+                 latex_vector(p.torques) + ", \\quad \\mathbf{F} = " + latex_vector(p.forces));
+  s += w.heading("Radius matrix");
+  s += w.display("\\mathbf{R} = " + latex_matrix(p.R));
+  if (!p.geometry.empty()) {
+    s += w.paragraph("Geometry relations of the layout, each from the contact of one mesh:");
+    std::string g = "\\begin{aligned}\n";
+    for (std::size_t i = 0; i < p.geometry.size(); ++i) {
+      std::string rel = p.geometry[i];
+      const auto eq = rel.find(" = ");
+      g += "  " + rel.substr(0, eq) + " &= " + rel.substr(eq + 3) + " && \\text{(mesh " + p.geometry_mesh[i] + ")} \\\\\n";
+    }
+    s += w.display(g + "\\end{aligned}");
+  }
+  s += w.heading("Elastic model");
+  s += w.paragraph(fmt::format("State $\\mathbf{{x}} = [\\boldsymbol{{\\omega}}; \\mathbf{{F}}]$ of size {}, "
+                               "$\\mathbf{{L}}\\dot{{\\mathbf{{x}}}} = \\mathbf{{A}}\\mathbf{{x}} + \\mathbf{{B}}\\boldsymbol{{\\tau}}$ with",
+                               n + p.forces.size()));
+  s += w.display("\\mathbf{L} = \\begin{bmatrix} \\mathbf{J} & 0 \\\\ 0 & \\mathbf{K}^{-1} \\end{bmatrix}, \\quad "
+                 "\\mathbf{A} = \\begin{bmatrix} -\\mathbf{B}_J - \\mathbf{R}^{\\mathsf{T}} \\mathbf{B}_K \\mathbf{R} & "
+                 "-\\mathbf{R}^{\\mathsf{T}} \\\\ \\mathbf{R} & 0 \\end{bmatrix}, \\quad "
+                 "\\mathbf{B} = \\begin{bmatrix} \\mathbf{I} \\\\ 0 \\end{bmatrix}");
+  s += w.heading("Rigid reduced model");
+  s += w.paragraph(fmt::format("Rank of $\\mathbf{{R}}$: {}; kept velocities $\\mathbf{{x}}_1 = ({})$, "
+                               "$\\boldsymbol{{\\omega}} = \\mathbf{{Q}}_1 \\mathbf{{x}}_1$, "
+                               "$\\mathbf{{L}}_1 \\dot{{\\mathbf{{x}}}}_1 = \\mathbf{{A}}_1 \\mathbf{{x}}_1 + \\mathbf{{B}}_1 \\boldsymbol{{\\tau}}$.",
+                               d.rigid.rank, join(p.kept, ", ")));
+  s += w.display("\\mathbf{Q}_1 = " + latex_matrix(p.Q1));
+  if (!p.closed_form.empty()) {
+    s += w.display("\\mathbf{L}_1 = \\begin{bmatrix} J_{1} & J_{3} \\\\ J_{3} & J_{2} \\end{bmatrix}, \\quad "
+                   "\\mathbf{A}_1 = \\begin{bmatrix} b_{1} & b_{3} \\\\ b_{3} & b_{2} \\end{bmatrix}, \\quad "
+                   "\\mathbf{B}_1 = \\mathbf{Q}_1^{\\mathsf{T}}");
+    std::string c = "\\begin{aligned}\n";
+    for (const auto& [name, value] : p.closed_form)
+      c += fmt::format("  {}_{{{}}} &= {} \\\\\n", name.substr(0, 1), name.substr(1), value);
+    s += w.display(c + "\\end{aligned}");
+  } else {
+    s += w.display("\\mathbf{L}_1 = " + latex_matrix(p.L1));
+    s += w.display("\\mathbf{A}_1 = " + latex_matrix(p.A1));
+    s += w.display("\\mathbf{B}_1 = \\mathbf{Q}_1^{\\mathsf{T}}");
+  }
+  s += w.heading("Mesh forces from the rigid model");
+  if (d.rigid.redundant_meshes) {
+    s += w.paragraph("$\\mathbf{R}\\mathbf{R}^{\\mathsf{T}}$ is singular (redundant meshes): the rigid model "
+                     "splits the load as $\\mathbf{F} = \\mathbf{K}\\mathbf{R}(\\mathbf{R}^{\\mathsf{T}}\\mathbf{K}\\mathbf{R})^{+}\\mathbf{g}$.");
+  } else {
+    s += w.paragraph("Eq. (8): $\\mathbf{F} = (\\mathbf{R}\\mathbf{R}^{\\mathsf{T}})^{-1}\\mathbf{R}(\\boldsymbol{\\tau} - "
+                     "\\mathbf{J}\\mathbf{Q}_1\\dot{\\mathbf{x}}_1 - \\mathbf{B}_J\\mathbf{Q}_1\\mathbf{x}_1)$. "
+                     "On the rigid model the bracket lies in the range of $\\mathbf{R}^{\\mathsf{T}}$, so this equals "
+                     "$(\\mathbf{R}_S^{\\mathsf{T}})^{-1}$ applied to the rows $S$ = (" + force_bodies(d) + ") of the bracket:");
+    std::string f = "\\begin{aligned}\n";
+    for (std::size_t i = 0; i < p.forces.size(); ++i) f += fmt::format("  {} &= {} \\\\\n", p.forces[i], p.force_recovery[i]);
+    s += w.display(f + "\\end{aligned}");
+  }
+  return s;
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", c);
+        else out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string json_strings(const std::vector<std::string>& v) {
+  std::vector<std::string> q;
+  for (const auto& x : v) q.push_back(json_string(x));
+  return "[" + join(q, ", ") + "]";
+}
+
+std::string json_string_matrix(const std::vector<std::vector<std::string>>& m, const std::string& indent) {
+  std::vector<std::string> rows;
+  for (const auto& r : m) rows.push_back(json_strings(r));
+  return "[\n" + indent + "  " + join(rows, ",\n" + indent + "  ") + "\n" + indent + "]";
+}
+
+std::string json_number(double v) { return fmt::format("{}", v); }
+
+std::string json_numbers(const Eigen::VectorXd& v) {
+  std::vector<std::string> s;
+  for (Eigen::Index i = 0; i < v.size(); ++i) s.push_back(json_number(v(i)));
+  return "[" + join(s, ", ") + "]";
+}
+
+std::string json_number_matrix(const Eigen::MatrixXd& m) {
+  std::vector<std::string> rows;
+  for (Eigen::Index i = 0; i < m.rows(); ++i) rows.push_back(json_numbers(m.row(i).transpose()));
+  return "[" + join(rows, ", ") + "]";
+}
+
+}  // namespace
+
+std::string report_text(const Derivation& d) {
+  const Printed p = print_all(d, Notation::text);
+  std::string s = "model " + title_of(d) + "\n\n";
+  s += "omega = (" + join(p.velocities, ", ") + ")\n";
+  s += "F     = (" + join(p.forces, ", ") + ")\n\n";
+  s += text_matrix("R", p.R) + "\n";
+  if (!p.geometry.empty()) {
+    s += "geometry relations:\n";
+    for (std::size_t i = 0; i < p.geometry.size(); ++i)
+      s += fmt::format("  {:<36} (mesh {})\n", p.geometry[i], p.geometry_mesh[i]);
+    if (!d.radius.derived.empty()) s += "  computed from them: " + join(d.radius.derived, ", ") + "\n";
+    s += "\n";
+  }
+  s += fmt::format("rank R = {}, degrees of freedom = {}, kept x1 = ({})\n\n", d.rigid.rank,
+                   d.elastic.velocities.size() - d.rigid.rank, join(p.kept, ", "));
+  s += text_matrix("Q1", p.Q1) + "\n";
+  if (!p.closed_form.empty()) {
+    s += "L1 = [J1 J3; J3 J2], A1 = [b1 b3; b3 b2], B1 = Q1^T\n";
+    for (const auto& [name, value] : p.closed_form) s += fmt::format("  {} = {}\n", name, value);
+    s += "\n";
+  } else {
+    s += text_matrix("L1", p.L1) + "\n" + text_matrix("A1", p.A1) + "\nB1 = Q1^T\n\n";
+  }
+  if (d.rigid.redundant_meshes) {
+    s += "mesh forces: R R^T is singular (redundant meshes); the rigid model splits the load as\n"
+         "  F = K R (R^T K R)^+ (tau - J Q1 dx1/dt - B_J Q1 x1)\n";
+  } else {
+    std::vector<std::string> S;
+    for (int b : d.rigid.force_bodies) S.push_back(d.topology.bodies[b].name);
+    s += "mesh forces, eq. (8): F = (R R^T)^-1 R g, g = tau - J Q1 dx1/dt - B_J Q1 x1, which on the rigid\n"
+         "model equals (R_S^T)^-1 g_S for S = (" + join(S, ", ") + "); domega = d omega/dt:\n";
+    for (std::size_t i = 0; i < p.forces.size(); ++i) s += fmt::format("  {} = {}\n", p.forces[i], p.force_recovery[i]);
+  }
+  return s;
+}
+
+std::string report_latex(const Derivation& d) {
+  const MathDisplay w{
+      [](const std::string& m) { return "\\[\n" + m + "\n\\]\n"; },
+      [](const std::string& h) { return "\\subsection*{" + h + "}\n"; },
+      [](const std::string& t) { return t + "\n\n"; },
+  };
+  std::string s;
+  s += "% Generated by pogear derive from " + d.topology.file + ". Compile with pdflatex.\n";
+  s += "\\documentclass{article}\n\\usepackage{amsmath,amssymb}\n\\usepackage[margin=2cm,landscape]{geometry}\n";
+  s += "\\setcounter{MaxMatrixCols}{64}\n\\allowdisplaybreaks\n\\begin{document}\n";
+  std::string title = title_of(d);
+  std::string escaped;
+  for (char c : title) escaped += (c == '_' || c == '&' || c == '%' || c == '#') ? std::string("\\") + c : std::string(1, c);
+  s += "\\section*{" + escaped + "}\n";
+  s += math_body(d, w);
+  s += "\\end{document}\n";
+  return s;
+}
+
+std::string report_markdown(const Derivation& d) {
+  const MathDisplay w{
+      [](const std::string& m) { return "$$\n" + m + "\n$$\n\n"; },
+      [](const std::string& h) { return "## " + h + "\n\n"; },
+      [](const std::string& t) { return t + "\n\n"; },
+  };
+  return "# " + title_of(d) + "\n\n" + math_body(d, w);
+}
+
+std::string report_json(const Derivation& d) {
+  const Printed p = print_all(d, Notation::ginac);
+  Symbols s = d.symbols;
+  const GiNaC::exmap values = numeric_substitutions(s, d.radius.values);
+  std::vector<std::string> names;
+  for (int k : d.rigid.kept) names.push_back(d.topology.bodies[k].name);
+  const auto diag = [&](const GiNaC::matrix& m) {
+    return Eigen::VectorXd(evaluate_matrix(m, values).diagonal());
+  };
+  std::string j = "{\n";
+  j += "  \"model\": " + json_string(d.topology.name) + ",\n";
+  j += "  \"velocities\": " + json_strings(p.velocities) + ",\n";
+  j += "  \"forces\": " + json_strings(p.forces) + ",\n";
+  j += "  \"keep\": " + json_strings(names) + ",\n";
+  j += "  \"geometry\": " + json_strings(p.geometry) + ",\n";
+  j += "  \"R\": " + json_string_matrix(p.R, "  ") + ",\n";
+  j += "  \"Q1\": " + json_string_matrix(p.Q1, "  ") + ",\n";
+  j += "  \"L1\": " + json_string_matrix(p.L1, "  ") + ",\n";
+  j += "  \"A1\": " + json_string_matrix(p.A1, "  ") + ",\n";
+  j += "  \"B1\": " + json_string_matrix(p.B1, "  ") + ",\n";
+  if (!p.closed_form.empty()) {
+    std::vector<std::string> cf;
+    for (const auto& [name, value] : p.closed_form) cf.push_back(json_string(name) + ": " + json_string(value));
+    j += "  \"closed_form\": {" + join(cf, ", ") + "},\n";
+  }
+  j += "  \"force_recovery\": " + json_strings(p.force_recovery) + ",\n";
+  j += "  \"numeric\": {\n";
+  j += "    \"J\": " + json_numbers(diag(d.elastic.J)) + ",\n";
+  j += "    \"b\": " + json_numbers(diag(d.elastic.B_J)) + ",\n";
+  j += "    \"K\": " + json_numbers(diag(d.elastic.K)) + ",\n";
+  j += "    \"b_K\": " + json_numbers(diag(d.elastic.B_K)) + ",\n";
+  j += "    \"R\": " + json_number_matrix(evaluate_matrix(d.elastic.R, values)) + ",\n";
+  j += "    \"Q1\": " + json_number_matrix(evaluate_matrix(d.rigid.Q1, values)) + ",\n";
+  j += "    \"L1\": " + json_number_matrix(evaluate_matrix(d.rigid.L1, values)) + ",\n";
+  j += "    \"A1\": " + json_number_matrix(evaluate_matrix(d.rigid.A1, values)) + "\n";
+  j += "  }\n}\n";
+  return j;
+}
+
+}  // namespace pogear

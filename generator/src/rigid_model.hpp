@@ -1,0 +1,40 @@
+// The rigid reduced model (K -> infinity) for the velocities the user keeps: omega = Q1 x1 with
+// R Q1 = 0, L1 = Q1^T J Q1, A1 = -Q1^T B_J Q1, B1 = Q1^T, and the mesh forces of eq. (8).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <ginac/ginac.h>
+
+#include "elastic_model.hpp"
+
+namespace pogear {
+
+struct RigidModel {
+  std::vector<int> kept;        // body indices of x1, in the order the user gave
+  std::vector<int> eliminated;  // the other bodies, in body order
+  int rank = 0;                 // rank of R under the geometry relations
+  GiNaC::matrix Q1, L1, A1, B1;
+  // Eq. (8), F = (R R^T)^-1 R g with g = tau - J Q1 dx1/dt - B_J Q1 x1, written as the equal
+  // (on every rigid motion) F = (R_S^T)^-1 g_S over the bodies S = force_bodies: one expression
+  // per mesh in tau_<body>, omega_<kept> and domega_<kept> (= d omega/dt). Empty when R R^T is
+  // singular (redundant meshes): then the split of DESIGN.md §4 applies, numerically.
+  std::vector<GiNaC::ex> force_recovery;
+  std::vector<int> force_bodies;
+  bool redundant_meshes = false;
+};
+
+// Throws InputError (at `keep_where`) when the number kept is not n - rank(R) or the kept set
+// does not parametrize ker R; the message names the tied velocities and lists valid sets.
+RigidModel reduce_to_rigid(const Topology& topology, const RadiusMatrix& radius, const ElasticModel& elastic,
+                           const std::vector<std::string>& keep, const SourceLocation& keep_where,
+                           Symbols& symbols);
+
+// m bodies whose columns of R are independent, preferring sparse columns (short expressions).
+std::vector<int> force_recovery_bodies(const Eigen::MatrixXd& R_numeric);
+
+// Sets of velocities that can be kept, in body order, at most `limit` of them.
+std::vector<std::vector<int>> valid_keep_sets(const Eigen::MatrixXd& R_numeric, std::size_t limit);
+
+}  // namespace pogear

@@ -1,0 +1,33 @@
+// The GiNaC symbols of one model, by name: GiNaC tells symbols apart by identity, not by name,
+// so every stage must draw them from the same table.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include <ginac/ginac.h>
+
+namespace pogear {
+
+struct Symbols {
+  std::map<std::string, GiNaC::realsymbol> by_name;
+};
+
+inline GiNaC::realsymbol symbol(Symbols& s, const std::string& name) {
+  auto it = s.by_name.find(name);
+  if (it == s.by_name.end()) it = s.by_name.emplace(name, GiNaC::realsymbol(name)).first;
+  return it->second;
+}
+
+// Substitutes numeric SI values for every symbol that has one.
+GiNaC::exmap numeric_substitutions(Symbols& s, const std::map<std::string, double>& values);
+double to_double(const GiNaC::ex& e);  // throws std::domain_error when e is not a real number
+
+}  // namespace pogear
+
+#include <Eigen/Dense>
+
+namespace pogear {
+// Every entry of `m` at the given substitutions (SI values); throws if one stays symbolic.
+Eigen::MatrixXd evaluate_matrix(const GiNaC::matrix& m, const GiNaC::exmap& values);
+}  // namespace pogear

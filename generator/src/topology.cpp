@@ -1,0 +1,426 @@
+// Reads model files (TOML) into a Topology, checking names, references, units and signs, and
+// locating every complaint at the value it concerns.
+#include "topology.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+namespace pogear {
+namespace {
+
+SourceLocation at(const std::string& file, const toml::source_region& r) {
+  return SourceLocation{file, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+}
+
+struct Reader {
+  std::string file;
+
+  SourceLocation loc(const toml::node& n) const { return at(file, n.source()); }
+
+  [[noreturn]] void fail(const toml::node& n, const std::string& message) const {
+    throw InputError(loc(n), message);
+  }
+
+  void only_keys(const toml::table& t, std::initializer_list<std::string_view> allowed,
+                 std::string_view what) const {
+    for (const auto& [key, value] : t) {
+      if (std::find(allowed.begin(), allowed.end(), key.str()) != allowed.end()) continue;
+      std::string list;
+      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      throw InputError(at(file, key.source()),
+                       fmt::format("unknown key '{}' in {}; the keys are {}", key.str(), what, list));
+    }
+  }
+
+  std::string string(const toml::node& n, std::string_view what) const {
+    if (auto s = n.value<std::string>(); s && n.is_string()) return *s;
+    fail(n, fmt::format("{} must be a string in quotes", what));
+  }
+
+  std::optional<std::string> optional_string(const toml::table& t, std::string_view key,
+                                             std::string_view what) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    return string(*n, what);
+  }
+
+  std::string identifier(const toml::node& n, std::string_view what) const {
+    std::string s = string(n, what);
+    const bool ok = !s.empty() && std::isalpha(static_cast<unsigned char>(s[0])) &&
+                    std::all_of(s.begin(), s.end(), [](char c) {
+                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                    });
+    if (!ok || s.size() > 64)
+      fail(n, fmt::format("{} '{}' is not a name; use letters, digits and '_', starting with a letter", what, s));
+    return s;
+  }
+};
+
+const toml::table& as_table(const Reader& r, const toml::node& n, std::string_view what) {
+  if (!n.is_table()) r.fail(n, fmt::format("{} must be a table {{ ... }}", what));
+  return *n.as_table();
+}
+
+const toml::array& array_of_tables(const Reader& r, const toml::table& root, std::string_view key,
+                                   std::string_view example) {
+  const toml::node* n = root.get(key);
+  if (!n) throw InputError(SourceLocation{r.file, 0, 0},
+                           fmt::format("no [[{}]] entries; add at least one, e.g. {}", key, example));
+  if (!n->is_array_of_tables())
+    r.fail(*n, fmt::format("'{}' must be written as [[{}]] tables", key, key));
+  return *n->as_array();
+}
+
+Body read_body(const Reader& r, const toml::table& t) {
+  r.only_keys(t, {"name", "axis", "arrow", "inertia", "friction", "wheels"}, "a [[body]]");
+  Body b;
+  b.where = r.loc(t);
+  const toml::node* name = t.get("name");
+  if (!name) r.fail(t, "a [[body]] needs a name, e.g. name = \"c\"");
+  b.name = r.identifier(*name, "a body name");
+  b.where = r.loc(*name);
+
+  if (const toml::node* axis = t.get("axis")) {
+    if (axis->is_string()) {
+      const std::string a = r.string(*axis, "axis");
+      if (a != "central")
+        r.fail(*axis, fmt::format("axis \"{}\" is not known; write \"central\", {{ fixed = \"below\" }} or "
+                                  "{{ carrier = \"c\", distance = \"r_c\" }}", a));
+      b.axis = AxisKind::central;
+    } else {
+      const toml::table& at = as_table(r, *axis, "axis");
+      r.only_keys(at, {"carrier", "distance", "side", "fixed"}, "an axis");
+      if (const toml::node* f = at.get("fixed")) {
+        if (at.get("carrier") || at.get("distance"))
+          r.fail(*axis, "an axis is either fixed or carried, not both");
+        b.axis = AxisKind::fixed;
+        const std::string side = r.string(*f, "fixed");
+        if (side != "above" && side != "below")
+          r.fail(*f, "fixed must be \"above\" or \"below\": where the axis is drawn relative to the wheels it meshes with");
+        b.side = side == "above" ? +1 : -1;
+      } else {
+        const toml::node* c = at.get("carrier");
+        const toml::node* d = at.get("distance");
+        if (!c || !d) r.fail(*axis, "a carried axis needs carrier = \"<body>\" and distance = \"<parameter>\"");
+        b.axis = AxisKind::carried;
+        b.carrier = r.identifier(*c, "carrier");
+        b.distance = r.identifier(*d, "distance");
+        if (const toml::node* s = at.get("side")) {
+          const std::string side = r.string(*s, "side");
+          if (side != "above" && side != "below") r.fail(*s, "side must be \"above\" or \"below\"");
+          b.side = side == "above" ? +1 : -1;
+        }
+      }
+    }
+  }
+  if (const toml::node* arrow = t.get("arrow")) {
+    const std::string a = r.string(*arrow, "arrow");
+    if (a != "right" && a != "left")
+      r.fail(*arrow, "arrow must be \"right\" or \"left\": the positive direction of omega as drawn");
+    b.arrow = a == "right" ? +1 : -1;
+  }
+  b.inertia = "J_" + b.name;
+  b.friction = "b_" + b.name;
+  if (const toml::node* n = t.get("inertia")) b.inertia = r.identifier(*n, "inertia");
+  if (const toml::node* n = t.get("friction")) b.friction = r.identifier(*n, "friction");
+
+  if (const toml::node* wheels = t.get("wheels")) {
+    if (!wheels->is_array()) r.fail(*wheels, "wheels must be a list: [ { name = \"s1\", radius = \"r_s1\" } ]");
+    for (const toml::node& w : *wheels->as_array()) {
+      const toml::table& wt = as_table(r, w, "a wheel");
+      r.only_keys(wt, {"name", "radius", "internal"}, "a wheel");
+      Wheel wheel;
+      const toml::node* wn = wt.get("name");
+      if (!wn) r.fail(w, "a wheel needs a name, e.g. { name = \"s1\", radius = \"r_s1\" }");
+      wheel.name = r.identifier(*wn, "a wheel name");
+      wheel.where = r.loc(*wn);
+      wheel.radius = "r_" + wheel.name;
+      if (const toml::node* rn = wt.get("radius")) wheel.radius = r.identifier(*rn, "radius");
+      if (const toml::node* in = wt.get("internal")) {
+        if (!in->is_boolean()) r.fail(*in, "internal must be true or false");
+        wheel.internal = **in->as_boolean();
+      }
+      b.wheels.push_back(std::move(wheel));
+    }
+    if (b.wheels.empty()) r.fail(*wheels, "an empty wheel list; leave 'wheels' out for a body without teeth");
+  } else {
+    // The common case: one wheel named like its body, radius r_<body>. A carrier without
+    // teeth simply never appears in a mesh, so its default wheel is harmless.
+    b.wheels.push_back(Wheel{b.name, "r_" + b.name, false, b.where});
+  }
+  return b;
+}
+
+WheelRef resolve_wheel(const Reader& r, const Topology& t, const toml::node& n) {
+  const std::string name = r.identifier(n, "a mesh terminal");
+  std::vector<WheelRef> found;
+  for (int bi = 0; bi < static_cast<int>(t.bodies.size()); ++bi)
+    for (int wi = 0; wi < static_cast<int>(t.bodies[bi].wheels.size()); ++wi)
+      if (t.bodies[bi].wheels[wi].name == name) found.push_back({bi, wi});
+  if (found.size() == 1) return found[0];
+  if (found.empty()) {
+    const int bi = find_body(t, name);
+    if (bi >= 0 && t.bodies[bi].wheels.size() == 1) return {bi, 0};
+    if (bi >= 0) {
+      std::string list;
+      for (const auto& w : t.bodies[bi].wheels) list += (list.empty() ? "" : ", ") + w.name;
+      r.fail(n, fmt::format("body '{}' has several wheels ({}); name the one that meshes", name, list));
+    }
+    std::string list;
+    for (const auto& b : t.bodies)
+      for (const auto& w : b.wheels) list += (list.empty() ? "" : ", ") + w.name;
+    r.fail(n, fmt::format("no wheel or body named '{}'; the wheels are {}", name, list));
+  }
+  r.fail(n, fmt::format("wheel name '{}' is ambiguous", name));
+}
+
+void check_unique_names(const Reader& r, const Topology& t) {
+  std::map<std::string, SourceLocation> seen;
+  auto claim = [&](const std::string& name, const SourceLocation& where, std::string_view what) {
+    auto [it, fresh] = seen.emplace(name, where);
+    if (!fresh)
+      throw InputError(where, fmt::format("duplicate name '{}' ({}); it is already used at line {}", name, what,
+                                          it->second.line));
+  };
+  for (const auto& b : t.bodies) claim(b.name, b.where, "body");
+  seen.clear();
+  for (const auto& b : t.bodies)
+    for (const auto& w : b.wheels)
+      if (!(b.wheels.size() == 1 && w.name == b.name)) claim(w.name, w.where, "wheel");
+  seen.clear();
+  for (const auto& m : t.meshes) claim(m.name, m.where, "mesh");
+  (void)r;
+}
+
+void check_carriers(Topology& t) {
+  for (const auto& b : t.bodies) {
+    if (b.axis != AxisKind::carried) continue;
+    if (find_body(t, b.carrier) < 0)
+      throw InputError(b.where, fmt::format("body '{}' is carried by '{}', which is not a body of this model",
+                                            b.name, b.carrier));
+    // Follow the chain of carriers; a loop would give a planet no axis at all.
+    std::set<std::string> seen{b.name};
+    const Body* c = &b;
+    while (c->axis == AxisKind::carried) {
+      if (!seen.insert(c->carrier).second)
+        throw InputError(b.where, fmt::format("body '{}' is carried, through its carriers, by itself", b.name));
+      c = &t.bodies[find_body(t, c->carrier)];
+    }
+  }
+}
+
+// Evaluates all parameters in dependency order, so `b_p = "b_c"` works wherever b_c stands.
+void evaluate_parameters(const Reader& r, const toml::table& params, Topology& t) {
+  struct Raw {
+    std::string text;
+    SourceLocation where;
+    int column_offset;
+    bool bare_number;
+    double number;
+  };
+  std::map<std::string, Raw> raw;
+  std::vector<std::string> order;  // file order, for deterministic output
+  if (params.size() > max_parameters)
+    r.fail(params, fmt::format("more than {} parameters", max_parameters));
+  for (const auto& [key, node] : params) {
+    const std::string name(key.str());
+    const bool ok = !name.empty() && std::isalpha(static_cast<unsigned char>(name[0])) &&
+                    std::all_of(name.begin(), name.end(), [](char c) {
+                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                    });
+    if (!ok) throw InputError(at(r.file, key.source()), fmt::format("'{}' is not a parameter name", name));
+    if (is_unit_name(name))
+      throw InputError(at(r.file, key.source()), fmt::format("parameter '{}' has the name of a unit; rename it", name));
+    Raw entry{"", r.loc(node), 1, false, 0.0};
+    if (node.is_string()) {
+      entry.text = *node.value<std::string>();
+    } else if (node.is_integer() || node.is_floating_point()) {
+      entry.bare_number = true;
+      entry.number = *node.value<double>();
+      entry.text = fmt::format("{}", entry.number);
+    } else {
+      r.fail(node, fmt::format("parameter '{}' must be a number (SI) or a string such as \"4.8*cm\"", name));
+    }
+    raw.emplace(name, std::move(entry));
+    order.push_back(name);
+  }
+  std::sort(order.begin(), order.end(), [&](const std::string& a, const std::string& b) {
+    const auto& la = raw[a].where;
+    const auto& lb = raw[b].where;
+    return std::tie(la.line, la.column) < std::tie(lb.line, lb.column);
+  });
+
+  std::map<std::string, Quantity> done;
+  std::set<std::string> visiting;
+  std::function<void(const std::string&)> visit = [&](const std::string& name) {
+    if (done.count(name)) return;
+    const Raw& e = raw.at(name);
+    if (!visiting.insert(name).second)
+      throw InputError(e.where, fmt::format("parameter '{}' is defined through itself", name));
+    if (e.bare_number) {
+      if (!std::isfinite(e.number)) throw InputError(e.where, fmt::format("parameter '{}' is not finite", name));
+      done[name] = Quantity{e.number, Dimension{}, false};
+    } else {
+      for (const auto& ref : referenced_names(e.text))
+        if (raw.count(ref)) visit(ref);
+      done[name] = evaluate_quantity(e.text, done, e.where, e.column_offset);
+    }
+    visiting.erase(name);
+  };
+  for (const auto& name : order) visit(name);
+  for (const auto& name : order)
+    t.parameters.push_back(Parameter{name, raw[name].text, done[name], false, raw[name].where});
+}
+
+// Every parameter a role needs must exist (radii may come from geometry later), carry the
+// right unit and a sensible sign.
+void check_parameter_roles(const Topology& t) {
+  struct Role {
+    std::string name;
+    Dimension dimension;
+    bool positive;  // strictly; otherwise non-negative
+    const char* what;
+    SourceLocation used_at;
+  };
+  std::vector<Role> roles;
+  for (const auto& b : t.bodies) {
+    roles.push_back({b.inertia, inertia_dimension(), true, "an inertia", b.where});
+    roles.push_back({b.friction, rotational_damping_dimension(), false, "a bearing friction coefficient", b.where});
+    if (b.axis == AxisKind::carried) roles.push_back({b.distance, length_dimension(), true, "an axis distance", b.where});
+  }
+  for (const auto& m : t.meshes) {
+    roles.push_back({m.stiffness, stiffness_dimension(), true, "a mesh stiffness", m.where});
+    roles.push_back({m.damping, linear_damping_dimension(), false, "a mesh damping coefficient", m.where});
+    for (WheelRef w : {m.first, m.second})
+      roles.push_back({wheel(t, w).radius, length_dimension(), true, "a radius", m.where});
+  }
+  for (const auto& role : roles) {
+    const Parameter* p = find_parameter(t, role.name);
+    if (!p) {
+      if (role.dimension == length_dimension()) continue;  // may follow from the geometry
+      throw InputError(role.used_at, fmt::format("missing parameter '{}' ({}); add it under [parameters], e.g. "
+                                                 "{} = \"...\"",
+                                                 role.name, role.what, role.name));
+    }
+    if (p->value.has_unit && !(p->value.dimension == role.dimension))
+      throw InputError(p->where, fmt::format("parameter '{}' is {} but has unit {}; it needs {}", role.name,
+                                             role.what, describe(p->value.dimension), describe(role.dimension)));
+    const double v = p->value.si;
+    if (role.positive ? !(v > 0.0) : !(v >= 0.0))
+      throw InputError(p->where, fmt::format("parameter '{}' is {} and must be {} (it is {})", role.name, role.what,
+                                             role.positive ? "positive" : "zero or positive", v));
+  }
+}
+
+}  // namespace
+
+Topology parse_topology_text(const std::string& text, const std::string& path) {
+  Reader r{path};
+  if (text.size() > max_model_file_bytes)
+    throw InputError(SourceLocation{path, 0, 0},
+                     fmt::format("the file is larger than {} bytes; a model file is a few kilobytes", max_model_file_bytes));
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(at(path, e.source()), std::string(e.description()) + "; fix the TOML syntax");
+  }
+  r.only_keys(root, {"name", "title", "keep", "body", "mesh", "parameters"}, "the model file");
+
+  Topology t;
+  t.file = path;
+  if (const toml::node* n = root.get("name")) t.name = r.identifier(*n, "the model name");
+  else t.name = std::filesystem::path(path).stem().string();
+  if (auto s = r.optional_string(root, "title", "title")) t.title = *s;
+
+  const toml::array& bodies = array_of_tables(r, root, "body", "[[body]] name = \"c\"");
+  if (bodies.size() > max_bodies) r.fail(bodies, fmt::format("more than {} bodies", max_bodies));
+  for (const toml::node& n : bodies) t.bodies.push_back(read_body(r, *n.as_table()));
+  check_carriers(t);
+
+  const toml::array& meshes = array_of_tables(r, root, "mesh", "[[mesh]] first = \"p\", second = \"s1\"");
+  if (meshes.size() > max_meshes) r.fail(meshes, fmt::format("more than {} meshes", max_meshes));
+  for (const toml::node& n : meshes) {
+    const toml::table& mt = *n.as_table();
+    r.only_keys(mt, {"first", "second", "name", "stiffness", "damping"}, "a [[mesh]]");
+    const toml::node* f = mt.get("first");
+    const toml::node* s = mt.get("second");
+    if (!f || !s) r.fail(mt, "a [[mesh]] needs first = \"<wheel>\" and second = \"<wheel>\"");
+    Mesh m;
+    m.where = r.loc(*f);
+    m.first = resolve_wheel(r, t, *f);
+    m.second = resolve_wheel(r, t, *s);
+    if (m.first.body == m.second.body) r.fail(*s, "a body cannot mesh with itself");
+    m.name = t.bodies[m.first.body].name + t.bodies[m.second.body].name;
+    if (const toml::node* nn = mt.get("name")) m.name = r.identifier(*nn, "a mesh name");
+    m.stiffness = "K_" + m.name;
+    m.damping = "b_" + m.name;
+    if (const toml::node* nn = mt.get("stiffness")) m.stiffness = r.identifier(*nn, "stiffness");
+    if (const toml::node* nn = mt.get("damping")) m.damping = r.identifier(*nn, "damping");
+    t.meshes.push_back(std::move(m));
+  }
+  check_unique_names(r, t);
+
+  if (const toml::node* p = root.get("parameters")) evaluate_parameters(r, as_table(r, *p, "[parameters]"), t);
+  check_parameter_roles(t);
+
+  if (const toml::node* k = root.get("keep")) {
+    t.keep_where = r.loc(*k);
+    if (!k->is_array()) r.fail(*k, "keep must be a list of body names, e.g. keep = [\"c\", \"r\"]");
+    for (const toml::node& e : *k->as_array()) {
+      std::string name = r.identifier(e, "a kept velocity");
+      if (find_body(t, name) < 0) r.fail(e, fmt::format("keep names '{}', which is not a body", name));
+      t.default_keep.push_back(std::move(name));
+    }
+  }
+  return t;
+}
+
+Topology parse_topology(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot read the file; check the path");
+  in.seekg(0, std::ios::end);
+  const auto size = in.tellg();
+  if (size > static_cast<std::streamoff>(max_model_file_bytes))
+    throw InputError(SourceLocation{path, 0, 0},
+                     fmt::format("the file is larger than {} bytes; a model file is a few kilobytes", max_model_file_bytes));
+  in.seekg(0);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_topology_text(ss.str(), path);
+}
+
+int find_body(const Topology& t, const std::string& name) {
+  for (int i = 0; i < static_cast<int>(t.bodies.size()); ++i)
+    if (t.bodies[i].name == name) return i;
+  return -1;
+}
+
+const Parameter* find_parameter(const Topology& t, const std::string& name) {
+  for (const auto& p : t.parameters)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+double parameter_value(const Topology& t, const std::string& name) {
+  const Parameter* p = find_parameter(t, name);
+  if (!p) throw InputError(SourceLocation{t.file, 0, 0}, fmt::format("missing parameter '{}'", name));
+  return p->value.si;
+}
+
+const Wheel& wheel(const Topology& t, WheelRef w) { return t.bodies.at(w.body).wheels.at(w.wheel); }
+
+std::string wheel_label(const Topology& t, WheelRef w) {
+  const Body& b = t.bodies.at(w.body);
+  const Wheel& wh = b.wheels.at(w.wheel);
+  return wh.name == b.name ? b.name : fmt::format("{} of body {}", wh.name, b.name);
+}
+
+}  // namespace pogear

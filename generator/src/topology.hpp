@@ -1,0 +1,90 @@
+// The topology of a planetary gear as written in a model file: bodies, toothed wheels, meshes
+// and parameters (in SI), plus `parse_topology` that reads and validates it.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "input_error.hpp"
+#include "quantity.hpp"
+
+namespace pogear {
+
+enum class AxisKind {
+  central,  // the gear's main axis, drawn at height 0
+  fixed,    // a separate fixed parallel axis (a countershaft such as the paper's g or m)
+  carried,  // a planet axis held by a carrier body at a given distance
+};
+
+struct Wheel {
+  std::string name;
+  std::string radius;     // parameter name, e.g. r_s1
+  bool internal = false;  // teeth on the inside (a ring)
+  SourceLocation where;
+};
+
+struct Body {
+  std::string name;
+  AxisKind axis = AxisKind::central;
+  std::string carrier;   // carried: the carrier body's name
+  std::string distance;  // carried: parameter naming the axis distance, e.g. r_c
+  int side = +1;         // carried: +1 drawn above the carrier's axis; fixed: +1 above its mates
+  int arrow = +1;        // positive direction of omega as drawn: +1 right, -1 left (the paper's s_k)
+  std::string inertia;   // parameter names, J_<name> and b_<name> unless set
+  std::string friction;
+  std::vector<Wheel> wheels;
+  SourceLocation where;
+};
+
+struct WheelRef {
+  int body = -1;
+  int wheel = -1;
+};
+
+struct Mesh {
+  std::string name;       // F_<name> is positive from the first terminal to the second
+  WheelRef first, second;
+  std::string stiffness;  // K_<name> unless set
+  std::string damping;    // b_<name> unless set
+  SourceLocation where;
+};
+
+struct Parameter {
+  std::string name;
+  std::string text;  // as written, e.g. "4.8*cm"
+  Quantity value;
+  bool derived = false;  // not in the file: computed from the geometry relations
+  SourceLocation where;
+};
+
+struct Topology {
+  std::string file;
+  std::string name;
+  std::string title;
+  std::vector<Body> bodies;  // in the order of the velocity vector omega
+  std::vector<Mesh> meshes;  // in the order of the force vector F
+  std::vector<Parameter> parameters;
+  std::vector<std::string> default_keep;
+  SourceLocation keep_where;
+};
+
+// Limits that keep hostile input bounded.
+inline constexpr std::size_t max_model_file_bytes = 1 << 20;
+inline constexpr std::size_t max_bodies = 512;
+inline constexpr std::size_t max_meshes = 1024;
+inline constexpr std::size_t max_parameters = 4096;
+
+// Reads a model file (TOML). Throws InputError for anything wrong, located in the file.
+Topology parse_topology(const std::string& path);
+// The same from text already in memory; `path` names it in messages.
+Topology parse_topology_text(const std::string& text, const std::string& path);
+
+int find_body(const Topology& t, const std::string& name);  // -1 when absent
+const Parameter* find_parameter(const Topology& t, const std::string& name);
+double parameter_value(const Topology& t, const std::string& name);  // SI; throws if absent
+const Wheel& wheel(const Topology& t, WheelRef w);
+std::string wheel_label(const Topology& t, WheelRef w);  // "s1 (body s)" or "p"
+
+}  // namespace pogear

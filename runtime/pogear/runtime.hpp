@@ -1,0 +1,9 @@
+// Umbrella header of the pogear numeric runtime, included by generated simulators and by the
+// interpreted mode: signals, exact discretization, steppers, drivers and CSV output.
+#pragma once
+
+#include "pogear/csv.hpp"
+#include "pogear/exact.hpp"
+#include "pogear/signals.hpp"
+#include "pogear/simulate.hpp"
+#include "pogear/steppers.hpp"

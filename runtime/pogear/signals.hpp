@@ -1,0 +1,158 @@
+// Input signals (torques, forces) of pogear simulators: plain value types evaluated at time t, and
+// the times where they jump or kink, so that steppers can land on them instead of stepping across.
+#pragma once
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace pogear::rt {
+
+// All signals are right-continuous: at a switching time the new value already holds. Steppers rely on
+// this: a step starting on a breakpoint sees the new value, a step ending on one asks just before it.
+struct Constant {
+  double v = 0;
+  double value(double) const { return v; }
+};
+
+struct Step {
+  double before = 0, after = 0, time = 0;
+  double value(double t) const { return t < time ? before : after; }
+};
+
+struct Ramp {
+  double start_time = 0, slope = 0, initial = 0;
+  double value(double t) const { return t < start_time ? initial : initial + slope * (t - start_time); }
+};
+
+struct Sine {
+  double amplitude = 0, frequency_hz = 0, phase_rad = 0, offset = 0;
+  double value(double t) const {
+    return offset + amplitude * std::sin(2 * std::numbers::pi * frequency_hz * t + phase_rad);
+  }
+};
+
+// Piecewise linear through (t[i], v[i]), held constant outside. t must be non-decreasing; a repeated
+// time is a jump (the later point wins, keeping the signal right-continuous).
+struct Table {
+  std::vector<double> t, v;
+  double value(double x) const {
+    if (t.empty()) return 0;
+    if (x < t.front()) return v.front();
+    if (x >= t.back()) return v.back();
+    const auto i = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
+    const double w = (x - t[i - 1]) / (t[i] - t[i - 1]);  // t[i-1] <= x < t[i], so no 0/0
+    return v[i - 1] + w * (v[i] - v[i - 1]);
+  }
+};
+
+using Signal = std::variant<Constant, Step, Ramp, Sine, Table>;
+
+inline double value(const Signal& s, double t) {
+  return std::visit([t](const auto& sig) { return sig.value(t); }, s);
+}
+
+// Times in the open interval (t0, t1) where the signal or its slope jumps, sorted, without duplicates.
+inline std::vector<double> breakpoints(const Signal& s, double t0, double t1) {
+  std::vector<double> out;
+  auto add = [&](double t) {
+    if (t > t0 && t < t1) out.push_back(t);
+  };
+  if (const auto* st = std::get_if<Step>(&s)) add(st->time);
+  if (const auto* r = std::get_if<Ramp>(&s)) add(r->start_time);
+  if (const auto* tab = std::get_if<Table>(&s))
+    for (double t : tab->t) add(t);
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// Breakpoints of all inputs of a model, merged.
+inline std::vector<double> breakpoints(const std::vector<Signal>& signals, double t0, double t1) {
+  std::vector<double> out;
+  for (const Signal& s : signals) {
+    const std::vector<double> b = breakpoints(s, t0, t1);
+    out.insert(out.end(), b.begin(), b.end());
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+namespace detail {
+inline std::string_view trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string_view::npos) return {};
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+// Whole-field parse: "1.5x" or "" is an error, not 1.5 or 0.
+inline std::optional<double> parse_double(std::string_view s) {
+  s = trim(s);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);  // from_chars refuses a leading '+'
+  double v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+}  // namespace detail
+
+// Reads a two-column CSV "t,value". The first line may be a header (its first field is not a number);
+// blank lines and lines starting with '#' are skipped. On failure returns nullopt and sets `error` to
+// "PATH:LINE: what is wrong" (or "PATH: what is wrong" when no line is concerned). Never throws for
+// bad input; only std::bad_alloc can escape.
+inline std::optional<Table> load_table_csv(const std::string& path, std::string& error) {
+  error.clear();
+  std::ifstream in(path);
+  if (!in) {
+    error = path + ": cannot open file";
+    return std::nullopt;
+  }
+  Table tab;
+  std::string line;
+  long lineno = 0;
+  bool seen_content = false;
+  auto fail = [&](const std::string& what) {
+    error = path + ":" + std::to_string(lineno) + ": " + what;
+    return std::nullopt;
+  };
+  while (std::getline(in, line)) {
+    ++lineno;
+    const std::string_view l = detail::trim(line);
+    if (l.empty() || l.front() == '#') continue;
+    const bool first = !seen_content;
+    seen_content = true;
+    const auto comma = l.find(',');
+    if (comma != std::string_view::npos && l.find(',', comma + 1) != std::string_view::npos)
+      return fail("expected 2 columns 't,value', found more");
+    const std::string_view f1 = detail::trim(l.substr(0, comma));
+    const auto t = detail::parse_double(f1);
+    if (first && !t) continue;  // header line
+    if (comma == std::string_view::npos) return fail("expected 2 columns 't,value', found 1");
+    const std::string_view f2 = detail::trim(l.substr(comma + 1));
+    const auto v = detail::parse_double(f2);
+    if (!t) return fail("bad number '" + std::string(f1) + "' in column 1 (time)");
+    if (!v) return fail("bad number '" + std::string(f2) + "' in column 2 (value)");
+    if (!std::isfinite(*t) || !std::isfinite(*v)) return fail("non-finite number");
+    if (!tab.t.empty() && *t < tab.t.back()) return fail("time " + std::string(f1) + " is before the previous row's");
+    tab.t.push_back(*t);
+    tab.v.push_back(*v);
+  }
+  if (in.bad()) {
+    error = path + ": read error";
+    return std::nullopt;
+  }
+  if (tab.t.empty()) {
+    error = path + ": no data rows";
+    return std::nullopt;
+  }
+  return tab;
+}
+
+}  // namespace pogear::rt

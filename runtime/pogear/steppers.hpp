@@ -1,0 +1,303 @@
+// Time steppers shared by generated simulators (fixed-size Eigen vectors) and the interpreted mode
+// (Eigen::VectorXd): RK4, Dormand-Prince 5(4) with dense output, and TR-BDF2 for stiff scenes.
+#pragma once
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace pogear::rt {
+
+// The system is any callable f(double t, const X& x, X& dx); the steppers keep their stage vectors as
+// members sized once from the initial state, so a step never allocates when X is fixed-size.
+
+// Time at which a step [t0, t1] evaluates its end stages. Inputs are right-continuous, so when t1 is a
+// breakpoint the step must see the input just before it, or the jump leaks into the step (and into
+// the error estimate, which would then reject the step over and over).
+inline double stage_end(double t0, double t1, bool ends_on_break) {
+  return ends_on_break ? std::nextafter(t1, t0) : t1;
+}
+
+// Weighted RMS norm of the usual ODE codes: 1 means "exactly at tolerance".
+template <class X>
+double error_norm(const X& e, const X& a, const X& b, double rtol, double atol) {
+  if (e.size() == 0) return 0;
+  return std::sqrt((e.array() / (atol + rtol * a.array().abs().max(b.array().abs()))).square().mean());
+}
+
+template <class X>
+struct Rk4 {
+  X k1, k2, k3, k4, tmp;
+  long rhs_evals = 0;
+
+  explicit Rk4(const X& x) : k1(x), k2(x), k3(x), k4(x), tmp(x) {}
+
+  template <class F>
+  void step(F& f, double t, double h, X& x, bool ends_on_break = false) {
+    f(t, x, k1);
+    tmp = x + (0.5 * h) * k1;
+    f(t + 0.5 * h, tmp, k2);
+    tmp = x + (0.5 * h) * k2;
+    f(t + 0.5 * h, tmp, k3);
+    tmp = x + h * k3;
+    f(stage_end(t, t + h, ends_on_break), tmp, k4);
+    x += (h / 6) * (k1 + 2 * k2 + 2 * k3 + k4);
+    rhs_evals += 4;
+  }
+};
+
+// Largest stable RK4 step for x' = A x, as 2.785 / max|lambda(A)|. 2.785 is where RK4's stability
+// region crosses the negative real axis (overdamped, stiff modes); on the imaginary axis (undamped
+// gear oscillations) it reaches 2.83. In between the boundary dips to 2.62 near 122 degrees (damping
+// ratio ~0.5), so for such modes this limit is up to 6% optimistic: it is meant to refuse steps far
+// beyond stability, not to put h on the edge.
+template <class M>
+double rk4_stability_limit(const M& A) {
+  const Eigen::MatrixXd a = A;
+  if (a.rows() == 0) return std::numeric_limits<double>::infinity();
+  Eigen::EigenSolver<Eigen::MatrixXd> es(a, false);
+  // Any induced norm bounds the spectral radius: a safe fallback if the QR iteration fails.
+  const double rho = es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff()
+                                                 : a.cwiseAbs().rowwise().sum().maxCoeff();
+  return rho > 0 ? 2.785 / rho : std::numeric_limits<double>::infinity();
+}
+
+// Adaptive steppers share one protocol, driven by run_adaptive in simulate.hpp:
+//   start(t, x)            derivative at the start (again after each breakpoint: f jumps there)
+//   attempt(t, x, h, brk)  trial step; returns the error norm (<= 1 accept), NaN if not finite
+//   accept(t, x, h)        x becomes the trial result; sets up dense output over [t, t+h]
+//   dense(t, out)          state at t inside the last accepted step
+//   next_h(err, h)         step size controller, after a trial with error err
+
+// Dormand-Prince 5(4) (Hairer, Norsett & Wanner, "Solving ODEs I", code DOPRI5): FSAL, 5th-order
+// result, 4th-order embedded estimate, 4th-order continuous extension.
+template <class X, class F>
+struct Dopri5 {
+  F& f;
+  double rtol, atol;
+  X k1, k2, k3, k4, k5, k6, k7, y1, tmp, r1, r2, r3, r4, r5;
+  double t_old = 0, h_old = 1, facold = 1e-4;
+  bool rejected = false;
+  long rhs_evals = 0;
+
+  Dopri5(F& f_, const X& x, double rtol_, double atol_)
+      : f(f_), rtol(rtol_), atol(atol_), k1(x), k2(x), k3(x), k4(x), k5(x), k6(x), k7(x), y1(x),
+        tmp(x), r1(x), r2(x), r3(x), r4(x), r5(x) {}
+
+  void start(double t, const X& x) {
+    f(t, x, k1);
+    ++rhs_evals;
+  }
+
+  double attempt(double t, const X& x, double h, bool ends_on_break) {
+    constexpr double a21 = 1.0 / 5, a31 = 3.0 / 40, a32 = 9.0 / 40, a41 = 44.0 / 45, a42 = -56.0 / 15,
+                     a43 = 32.0 / 9, a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561,
+                     a54 = -212.0 / 729, a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247,
+                     a64 = 49.0 / 176, a65 = -5103.0 / 18656, a71 = 35.0 / 384, a73 = 500.0 / 1113,
+                     a74 = 125.0 / 192, a75 = -2187.0 / 6784, a76 = 11.0 / 84;
+    constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
+                     e6 = 22.0 / 525, e7 = -1.0 / 40;
+    const double t_end = stage_end(t, t + h, ends_on_break);
+    tmp = x + (h * a21) * k1;
+    f(t + 0.2 * h, tmp, k2);
+    tmp = x + h * (a31 * k1 + a32 * k2);
+    f(t + 0.3 * h, tmp, k3);
+    tmp = x + h * (a41 * k1 + a42 * k2 + a43 * k3);
+    f(t + 0.8 * h, tmp, k4);
+    tmp = x + h * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4);
+    f(t + (8.0 / 9) * h, tmp, k5);
+    tmp = x + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5);
+    f(t_end, tmp, k6);
+    y1 = x + h * (a71 * k1 + a73 * k3 + a74 * k4 + a75 * k5 + a76 * k6);
+    f(t_end, y1, k7);
+    rhs_evals += 6;
+    tmp = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7);
+    if (!y1.allFinite() || !tmp.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+    return error_norm(tmp, x, y1, rtol, atol);
+  }
+
+  void accept(double t, X& x, double h) {
+    constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
+                     d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
+                     d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
+    r1 = x;
+    r2 = y1 - x;
+    r3 = h * k1 - r2;
+    r4 = r2 - h * k7 - r3;
+    r5 = h * (d1 * k1 + d3 * k3 + d4 * k4 + d5 * k5 + d6 * k6 + d7 * k7);
+    x = y1;
+    k1.swap(k7);  // first same as last
+    t_old = t;
+    h_old = h;
+  }
+
+  void dense(double t, X& out) const {
+    const double th = (t - t_old) / h_old, th1 = 1 - th;
+    out = r1 + th * (r2 + th1 * (r3 + th * (r4 + th1 * r5)));
+  }
+
+  // DOPRI5's PI controller (beta = 0.04, safety 0.9, step ratio within [0.2, 10]); after a rejection
+  // the step may not grow, which avoids reject/accept ping-pong.
+  double next_h(double err, double h) {
+    if (std::isnan(err)) {
+      rejected = true;
+      return 0.1 * h;
+    }
+    const double fac11 = std::pow(err, 0.2 - 0.04 * 0.75);
+    if (err > 1) {
+      rejected = true;
+      return h / std::min(5.0, fac11 / 0.9);
+    }
+    double hnew = h / std::clamp(fac11 / std::pow(facold, 0.04) / 0.9, 0.1, 5.0);
+    facold = std::max(err, 1e-4);
+    if (rejected) hnew = std::min(hnew, h);
+    rejected = false;
+    return hnew;
+  }
+};
+
+// TR-BDF2 (Bank et al. 1985; Hosea & Shampine 1996, the method of MATLAB's ode23tb) for stiff
+// scenes. Chosen because it is L-stable (stiff modes are damped, never ring), both implicit stages
+// share one iteration matrix I - d h J (one LU per step size), it has a cheap embedded 3rd-order
+// error estimate, and it is short. As a 3-stage ESDIRK with gamma = 2 - sqrt(2), d = gamma/2,
+// w = sqrt(2)/4:  c = (0, gamma, 1),  A = [[0], [d, d], [w, w, d]],  b = (w, w, d),
+// b_hat = ((1 - w)/3, (3w + 1)/3, d/3). 2nd order, so suited to moderate tolerances.
+// jac(t, x, J) fills the Jacobian df/dx. constant_jacobian says f is affine in x (a linear model):
+// J is then evaluated once and every Newton solve is exact in one iteration.
+template <class X, class F, class JacF>
+struct TrBdf2 {
+  using Jac = Eigen::Matrix<double, X::RowsAtCompileTime, X::RowsAtCompileTime>;
+  static constexpr double gamma = 2 - std::numbers::sqrt2, d = gamma / 2, w = std::numbers::sqrt2 / 4;
+
+  F& f;
+  JacF& jac;
+  bool constant_jacobian;
+  double rtol, atol;
+  Jac J, G;
+  Eigen::PartialPivLU<Jac> lu;
+  X f0, zg, fg, y1, f1, rhs, dz, tmp, est, qy, qh, qa, qb;
+  double lu_h = 0, t_old = 0, h_old = 1;
+  bool have_jac = false, jac_fresh = false, slow_newton = false, rejected = false;
+  long rhs_evals = 0, jac_evals = 0, lu_decompositions = 0;
+
+  TrBdf2(F& f_, JacF& jac_, bool constant_jacobian_, const X& x, double rtol_, double atol_)
+      : f(f_), jac(jac_), constant_jacobian(constant_jacobian_), rtol(rtol_), atol(atol_),
+        J(Jac::Zero(x.size(), x.size())), G(J), lu(x.size()), f0(x), zg(x), fg(x), y1(x), f1(x),
+        rhs(x), dz(x), tmp(x), est(x), qy(x), qh(x), qa(x), qb(x) {}
+
+  void update_jacobian(double t, const X& x) {
+    jac(t, x, J);
+    ++jac_evals;
+    have_jac = jac_fresh = true;
+    lu_h = 0;  // forces a refactorization
+  }
+
+  void start(double t, const X& x) {
+    f(t, x, f0);
+    ++rhs_evals;
+    if (!have_jac || !constant_jacobian) update_jacobian(t, x);
+  }
+
+  // Simplified Newton for z - d h f(ts, z) = rhs. The stopping test keeps the iteration error far
+  // below the local error tolerance; a ratio of successive corrections above 0.9 means the iteration
+  // does not contract (stale J or h too large), and the caller retries.
+  bool solve_stage(double ts, double dh, X& z) {
+    double prev = 0;
+    for (int it = 0; it < 10; ++it) {
+      f(ts, z, tmp);
+      ++rhs_evals;
+      tmp = rhs - z + dh * tmp;
+      dz = lu.solve(tmp);
+      z += dz;
+      if (!dz.allFinite()) return false;
+      if (constant_jacobian) return true;  // f affine in x: this iterate is the exact solution
+      const double nd = error_norm(dz, z, z, rtol, atol);
+      if (it > 2) slow_newton = true;
+      if (nd <= 1e-2) return true;
+      if (it > 0 && nd > 0.9 * prev) return false;
+      prev = nd;
+    }
+    return false;
+  }
+
+  double attempt(double t, const X& x, double h, bool ends_on_break) {
+    const double dh = d * h;
+    for (;;) {
+      if (lu_h != h) {
+        G = Jac::Identity(x.size(), x.size()) - dh * J;
+        lu.compute(G);
+        ++lu_decompositions;
+        lu_h = h;
+      }
+      rhs = x + dh * f0;  // trapezoidal stage to t + gamma h
+      zg = x + (gamma * h) * f0;
+      bool ok = solve_stage(t + gamma * h, dh, zg);
+      if (ok) {
+        // Stage derivatives from the stage equations rather than from f: f would amplify the Newton
+        // error of a stiff component by |lambda|.
+        fg = (zg - rhs) / dh;
+        rhs = x + (w * h) * (f0 + fg);  // BDF2 stage to t + h
+        y1 = zg + ((1 - gamma) * h) * fg;
+        ok = solve_stage(stage_end(t, t + h, ends_on_break), dh, y1);
+      }
+      if (ok) break;
+      if (!zg.allFinite() || !y1.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+      if (constant_jacobian || jac_fresh) return std::numeric_limits<double>::infinity();
+      update_jacobian(t, x);  // a stale Jacobian is the usual cause: retry once with a fresh one
+    }
+    f1 = (y1 - rhs) / dh;
+    est = h * (((4 * w - 1) / 3) * f0 - (1.0 / 3) * fg + (2 * d / 3) * f1);
+    // Shampine's filter: (I - d h J)^-1 keeps the estimate of converged stiff components bounded
+    // instead of growing like h |lambda|, which would force explicit-sized steps.
+    tmp = lu.solve(est);
+    if (!y1.allFinite() || !tmp.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+    return error_norm(tmp, x, y1, rtol, atol);
+  }
+
+  // Dense output: the cubic through x(t), the stage value at t + gamma h and x(t + h), with slope f1
+  // at t + h. Unlike the cubic Hermite through (x, f0, y1, f1) it avoids h f0, which for a stiff mode
+  // that has not yet decayed is h |lambda| times the state and makes the interpolant overshoot.
+  // Writing s = theta - 1: p = y1 + s h f1 + s^2 (a + b s), with a, b fixed by p(0) = x, p(gamma) = zg.
+  void accept(double t, X& x, double h) {
+    const double g = gamma - 1;
+    qy = y1;
+    qh = h * f1;
+    tmp = x - y1 + qh;                      // a - b
+    est = (zg - y1 - g * qh) / (g * g);     // a + g b
+    qb = (est - tmp) / gamma;
+    qa = tmp + qb;
+    x = y1;
+    f0.swap(f1);
+    t_old = t;
+    h_old = h;
+    jac_fresh = false;
+    if (slow_newton && !constant_jacobian) update_jacobian(t + h, x);
+    slow_newton = false;
+  }
+
+  void dense(double t, X& out) const {
+    const double s = (t - t_old) / h_old - 1;
+    out = qy + s * qh + (s * s) * (qa + s * qb);
+  }
+
+  // I controller for a local error of order h^3; new step sizes cost an LU, so small increases wait.
+  double next_h(double err, double h) {
+    if (std::isnan(err) || std::isinf(err)) {
+      rejected = true;
+      return (std::isnan(err) ? 0.1 : 0.25) * h;
+    }
+    double fac = std::clamp(0.9 * std::pow(err, -1.0 / 3), 0.2, 5.0);
+    if (err > 1) {
+      rejected = true;
+      return fac * h;
+    }
+    if (rejected) fac = std::min(fac, 1.0);
+    if (fac >= 1 && fac < 1.2) fac = 1;
+    rejected = false;
+    return fac * h;
+  }
+};
+
+}  // namespace pogear::rt
