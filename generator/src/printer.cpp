@@ -194,7 +194,7 @@ class Printer {
     if (den.empty()) return top;
     const std::string bottom = product(den);
     if (n_ == Notation::latex) return fmt::format("\\frac{{{}}}{{{}}}", top, bottom);
-    return top + "/" + (den.size() > 1 ? "(" + bottom + ")" : bottom);
+    return top + "/" + (bottom.find_first_of("*/") != std::string::npos ? "(" + bottom + ")" : bottom);
   }
 
   std::string term(const Term& t) const {

@@ -260,7 +260,7 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
     // reproduce them to ~1e-15 relative, so 1e-9 only catches real inconsistencies.
     if (gap > 1e-9 * std::max(std::abs(given), std::abs(*implied))) {
       throw InputError(p->where,
-                       fmt::format("'{}' = {} ({} m) contradicts the geometry: {} implies {} = {} = {} m; "
+                       fmt::format("'{}' = {} ({:.6g} m) contradicts the geometry: {} implies {} = {} = {:.6g} m; "
                                    "correct the value, or the layout if the drawing differs",
                                    g.parameter, p->text, given, describe_mesh(t, g.mesh), g.parameter, print_expression(g.rhs, Notation::ginac),
                                    *implied));

@@ -181,7 +181,7 @@ WheelRef resolve_wheel(const Reader& r, const Topology& t, const toml::node& n) 
   r.fail(n, fmt::format("wheel name '{}' is ambiguous", name));
 }
 
-void check_unique_names(const Reader& r, const Topology& t) {
+void check_unique_names(const Topology& t, bool meshes) {
   std::map<std::string, SourceLocation> seen;
   auto claim = [&](const std::string& name, const SourceLocation& where, std::string_view what) {
     auto [it, fresh] = seen.emplace(name, where);
@@ -195,8 +195,8 @@ void check_unique_names(const Reader& r, const Topology& t) {
     for (const auto& w : b.wheels)
       if (!(b.wheels.size() == 1 && w.name == b.name)) claim(w.name, w.where, "wheel");
   seen.clear();
-  for (const auto& m : t.meshes) claim(m.name, m.where, "mesh");
-  (void)r;
+  if (meshes)
+    for (const auto& m : t.meshes) claim(m.name, m.where, "mesh");
 }
 
 void check_carriers(Topology& t) {
@@ -343,6 +343,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   const toml::array& bodies = array_of_tables(r, root, "body", "[[body]] name = \"c\"");
   if (bodies.size() > max_bodies) r.fail(bodies, fmt::format("more than {} bodies", max_bodies));
   for (const toml::node& n : bodies) t.bodies.push_back(read_body(r, *n.as_table()));
+  check_unique_names(t, false);
   check_carriers(t);
 
   const toml::array& meshes = array_of_tables(r, root, "mesh", "[[mesh]] first = \"p\", second = \"s1\"");
@@ -366,7 +367,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
     if (const toml::node* nn = mt.get("damping")) m.damping = r.identifier(*nn, "damping");
     t.meshes.push_back(std::move(m));
   }
-  check_unique_names(r, t);
+  check_unique_names(t, true);
 
   if (const toml::node* p = root.get("parameters")) evaluate_parameters(r, as_table(r, *p, "[parameters]"), t);
   check_parameter_roles(t);

@@ -192,9 +192,11 @@ RunStatus run_adaptive(const char* name, const char* advice, S& s, X& x, double 
 // the breakpoints (see signals.hpp) where the inputs jump or kink.
 
 // f(t, x, dx) with fixed steps of at most opt.h. Refuse h > rk4_stability_limit(A) beforehand.
-template <class X, class F, class Obs>
-RunStatus simulate_rk4(F&& f, X x, double t0, double t_end, double dt, const SolverOptions& opt, Obs&& obs,
+template <class X0, class F, class Obs>
+RunStatus simulate_rk4(F&& f, const X0& x0, double t0, double t_end, double dt, const SolverOptions& opt, Obs&& obs,
                        const std::vector<double>& breaks = {}) {
+  using X = typename X0::PlainObject;  // x0 may be an Eigen expression such as VectorXd::Zero(n)
+  X x = x0;
   Rk4<X> rk(x);
   auto advance = [&](double t, double h, bool brk, X& xs) { rk.step(f, t, h, xs, brk); };
   RunStatus st = detail::run_fixed("rk4", advance, x, t0, t_end, dt, opt, obs, breaks);
@@ -202,9 +204,11 @@ RunStatus simulate_rk4(F&& f, X x, double t0, double t_end, double dt, const Sol
   return st;
 }
 
-template <class X, class F, class Obs>
-RunStatus simulate_dopri5(F&& f, X x, double t0, double t_end, double dt, const SolverOptions& opt, Obs&& obs,
+template <class X0, class F, class Obs>
+RunStatus simulate_dopri5(F&& f, const X0& x0, double t0, double t_end, double dt, const SolverOptions& opt, Obs&& obs,
                           const std::vector<double>& breaks = {}) {
+  using X = typename X0::PlainObject;
+  X x = x0;
   Dopri5<X, std::remove_reference_t<F>> s(f, x, opt.rtol, opt.atol);
   RunStatus st = detail::run_adaptive("dopri5", "the scene is stiff: use --solver exact or --solver implicit", s,
                                       x, t0, t_end, dt, opt, obs, breaks);
@@ -213,9 +217,11 @@ RunStatus simulate_dopri5(F&& f, X x, double t0, double t_end, double dt, const 
 }
 
 // TR-BDF2 with jac(t, x, J); constant_jacobian for linear models (one J, one LU per step size).
-template <class X, class F, class JacF, class Obs>
-RunStatus simulate_implicit(F&& f, JacF&& jac, bool constant_jacobian, X x, double t0, double t_end, double dt,
+template <class X0, class F, class JacF, class Obs>
+RunStatus simulate_implicit(F&& f, JacF&& jac, bool constant_jacobian, const X0& x0, double t0, double t_end, double dt,
                             const SolverOptions& opt, Obs&& obs, const std::vector<double>& breaks = {}) {
+  using X = typename X0::PlainObject;
+  X x = x0;
   TrBdf2<X, std::remove_reference_t<F>, std::remove_reference_t<JacF>> s(f, jac, constant_jacobian, x, opt.rtol,
                                                                          opt.atol);
   RunStatus st = detail::run_adaptive(
