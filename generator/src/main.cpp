@@ -1,5 +1,6 @@
 // The pogear command line: a thin layer that parses options and calls the library.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "derivation.hpp"
 #include "output_file.hpp"
 #include "report.hpp"
+#include "simulation.hpp"
 
 namespace {
 
@@ -41,6 +43,21 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "latex", "markdown", "json"}));
   derive->add_option("-o,--output", output, "Write the report to FILE instead of standard output");
 
+  std::string scene_file, generate_dir = ".", simulate_dir = "out", solver;
+  bool interpreted = false;
+  int repeat = 1;
+  CLI::App* generate = app.add_subcommand("generate", "Write the specialized C++ simulator of a scene");
+  generate->add_option("SCENE", scene_file, "Scene file (TOML)")->required();
+  generate->add_option("-o,--output", generate_dir, "Directory for <scene>.hpp and <scene>_main.cpp");
+
+  CLI::App* simulate = app.add_subcommand("simulate", "Generate, compile and run a scene; write CSV and plots");
+  simulate->add_option("SCENE", scene_file, "Scene file (TOML)")->required();
+  simulate->add_option("-o,--output", simulate_dir, "Directory for the CSV files and plots");
+  simulate->add_option("--solver", solver, "Override the scene's solver")
+      ->check(CLI::IsMember({"exact", "rk4", "dopri5", "implicit"}));
+  simulate->add_flag("--interpreted", interpreted, "Run from the numeric matrices, without compiling");
+  simulate->add_option("--repeat", repeat, "Run N times and report the median time")->check(CLI::PositiveNumber);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -59,6 +76,36 @@ int main(int argc, char** argv) {
       else if (format == "markdown") text = pogear::report_markdown(d);
       else text = pogear::report_text(d);
       emit(text, output);
+    } else if (*generate) {
+      const pogear::SimModel model = pogear::specialize(pogear::parse_scene(scene_file));
+      const pogear::GeneratedSources sources = pogear::generate_sources(model);
+      pogear::write_sources(sources, generate_dir);
+      std::cout << "wrote " << generate_dir << "/" << sources.header_name << " and " << generate_dir << "/"
+                << sources.main_name << "\n"
+                << pogear::operation_summary(model);
+    } else if (*simulate) {
+      const pogear::SimModel model = pogear::specialize(pogear::parse_scene(scene_file));
+      pogear::rt::SceneRun run;
+      run.name = model.scene.name;
+      run.horizon = model.scene.horizon;
+      run.sample = model.scene.sample;
+      run.solver = solver.empty() ? pogear::solver_name(model.scene.solver) : solver;
+      run.options.rtol = model.scene.tolerance;
+      run.options.atol = model.scene.tolerance * 1e-2;
+      run.options.h = model.scene.step;
+      run.out_dir = simulate_dir;
+      run.repeat = repeat;
+      std::filesystem::create_directories(simulate_dir);
+      std::cout << pogear::operation_summary(model);
+      int status = 0;
+      if (interpreted) {
+        status = pogear::run_interpreted(model, run);
+      } else {
+        const std::string exe = pogear::build_simulator(pogear::generate_sources(model));
+        status = pogear::run_compiled(exe, run);
+      }
+      if (status != 0) return status;
+      for (const auto& svg : pogear::plot_scene(model, simulate_dir)) std::cout << "wrote " << svg << "\n";
     }
   } catch (const pogear::InputError& e) {
     std::cerr << e.what() << "\n";

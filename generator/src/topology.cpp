@@ -216,19 +216,9 @@ void check_carriers(Topology& t) {
   }
 }
 
-// Evaluates all parameters in dependency order, so `b_p = "b_c"` works wherever b_c stands.
-void evaluate_parameters(const Reader& r, const toml::table& params, Topology& t) {
-  struct Raw {
-    std::string text;
-    SourceLocation where;
-    int column_offset;
-    bool bare_number;
-    double number;
-  };
-  std::map<std::string, Raw> raw;
-  std::vector<std::string> order;  // file order, for deterministic output
-  if (params.size() > max_parameters)
-    r.fail(params, fmt::format("more than {} parameters", max_parameters));
+// Reads [parameters] as written; evaluate_parameters gives them values.
+void read_parameters(const Reader& r, const toml::table& params, Topology& t) {
+  if (params.size() > max_parameters) r.fail(params, fmt::format("more than {} parameters", max_parameters));
   for (const auto& [key, node] : params) {
     const std::string name(key.str());
     const bool ok = !name.empty() && std::isalpha(static_cast<unsigned char>(name[0])) &&
@@ -238,45 +228,26 @@ void evaluate_parameters(const Reader& r, const toml::table& params, Topology& t
     if (!ok) throw InputError(at(r.file, key.source()), fmt::format("'{}' is not a parameter name", name));
     if (is_unit_name(name))
       throw InputError(at(r.file, key.source()), fmt::format("parameter '{}' has the name of a unit; rename it", name));
-    Raw entry{"", r.loc(node), 1, false, 0.0};
+    Parameter p;
+    p.name = name;
+    p.where = r.loc(node);
     if (node.is_string()) {
-      entry.text = *node.value<std::string>();
+      p.text = *node.value<std::string>();
+      p.column_offset = 1;
     } else if (node.is_integer() || node.is_floating_point()) {
-      entry.bare_number = true;
-      entry.number = *node.value<double>();
-      entry.text = fmt::format("{}", entry.number);
+      const double v = *node.value<double>();
+      if (!std::isfinite(v)) r.fail(node, fmt::format("parameter '{}' is not finite", name));
+      p.text = fmt::format("{}", v);
+      p.column_offset = 0;
     } else {
       r.fail(node, fmt::format("parameter '{}' must be a number (SI) or a string such as \"4.8*cm\"", name));
     }
-    raw.emplace(name, std::move(entry));
-    order.push_back(name);
+    t.parameters.push_back(std::move(p));
   }
-  std::sort(order.begin(), order.end(), [&](const std::string& a, const std::string& b) {
-    const auto& la = raw[a].where;
-    const auto& lb = raw[b].where;
-    return std::tie(la.line, la.column) < std::tie(lb.line, lb.column);
+  // File order, for deterministic output.
+  std::sort(t.parameters.begin(), t.parameters.end(), [](const Parameter& a, const Parameter& b) {
+    return std::tie(a.where.line, a.where.column) < std::tie(b.where.line, b.where.column);
   });
-
-  std::map<std::string, Quantity> done;
-  std::set<std::string> visiting;
-  std::function<void(const std::string&)> visit = [&](const std::string& name) {
-    if (done.count(name)) return;
-    const Raw& e = raw.at(name);
-    if (!visiting.insert(name).second)
-      throw InputError(e.where, fmt::format("parameter '{}' is defined through itself", name));
-    if (e.bare_number) {
-      if (!std::isfinite(e.number)) throw InputError(e.where, fmt::format("parameter '{}' is not finite", name));
-      done[name] = Quantity{e.number, Dimension{}, false};
-    } else {
-      for (const auto& ref : referenced_names(e.text))
-        if (raw.count(ref)) visit(ref);
-      done[name] = evaluate_quantity(e.text, done, e.where, e.column_offset);
-    }
-    visiting.erase(name);
-  };
-  for (const auto& name : order) visit(name);
-  for (const auto& name : order)
-    t.parameters.push_back(Parameter{name, raw[name].text, done[name], false, raw[name].where});
 }
 
 // Every parameter a role needs must exist (radii may come from geometry later), carry the
@@ -369,7 +340,8 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   }
   check_unique_names(t, true);
 
-  if (const toml::node* p = root.get("parameters")) evaluate_parameters(r, as_table(r, *p, "[parameters]"), t);
+  if (const toml::node* p = root.get("parameters")) read_parameters(r, as_table(r, *p, "[parameters]"), t);
+  evaluate_parameters(t.parameters);
   check_parameter_roles(t);
 
   if (const toml::node* k = root.get("keep")) {
@@ -396,6 +368,25 @@ Topology parse_topology(const std::string& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return parse_topology_text(ss.str(), path);
+}
+
+// In dependency order, so that `b_p = "b_c"` works wherever b_c stands in the file.
+void evaluate_parameters(std::vector<Parameter>& parameters) {
+  std::map<std::string, const Parameter*> by_name;
+  for (const auto& p : parameters) by_name[p.name] = &p;
+  std::map<std::string, Quantity> done;
+  std::set<std::string> visiting;
+  std::function<void(const Parameter&)> visit = [&](const Parameter& p) {
+    if (done.count(p.name)) return;
+    if (!visiting.insert(p.name).second)
+      throw InputError(p.where, fmt::format("parameter '{}' is defined through itself", p.name));
+    for (const auto& ref : referenced_names(p.text))
+      if (auto it = by_name.find(ref); it != by_name.end()) visit(*it->second);
+    done[p.name] = evaluate_quantity(p.text, done, p.where, p.column_offset);
+    visiting.erase(p.name);
+  };
+  for (const auto& p : parameters) visit(p);
+  for (auto& p : parameters) p.value = done[p.name];
 }
 
 int find_body(const Topology& t, const std::string& name) {

@@ -55,8 +55,8 @@ struct Parameter {
   std::string name;
   std::string text;  // as written, e.g. "4.8*cm"
   Quantity value;
-  bool derived = false;  // not in the file: computed from the geometry relations
   SourceLocation where;
+  int column_offset = 1;  // where the text starts after `where` (1 past a quote)
 };
 
 struct Topology {
@@ -80,6 +80,9 @@ inline constexpr std::size_t max_parameters = 4096;
 Topology parse_topology(const std::string& path);
 // The same from text already in memory; `path` names it in messages.
 Topology parse_topology_text(const std::string& text, const std::string& path);
+
+// Gives every parameter its value from its text; they may refer to each other.
+void evaluate_parameters(std::vector<Parameter>& parameters);
 
 int find_body(const Topology& t, const std::string& name);  // -1 when absent
 const Parameter* find_parameter(const Topology& t, const std::string& name);

@@ -39,13 +39,13 @@ struct Sine {
   }
 };
 
-// Piecewise linear through (t[i], v[i]), held constant outside. t must be non-decreasing; a repeated
-// time is a jump (the later point wins, keeping the signal right-continuous).
+// Piecewise linear through (t[i], v[i]) (t and v of the same size), held constant outside. t must be
+// non-decreasing; a repeated time is a jump (the later point wins: the signal stays right-continuous).
 struct Table {
   std::vector<double> t, v;
   double value(double x) const {
     if (t.empty()) return 0;
-    if (x < t.front()) return v.front();
+    if (!(x >= t.front())) return v.front();  // also a NaN time: never index out of range
     if (x >= t.back()) return v.back();
     const auto i = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), x) - t.begin());
     const double w = (x - t[i - 1]) / (t[i] - t[i - 1]);  // t[i-1] <= x < t[i], so no 0/0

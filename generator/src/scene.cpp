@@ -1,0 +1,370 @@
+// Reads scene files. Every name a scene uses is checked against its model here, so the later
+// stages can assume a consistent scene.
+#include "scene.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "pogear/signals.hpp"
+
+namespace pogear {
+namespace {
+
+namespace fs = std::filesystem;
+
+SourceLocation at(const std::string& file, const toml::source_region& r) {
+  return SourceLocation{file, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+}
+
+struct Reader {
+  std::string file;
+  const Topology* model = nullptr;
+
+  SourceLocation loc(const toml::node& n) const { return at(file, n.source()); }
+  [[noreturn]] void fail(const toml::node& n, const std::string& m) const { throw InputError(loc(n), m); }
+
+  void only_keys(const toml::table& t, std::initializer_list<std::string_view> allowed, std::string_view what) const {
+    for (const auto& [key, value] : t) {
+      if (std::find(allowed.begin(), allowed.end(), key.str()) != allowed.end()) continue;
+      std::string list;
+      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      throw InputError(at(file, key.source()),
+                       fmt::format("unknown key '{}' in {}; the keys are {}", key.str(), what, list));
+    }
+  }
+
+  std::string string(const toml::node& n, std::string_view what) const {
+    if (!n.is_string()) fail(n, fmt::format("{} must be a string in quotes", what));
+    return *n.value<std::string>();
+  }
+
+  std::vector<std::string> strings(const toml::node& n, std::string_view what) const {
+    if (!n.is_array()) fail(n, fmt::format("{} must be a list of strings, e.g. [\"a\", \"b\"]", what));
+    std::vector<std::string> out;
+    for (const toml::node& e : *n.as_array()) out.push_back(string(e, what));
+    return out;
+  }
+
+  // A quantity with a unit of the given dimension; bare numbers are SI.
+  double quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
+    std::map<std::string, Quantity> known;
+    for (const auto& p : model->parameters) known[p.name] = p.value;
+    Quantity q;
+    if (n.is_integer() || n.is_floating_point()) {
+      q.si = *n.value<double>();
+    } else if (n.is_string()) {
+      q = evaluate_quantity(*n.value<std::string>(), known, loc(n), 1);
+    } else {
+      fail(n, fmt::format("{} must be a number (SI) or a string with a unit", what));
+    }
+    if (q.has_unit && !(q.dimension == dim))
+      fail(n, fmt::format("{} has unit {}; it needs {}", what, describe(q.dimension), describe(dim)));
+    if (!std::isfinite(q.si)) fail(n, fmt::format("{} is not finite", what));
+    return q.si;
+  }
+};
+
+SignalSpec read_signal(const Reader& r, const toml::node& n, const fs::path& scene_dir) {
+  SignalSpec s;
+  s.where = r.loc(n);
+  const Dimension torque = torque_dimension();
+  if (!n.is_table()) {
+    s.kind = SignalKind::constant;
+    s.value = r.quantity(n, torque, "an input torque");
+    return s;
+  }
+  const toml::table& t = *n.as_table();
+  auto get = [&](std::string_view key) { return t.get(key); };
+  if (const toml::node* v = get("constant")) {
+    r.only_keys(t, {"constant"}, "a constant signal");
+    s.kind = SignalKind::constant;
+    s.value = r.quantity(*v, torque, "constant");
+  } else if (const toml::node* v = get("step")) {
+    r.only_keys(t, {"step", "at", "before"}, "a step signal");
+    s.kind = SignalKind::step;
+    s.value = r.quantity(*v, torque, "step");
+    if (!get("at")) r.fail(n, "a step needs at = \"<time>\", e.g. at = \"0.5*s\"");
+    s.time = r.quantity(*get("at"), time_dimension(), "at");
+    if (get("before")) s.before = r.quantity(*get("before"), torque, "before");
+  } else if (const toml::node* v = get("ramp")) {
+    r.only_keys(t, {"ramp", "start", "initial"}, "a ramp signal");
+    s.kind = SignalKind::ramp;
+    Dimension slope = torque;
+    slope.exponent[2] -= 1;
+    s.value = r.quantity(*v, slope, "ramp (a slope, e.g. \"50*Nm/s\")");
+    if (get("start")) s.time = r.quantity(*get("start"), time_dimension(), "start");
+    if (get("initial")) s.before = r.quantity(*get("initial"), torque, "initial");
+  } else if (const toml::node* v = get("sine")) {
+    r.only_keys(t, {"sine", "frequency", "phase", "offset"}, "a sine signal");
+    s.kind = SignalKind::sine;
+    s.value = r.quantity(*v, torque, "sine (its amplitude)");
+    if (!get("frequency")) r.fail(n, "a sine needs frequency = \"<f>*Hz\"");
+    Dimension hz;
+    hz.exponent[2] = -1;
+    s.frequency = r.quantity(*get("frequency"), hz, "frequency");
+    if (get("phase")) s.phase = r.quantity(*get("phase"), Dimension{}, "phase");
+    if (get("offset")) s.offset = r.quantity(*get("offset"), torque, "offset");
+  } else if (const toml::node* v = get("table")) {
+    r.only_keys(t, {"table"}, "a table signal");
+    s.kind = SignalKind::table;
+    const std::string file = r.string(*v, "table");
+    const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : scene_dir / file;
+    s.table_file = path.lexically_normal().string();
+    std::string error;
+    const auto table = rt::load_table_csv(s.table_file, error);
+    if (!table) {
+      // The runtime reports "PATH:LINE: what"; keep its position, add ours when it has none.
+      const auto colon = error.find(": ");
+      SourceLocation where = r.loc(*v);
+      std::string what = error;
+      if (colon != std::string::npos && error.rfind(s.table_file, 0) == 0) {
+        where = SourceLocation{s.table_file, 0, 0};
+        const std::string head = error.substr(0, colon);
+        if (const auto c = head.rfind(':'); c != std::string::npos && c > s.table_file.size() - 1)
+          where.line = std::atoi(head.c_str() + c + 1);
+        what = error.substr(colon + 2);
+      }
+      throw InputError(where, what + "; the table needs two columns: time [s], torque [N m]");
+    }
+    s.table_t = table->t;
+    s.table_v = table->v;
+  } else {
+    r.fail(n, "a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., "
+              "frequency = ... } or { table = \"file.csv\" }");
+  }
+  return s;
+}
+
+Effects read_effects(const Reader& r, const toml::node& n) {
+  Effects e;
+  for (const std::string& name : r.strings(n, "effects")) {
+    if (name == "mesh_compliance") e.mesh_compliance = true;
+    else if (name == "mesh_damping") e.mesh_damping = true;
+    else if (name == "bearing_friction") e.bearing_friction = true;
+    else if (name == "mesh_forces") e.mesh_forces = true;
+    else
+      r.fail(n, fmt::format("unknown effect '{}'; the effects are mesh_compliance, mesh_damping, bearing_friction, "
+                            "mesh_forces", name));
+  }
+  if (e.mesh_damping && !e.mesh_compliance)
+    r.fail(n, "mesh_damping needs mesh_compliance: a rigid mesh has no deflection to damp; add mesh_compliance "
+              "or drop mesh_damping");
+  return e;
+}
+
+}  // namespace
+
+bool SignalSpec::identically_zero() const {
+  switch (kind) {
+    case SignalKind::constant: return value == 0;
+    case SignalKind::step: return value == 0 && before == 0;
+    case SignalKind::ramp: return value == 0 && before == 0;
+    case SignalKind::sine: return (value == 0 || frequency == 0) && offset == 0 && (value == 0 || std::sin(phase) == 0);
+    case SignalKind::table:
+      return std::all_of(table_v.begin(), table_v.end(), [](double v) { return v == 0; });
+  }
+  return false;
+}
+
+Solver parse_solver(const std::string& name, const SourceLocation& where) {
+  if (name == "exact") return Solver::exact;
+  if (name == "rk4") return Solver::rk4;
+  if (name == "dopri5") return Solver::dopri5;
+  if (name == "implicit") return Solver::implicit;
+  throw InputError(where, fmt::format("unknown solver '{}'; the solvers are exact, rk4, dopri5, implicit", name));
+}
+
+const char* solver_name(Solver s) {
+  switch (s) {
+    case Solver::exact: return "exact";
+    case Solver::rk4: return "rk4";
+    case Solver::dopri5: return "dopri5";
+    case Solver::implicit: return "implicit";
+  }
+  return "?";
+}
+
+Scene parse_scene_text(const std::string& text, const std::string& path) {
+  Reader r{path};
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(at(path, e.source()), std::string(e.description()) + "; fix the TOML syntax");
+  }
+  r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
+                     "parameters", "simulation"},
+              "the scene file");
+  Scene s;
+  s.file = path;
+  s.name = fs::path(path).stem().string();
+  if (const toml::node* n = root.get("name")) s.name = r.string(*n, "name");
+  const bool name_ok = !s.name.empty() && std::isalpha(static_cast<unsigned char>(s.name[0])) &&
+                       std::all_of(s.name.begin(), s.name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  if (!name_ok)
+    throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
+                     fmt::format("scene name '{}' must be letters, digits and '_' (it names C++ code and files)", s.name));
+
+  const toml::node* model = root.get("model");
+  if (!model) throw InputError(SourceLocation{path, 0, 0}, "the scene names no model; add model = \"path/to/model.toml\"");
+  const fs::path scene_dir = fs::path(path).parent_path();
+  const std::string model_name = r.string(*model, "model");
+  s.model_file = (fs::path(model_name).is_absolute() ? fs::path(model_name) : scene_dir / model_name).lexically_normal().string();
+  if (!fs::exists(s.model_file))
+    r.fail(*model, fmt::format("model file '{}' does not exist; give its path relative to the scene file", s.model_file));
+  const Topology topology = parse_topology(s.model_file);
+  r.model = &topology;
+
+  if (const toml::node* n = root.get("effects")) s.effects = read_effects(r, *n);
+  if (const toml::node* n = root.get("keep")) {
+    s.keep = r.strings(*n, "keep");
+    s.keep_where = r.loc(*n);
+    for (const auto& k : s.keep)
+      if (find_body(topology, k) < 0) r.fail(*n, fmt::format("keep names '{}', which is not a body of the model", k));
+  } else {
+    s.keep_where = SourceLocation{path, 0, 0};
+  }
+  if (const toml::node* n = root.get("compare_rigid")) {
+    if (!n->is_boolean()) r.fail(*n, "compare_rigid must be true or false");
+    s.compare_rigid = **n->as_boolean();
+    if (s.compare_rigid && !s.effects.mesh_compliance)
+      r.fail(*n, "compare_rigid compares the elastic model with the rigid one, but this scene is already rigid "
+                 "(no mesh_compliance); drop compare_rigid or add mesh_compliance");
+  }
+
+  std::set<std::string> parameter_names;
+  for (const auto& p : topology.parameters) parameter_names.insert(p.name);
+  if (const toml::node* n = root.get("parameters")) {
+    if (!n->is_table()) r.fail(*n, "[parameters] must be a table");
+    for (const auto& [key, value] : *n->as_table()) {
+      const std::string name(key.str());
+      if (!parameter_names.count(name))
+        throw InputError(at(path, key.source()), fmt::format("'{}' is not a parameter of the model {}", name, topology.name));
+      Parameter p;
+      p.name = name;
+      p.where = r.loc(value);
+      if (value.is_string()) {
+        p.text = *value.value<std::string>();
+      } else if (value.is_integer() || value.is_floating_point()) {
+        p.text = fmt::format("{}", *value.value<double>());
+        p.column_offset = 0;
+      } else {
+        r.fail(value, "a parameter override is a number (SI) or a string such as \"2000*Newton/mm\"");
+      }
+      s.overrides.push_back(std::move(p));
+    }
+  }
+  if (const toml::node* n = root.get("tunable")) {
+    s.tunable = r.strings(*n, "tunable");
+    for (const auto& name : s.tunable)
+      if (!parameter_names.count(name)) r.fail(*n, fmt::format("tunable '{}' is not a parameter of the model", name));
+  }
+
+  std::set<std::string> driven;
+  if (const toml::node* n = root.get("inputs")) {
+    if (!n->is_table()) r.fail(*n, "[inputs] must be a table of tau_<body> = signal");
+    for (const auto& [key, value] : *n->as_table()) {
+      const std::string name(key.str());
+      const std::string body = name.rfind("tau_", 0) == 0 ? name.substr(4) : "";
+      if (body.empty() || find_body(topology, body) < 0)
+        throw InputError(at(path, key.source()),
+                         fmt::format("input '{}' names no body; inputs are tau_<body>, e.g. tau_{}", name,
+                                     topology.bodies.front().name));
+      s.inputs.push_back(InputSpec{body, read_signal(r, value, scene_dir)});
+    }
+    // Inputs in body order, the order of the model's tau vector.
+    std::sort(s.inputs.begin(), s.inputs.end(), [&](const InputSpec& a, const InputSpec& b) {
+      return find_body(topology, a.body) < find_body(topology, b.body);
+    });
+  }
+
+  if (const toml::node* n = root.get("initial")) {
+    if (!n->is_table()) r.fail(*n, "[initial] must be a table of omega_<body> and F_<mesh> values");
+    for (const auto& [key, value] : *n->as_table()) {
+      const std::string name(key.str());
+      if (name.rfind("omega_", 0) == 0 && find_body(topology, name.substr(6)) >= 0) {
+        s.initial[name] = r.quantity(value, angular_velocity_dimension(), name);
+      } else if (name.rfind("F_", 0) == 0 &&
+                 std::any_of(topology.meshes.begin(), topology.meshes.end(),
+                             [&](const Mesh& m) { return m.name == name.substr(2); })) {
+        if (!s.effects.mesh_compliance)
+          throw InputError(at(path, key.source()), fmt::format("initial force '{}' needs mesh_compliance: the rigid "
+                                                               "model has no force states", name));
+        s.initial[name] = r.quantity(value, force_dimension(), name);
+      } else {
+        throw InputError(at(path, key.source()),
+                         fmt::format("'{}' is neither omega_<body> nor F_<mesh> of the model", name));
+      }
+    }
+  }
+
+  if (const toml::node* n = root.get("outputs")) {
+    s.outputs = r.strings(*n, "outputs");
+    s.outputs_where = r.loc(*n);
+    for (const auto& o : s.outputs) {
+      const bool velocity = o.rfind("omega_", 0) == 0 && find_body(topology, o.substr(6)) >= 0;
+      const bool force = o.rfind("F_", 0) == 0 && std::any_of(topology.meshes.begin(), topology.meshes.end(),
+                                                             [&](const Mesh& m) { return m.name == o.substr(2); });
+      if (!velocity && !force) r.fail(*n, fmt::format("output '{}' is neither omega_<body> nor F_<mesh>", o));
+      if (force && !s.effects.mesh_forces)
+        r.fail(*n, fmt::format("output '{}' is a mesh force, but the scene does not ask for mesh_forces; add it to "
+                               "effects", o));
+    }
+  }
+
+  if (const toml::node* n = root.get("simulation")) {
+    if (!n->is_table()) r.fail(*n, "[simulation] must be a table");
+    const toml::table& t = *n->as_table();
+    r.only_keys(t, {"horizon", "sample", "solver", "tolerance", "step"}, "[simulation]");
+    if (const toml::node* v = t.get("horizon")) s.horizon = r.quantity(*v, time_dimension(), "horizon");
+    if (const toml::node* v = t.get("sample")) s.sample = r.quantity(*v, time_dimension(), "sample");
+    if (const toml::node* v = t.get("step")) s.step = r.quantity(*v, time_dimension(), "step");
+    if (const toml::node* v = t.get("tolerance")) {
+      if (!v->is_number()) r.fail(*v, "tolerance is a plain number, the relative tolerance, e.g. 1e-8");
+      s.tolerance = *v->value<double>();
+      if (!(s.tolerance > 0 && s.tolerance < 1)) r.fail(*v, "tolerance must be between 0 and 1");
+    }
+    if (const toml::node* v = t.get("solver")) {
+      s.solver_where = r.loc(*v);
+      s.solver = parse_solver(r.string(*v, "solver"), s.solver_where);
+    }
+    if (!(s.horizon > 0)) r.fail(*t.get("horizon"), "horizon must be positive");
+    if (!(s.sample > 0) || s.sample > s.horizon)
+      r.fail(t.get("sample") ? *t.get("sample") : *n, "sample must be positive and at most the horizon");
+    if (!(s.step > 0)) r.fail(*t.get("step"), "step must be positive");
+    // Bounded output: a CSV of more than 1e7 rows is a mistake, not a scene.
+    if (s.horizon / s.sample > 1e7)
+      r.fail(*n, fmt::format("{} samples requested; at most 1e7 (raise sample or shorten the horizon)", s.horizon / s.sample));
+  }
+  return s;
+}
+
+Scene parse_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot read the scene file; check the path");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (ss.str().size() > max_model_file_bytes)
+    throw InputError(SourceLocation{path, 0, 0}, "the scene file is larger than 1 MiB");
+  return parse_scene_text(ss.str(), path);
+}
+
+Topology apply_overrides(Topology t, const Scene& scene) {
+  for (const auto& o : scene.overrides)
+    for (auto& p : t.parameters)
+      if (p.name == o.name) {
+        p.text = o.text;
+        p.where = o.where;
+        p.column_offset = o.column_offset;
+      }
+  evaluate_parameters(t.parameters);
+  return t;
+}
+
+}  // namespace pogear

@@ -1,0 +1,295 @@
+// Specialized equations are built as GiNaC expressions in the scene's own variables, with the
+// mesh velocities v = R omega (and damped forces w = F + B_K v) as the shared temporaries.
+#include "sim_model.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include <fmt/format.h>
+
+namespace pogear {
+namespace {
+
+using GiNaC::ex;
+
+bool contains(const std::vector<std::string>& v, const std::string& x) {
+  return std::find(v.begin(), v.end(), x) != v.end();
+}
+
+// Values of every non-tunable parameter; zeros for the parameters of effects left out.
+GiNaC::exmap folding(const Scene& sc, Derivation& d, bool keep_tunables) {
+  Symbols& s = d.symbols;
+  GiNaC::exmap fold;
+  std::set<std::string> tunable(sc.tunable.begin(), sc.tunable.end());
+  if (!keep_tunables) tunable.clear();
+  for (const auto& [name, v] : d.radius.values)
+    if (!tunable.count(name)) fold[symbol(s, name)] = v;
+  // A dependent radius follows a tunable one through the geometry relations.
+  for (const auto& g : d.radius.relations) {
+    bool depends = false;
+    for (const auto& name : tunable) depends = depends || g.rhs.has(symbol(s, name));
+    if (depends) fold[symbol(s, g.parameter)] = g.rhs.subs(fold);
+  }
+  if (!sc.effects.bearing_friction)
+    for (const auto& b : d.topology.bodies) fold[symbol(s, b.friction)] = 0;
+  if (!sc.effects.mesh_damping)
+    for (const auto& m : d.topology.meshes) fold[symbol(s, m.damping)] = 0;
+  return fold;
+}
+
+std::vector<std::string> requested_outputs(const Scene& sc, const Derivation& d) {
+  if (!sc.outputs.empty()) return sc.outputs;
+  std::vector<std::string> out = d.elastic.velocities;
+  if (sc.effects.mesh_forces) out.insert(out.end(), d.elastic.forces.begin(), d.elastic.forces.end());
+  return out;
+}
+
+std::string unit_of(const std::string& name) { return name.rfind("F_", 0) == 0 ? "N" : "rad/s"; }
+
+void inputs_of(const Scene& sc, SimSystem& sys) {
+  for (std::size_t i = 0; i < sc.inputs.size(); ++i) {
+    if (sc.inputs[i].signal.identically_zero()) continue;  // a zero input is not an input
+    sys.inputs.push_back("tau_" + sc.inputs[i].body);
+    sys.input_signal.push_back(static_cast<int>(i));
+  }
+}
+
+ex input_or_zero(Symbols& s, const SimSystem& sys, const std::string& torque) {
+  return contains(sys.inputs, torque) ? ex(symbol(s, torque)) : ex(0);
+}
+
+// dx/dt = M x + N u, read off the (linear) right-hand side with the temporaries substituted.
+void linear_form(Symbols& s, SimSystem& sys) {
+  GiNaC::exmap temps;
+  for (const auto& a : sys.rhs_temporaries) temps[symbol(s, a.name)] = a.value.subs(temps);
+  sys.M = GiNaC::matrix(sys.states.size(), sys.states.size());
+  sys.N = GiNaC::matrix(sys.states.size(), sys.inputs.size());
+  for (std::size_t i = 0; i < sys.states.size(); ++i) {
+    const ex f = sys.rhs[i].subs(temps).expand();
+    for (std::size_t j = 0; j < sys.states.size(); ++j) sys.M(i, j) = f.diff(symbol(s, sys.states[j]));
+    for (std::size_t j = 0; j < sys.inputs.size(); ++j) sys.N(i, j) = f.diff(symbol(s, sys.inputs[j]));
+  }
+}
+
+OperationCount count_all(const std::vector<Assignment>& temps, const std::vector<ex>& values) {
+  OperationCount c;
+  auto add = [&](const ex& e) {
+    const OperationCount o = count_operations(e);
+    c.multiplications += o.multiplications;
+    c.additions += o.additions;
+  };
+  for (const auto& a : temps) add(a.value);
+  for (const auto& v : values) add(v);
+  return c;
+}
+
+}  // namespace
+
+OperationCount count_operations(const ex& e) {
+  OperationCount c;
+  if (GiNaC::is_a<GiNaC::add>(e)) {
+    c.additions += static_cast<int>(e.nops()) - 1;
+  } else if (GiNaC::is_a<GiNaC::mul>(e)) {
+    int factors = 0;
+    for (const ex& f : e)
+      if (!(GiNaC::is_a<GiNaC::numeric>(f) && (f.is_equal(-1) || f.is_equal(1)))) ++factors;
+    c.multiplications += std::max(0, factors - 1);
+  } else if (GiNaC::is_a<GiNaC::power>(e)) {
+    if (GiNaC::is_a<GiNaC::numeric>(e.op(1)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer()) {
+      const int p = std::abs(GiNaC::ex_to<GiNaC::numeric>(e.op(1)).to_int());
+      c.multiplications += std::max(0, p - 1) + (GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_negative() ? 1 : 0);
+    } else {
+      c.multiplications += 1;
+    }
+  }
+  for (const ex& op : e) {
+    const OperationCount o = count_operations(op);
+    c.multiplications += o.multiplications;
+    c.additions += o.additions;
+  }
+  return c;
+}
+
+SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
+  Symbols& s = d.symbols;
+  const Topology& t = d.topology;
+  const std::size_t n = t.bodies.size();
+  const std::size_t m = t.meshes.size();
+  const GiNaC::exmap fold = folding(sc, d, true);
+  auto folded = [&](const ex& e) { return e.subs(fold).expand(); };
+  SimSystem sys;
+  sys.kind = elastic ? "elastic" : "rigid";
+  for (const auto& name : sc.tunable) {
+    sys.params.push_back(name);
+    sys.param_values.push_back(d.radius.values.at(name));
+  }
+  inputs_of(sc, sys);
+
+  // Names of temporaries must not shadow anything else in the generated function.
+  auto fresh = [&](const std::string& name) {
+    if (d.radius.values.count(name))
+      throw InputError(SourceLocation{sc.file, 0, 0},
+                       fmt::format("the model has a parameter named '{}', which pogear's generated code uses for a "
+                                   "mesh velocity; rename the parameter", name));
+    return name;
+  };
+
+  if (elastic) {
+    sys.equations = "elastic POG model (eqs. 2-3): J omega' = tau - B_J omega - R^T (B_K R omega + F), "
+                    "K^-1 F' = R omega";
+    for (std::size_t k = 0; k < n; ++k) sys.states.push_back(d.elastic.velocities[k]);
+    for (std::size_t i = 0; i < m; ++i) sys.states.push_back(d.elastic.forces[i]);
+    std::vector<ex> w(m);  // the force each mesh passes on, damping included
+    for (std::size_t i = 0; i < m; ++i) {
+      ex v = 0;
+      for (std::size_t k = 0; k < n; ++k) v += d.elastic.R(i, k) * symbol(s, d.elastic.velocities[k]);
+      const std::string vname = fresh("v_" + t.meshes[i].name);
+      sys.rhs_temporaries.push_back({vname, folded(v)});
+      const ex damping = folded(d.elastic.B_K(i, i));
+      if (damping.is_zero()) {
+        w[i] = symbol(s, d.elastic.forces[i]);
+      } else {
+        const std::string wname = fresh("w_" + t.meshes[i].name);
+        sys.rhs_temporaries.push_back({wname, folded(symbol(s, d.elastic.forces[i]) + damping * symbol(s, vname))});
+        w[i] = symbol(s, wname);
+      }
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      ex torque = input_or_zero(s, sys, d.elastic.torques[k]) - d.elastic.B_J(k, k) * symbol(s, d.elastic.velocities[k]);
+      for (std::size_t i = 0; i < m; ++i) torque -= d.elastic.R(i, k) * w[i];
+      sys.rhs.push_back(folded(torque / d.elastic.J(k, k)));
+    }
+    for (std::size_t i = 0; i < m; ++i)
+      sys.rhs.push_back(folded(d.elastic.K(i, i) * symbol(s, "v_" + t.meshes[i].name)));
+  } else {
+    sys.equations = "rigid reduced POG model (eq. 7): L1 x1' = A1 x1 + B1 tau, omega = Q1 x1, "
+                    "F from eq. (8)";
+    for (int k : d.rigid.kept) sys.states.push_back(d.elastic.velocities[k]);
+    const std::size_t k1 = sys.states.size();
+    GiNaC::matrix L1 = GiNaC::ex_to<GiNaC::matrix>(d.rigid.L1.subs(fold));
+    GiNaC::matrix A1 = GiNaC::ex_to<GiNaC::matrix>(d.rigid.A1.subs(fold));
+    const GiNaC::matrix L1inv = L1.inverse();
+    const GiNaC::matrix M1 = L1inv.mul(A1);
+    for (std::size_t j = 0; j < k1; ++j) {
+      ex f = 0;
+      for (std::size_t i = 0; i < k1; ++i) f += M1(j, i) * symbol(s, sys.states[i]);
+      for (std::size_t b = 0; b < n; ++b) {
+        const ex u = input_or_zero(s, sys, d.elastic.torques[b]);
+        if (u.is_zero()) continue;
+        ex coeff = 0;
+        for (std::size_t i = 0; i < k1; ++i) coeff += L1inv(j, i) * d.rigid.B1(i, b);
+        f += coeff * u;
+      }
+      sys.rhs.push_back(folded(f.normal()));
+    }
+  }
+  for (std::size_t i = 0; i < sys.states.size(); ++i) {
+    auto it = sc.initial.find(sys.states[i]);
+    sys.x0.push_back(it == sc.initial.end() ? 0.0 : it->second);
+    sys.state_units.push_back(unit_of(sys.states[i]));
+  }
+  linear_form(s, sys);
+
+  // Outputs: only those asked for.
+  const std::vector<std::string> wanted = requested_outputs(sc, d);
+  bool need_derivatives = false;
+  for (const auto& name : wanted) {
+    sys.outputs.push_back(name);
+    sys.output_units.push_back(unit_of(name));
+    if (elastic || contains(sys.states, name)) {
+      sys.output_values.push_back(symbol(s, name));
+      continue;
+    }
+    if (name.rfind("omega_", 0) == 0) {
+      const int b = find_body(t, name.substr(6));
+      ex w = 0;
+      for (std::size_t j = 0; j < sys.states.size(); ++j) w += d.rigid.Q1(b, j) * symbol(s, sys.states[j]);
+      sys.output_values.push_back(folded(w));
+    } else {
+      std::size_t i = 0;
+      while (d.elastic.forces[i] != name) ++i;
+      GiNaC::exmap zero_inputs;
+      for (const auto& tau : d.elastic.torques)
+        if (!contains(sys.inputs, tau)) zero_inputs[symbol(s, tau)] = 0;
+      sys.output_values.push_back(folded(d.rigid.force_recovery.at(i).subs(zero_inputs)));
+      need_derivatives = true;
+    }
+  }
+  if (need_derivatives)
+    for (std::size_t j = 0; j < sys.states.size(); ++j)
+      sys.output_temporaries.push_back({"d" + sys.states[j], sys.rhs[j]});
+  sys.rhs_ops = count_all(sys.rhs_temporaries, sys.rhs);
+  sys.output_ops = count_all(sys.output_temporaries, sys.output_values);
+  return sys;
+}
+
+SimModel specialize(const Scene& scene) {
+  SimModel model;
+  model.scene = scene;
+  Topology t = apply_overrides(parse_topology(scene.model_file), scene);
+  std::optional<std::vector<std::string>> keep;
+  if (!scene.keep.empty()) keep = scene.keep;
+  model.derivation = derive_topology(std::move(t), keep, scene.keep_where);
+  if (model.derivation.rigid.redundant_meshes && (scene.effects.mesh_forces && (!scene.effects.mesh_compliance || scene.compare_rigid)))
+    throw InputError(SourceLocation{scene.file, 0, 0},
+                     "this model has redundant meshes (R R^T is singular), and the rigid model's mesh forces "
+                     "for that case are not supported yet; drop mesh_forces or simulate the elastic model only");
+  model.main = specialize_system(scene, model.derivation, scene.effects.mesh_compliance);
+  if (scene.compare_rigid) model.rigid = specialize_system(scene, model.derivation, false);
+  return model;
+}
+
+NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
+  Derivation d = model.derivation;  // symbols are shared handles
+  const GiNaC::exmap values = folding(model.scene, d, false);
+  const ElasticModel& e = d.elastic;
+  NumericSystem out;
+  std::vector<int> input_bodies;
+  for (const auto& tau : sys.inputs)
+    input_bodies.push_back(static_cast<int>(std::find(e.torques.begin(), e.torques.end(), tau) - e.torques.begin()));
+  auto input_columns = [&](const Eigen::MatrixXd& B) {
+    Eigen::MatrixXd out(B.rows(), input_bodies.size());
+    for (std::size_t j = 0; j < input_bodies.size(); ++j) out.col(j) = B.col(input_bodies[j]);
+    return out;
+  };
+  const std::size_t nx = sys.states.size(), ny = sys.outputs.size(), nu = sys.inputs.size();
+  out.C = Eigen::MatrixXd::Zero(ny, nx);
+  out.D = Eigen::MatrixXd::Zero(ny, nu);
+  out.E = Eigen::MatrixXd::Zero(ny, nx);
+  out.x0 = Eigen::Map<const Eigen::VectorXd>(sys.x0.data(), nx);
+  auto state_index = [&](const std::string& name) {
+    return static_cast<Eigen::Index>(std::find(sys.states.begin(), sys.states.end(), name) - sys.states.begin());
+  };
+  if (sys.kind == "elastic") {
+    const Eigen::MatrixXd L = evaluate_matrix(e.L, values), A = evaluate_matrix(e.A, values),
+                          B = evaluate_matrix(e.B, values);
+    const auto lu = L.partialPivLu();
+    out.M = lu.solve(A);
+    out.N = lu.solve(input_columns(B));
+    for (std::size_t i = 0; i < ny; ++i) out.C(i, state_index(sys.outputs[i])) = 1;
+  } else {
+    const Eigen::MatrixXd L1 = evaluate_matrix(d.rigid.L1, values), A1 = evaluate_matrix(d.rigid.A1, values),
+                          B1 = evaluate_matrix(d.rigid.B1, values), Q1 = evaluate_matrix(d.rigid.Q1, values),
+                          R = evaluate_matrix(e.R, values), J = evaluate_matrix(e.J, values),
+                          BJ = evaluate_matrix(e.B_J, values);
+    const auto ldlt = L1.ldlt();
+    out.M = ldlt.solve(A1);
+    out.N = ldlt.solve(input_columns(B1));
+    // Eq. (8) literally: F = (R R^T)^-1 R (tau - J Q1 x1' - B_J Q1 x1).
+    const Eigen::MatrixXd P = (R * R.transpose()).ldlt().solve(R);
+    for (std::size_t i = 0; i < ny; ++i) {
+      const std::string& name = sys.outputs[i];
+      if (name.rfind("omega_", 0) == 0) {
+        out.C.row(i) = Q1.row(find_body(d.topology, name.substr(6)));
+      } else {
+        const auto f = std::find(e.forces.begin(), e.forces.end(), name) - e.forces.begin();
+        out.C.row(i) = -(P * BJ * Q1).row(f);
+        out.E.row(i) = -(P * J * Q1).row(f);
+        for (std::size_t j = 0; j < nu; ++j) out.D(i, j) = P(f, input_bodies[j]);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace pogear

@@ -1,0 +1,66 @@
+// Specialization: the equations a scene calls for and nothing more. Effects left out leave no
+// term, zero inputs are not inputs, unrequested outputs are not computed, and every parameter
+// that is not tunable is folded to a number.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "derivation.hpp"
+#include "scene.hpp"
+
+namespace pogear {
+
+struct OperationCount {
+  int multiplications = 0;  // divisions included
+  int additions = 0;        // subtractions included
+  int total() const { return multiplications + additions; }
+};
+
+// `const double name = value;` in generated code.
+struct Assignment {
+  std::string name;
+  GiNaC::ex value;
+};
+
+struct SimSystem {
+  std::string kind;       // "elastic" or "rigid"
+  std::string equations;  // one line, for the generated header comment
+  std::vector<std::string> states, state_units;
+  std::vector<double> x0;
+  std::vector<std::string> inputs;    // tau_<body> of the nonzero signals
+  std::vector<int> input_signal;      // index into Scene::inputs
+  std::vector<std::string> params;    // tunable parameters
+  std::vector<double> param_values;
+  std::vector<Assignment> rhs_temporaries;
+  std::vector<GiNaC::ex> rhs;  // dx/dt, one per state
+  std::vector<std::string> outputs, output_units;
+  std::vector<Assignment> output_temporaries;
+  std::vector<GiNaC::ex> output_values;
+  GiNaC::matrix M, N;  // dx/dt = M x + N u (every scene pogear knows is linear)
+  OperationCount rhs_ops, output_ops;
+};
+
+struct SimModel {
+  Scene scene;
+  Derivation derivation;  // with the scene's overrides applied
+  SimSystem main;
+  std::optional<SimSystem> rigid;  // the comparison, when the scene asks for it
+};
+
+SimModel specialize(const Scene& scene);
+SimSystem specialize_system(const Scene& scene, Derivation& d, bool elastic);
+
+OperationCount count_operations(const GiNaC::ex& e);
+
+// Numeric (M, N) of the same system built from the derivation's L, A, B instead of the
+// specialized expressions: an independent computation for --interpreted and the tests.
+struct NumericSystem {
+  Eigen::MatrixXd M, N;        // dx/dt = M x + N u
+  Eigen::MatrixXd C, D, E;     // y = C x + D u + E dx/dt
+  Eigen::VectorXd x0;
+};
+NumericSystem numeric_system(const SimModel& model, const SimSystem& system);
+
+}  // namespace pogear

@@ -1,0 +1,201 @@
+// The compiled simulator is cached by a hash of its sources and the compiler, so that running a
+// scene a second time starts at once; a stale binary can never be picked up for new sources.
+#include "simulation.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "build_config.hpp"
+#include "output_file.hpp"
+
+namespace pogear {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::uint64_t fnv1a(const std::string& s, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+fs::path cache_root() {
+  if (const char* d = std::getenv("POGEAR_CACHE_DIR"); d && *d) return d;
+  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return fs::path(d) / "pogear";
+  if (const char* d = std::getenv("HOME"); d && *d) return fs::path(d) / ".cache" / "pogear";
+  return fs::temp_directory_path() / "pogear-cache";
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+int exit_status(int raw) { return raw == -1 ? 127 : (WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw)); }
+
+rt::Signal to_signal(const SignalSpec& g) {
+  switch (g.kind) {
+    case SignalKind::constant: return rt::Constant{g.value};
+    case SignalKind::step: return rt::Step{g.before, g.value, g.time};
+    case SignalKind::ramp: return rt::Ramp{g.time, g.value, g.before};
+    case SignalKind::sine: return rt::Sine{g.value, g.frequency, g.phase, g.offset};
+    case SignalKind::table: return rt::Table{g.table_t, g.table_v};
+  }
+  return rt::Constant{0};
+}
+
+// A system with the generated structs' members, on dynamic matrices, from the numeric model.
+struct InterpretedSystem {
+  using State = Eigen::VectorXd;
+  using Input = Eigen::VectorXd;
+  using Output = Eigen::VectorXd;
+  using StateMatrix = Eigen::MatrixXd;
+  using InputMatrix = Eigen::MatrixXd;
+  struct Params {};
+  NumericSystem ns;
+  std::vector<std::string> output_names, output_units;
+
+  void rhs(const Params&, const State& x, const Input& u, State& dx) const {
+    dx.noalias() = ns.M * x;
+    if (u.size()) dx.noalias() += ns.N * u;
+  }
+  void outputs(const Params&, const State& x, const Input& u, Output& y) const {
+    State dx(x.size());
+    rhs({}, x, u, dx);
+    y.noalias() = ns.C * x + ns.E * dx;
+    if (u.size()) y.noalias() += ns.D * u;
+  }
+  void matrices(const Params&, StateMatrix& M, InputMatrix& N) const {
+    M = ns.M;
+    N = ns.N;
+  }
+};
+
+int run_one_interpreted(const SimModel& model, const SimSystem& sys, const rt::SceneRun& run,
+                        const std::string& suffix) {
+  InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
+  std::vector<rt::Signal> signals;
+  for (int i : sys.input_signal) signals.push_back(to_signal(model.scene.inputs[i].signal));
+  return rt::run_system(is, {}, signals, is.ns.x0, run, suffix);
+}
+
+std::string gnuplot_label(const std::string& name) {
+  // omega_c -> {/Symbol w}_{c}, F_ps -> F_{ps}
+  const auto us = name.find('_');
+  std::string base = name.substr(0, us), sub = us == std::string::npos ? "" : name.substr(us + 1);
+  if (base == "omega") base = "{/Symbol w}";
+  return sub.empty() ? base : base + "_{" + sub + "}";
+}
+
+}  // namespace
+
+void write_sources(const GeneratedSources& g, const std::string& dir) {
+  write_file_atomically((fs::path(dir) / g.header_name).string(), g.header);
+  write_file_atomically((fs::path(dir) / g.main_name).string(), g.main);
+}
+
+std::string build_simulator(const GeneratedSources& g) {
+  const std::string flags = "-std=c++20 -O2 -DNDEBUG -Wall -Wextra";
+  std::uint64_t h = fnv1a(g.header);
+  h = fnv1a(g.main, h);
+  h = fnv1a(std::string(build_config::cxx_compiler) + flags + build_config::runtime_include + build_config::version, h);
+  const fs::path dir = cache_root() / fmt::format("{:016x}", h);
+  const fs::path exe = dir / "simulator";
+  if (fs::exists(exe)) return exe.string();
+  fs::create_directories(dir);
+  write_sources(g, dir.string());
+  const fs::path tmp = dir / fmt::format("simulator.tmp{}", ::getpid());
+  const fs::path log = dir / "compile.log";
+  const std::string cmd = fmt::format("{} {} -I{} -I{} -I{} {} -o {} >{} 2>&1", shell_quote(build_config::cxx_compiler),
+                                      flags, shell_quote(dir.string()), shell_quote(build_config::runtime_include),
+                                      shell_quote(build_config::eigen_include),
+                                      shell_quote((dir / g.main_name).string()), shell_quote(tmp.string()),
+                                      shell_quote(log.string()));
+  const int status = exit_status(std::system(cmd.c_str()));
+  if (status != 0) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    std::ifstream in(log);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    throw std::runtime_error(fmt::format("compiling the simulator failed (status {}); the compiler said:\n{}", status,
+                                         ss.str().substr(0, 4000)));
+  }
+  fs::rename(tmp, exe);  // atomic: a concurrent run sees either no binary or a whole one
+  return exe.string();
+}
+
+int run_compiled(const std::string& exe, const rt::SceneRun& run) {
+  std::string cmd = shell_quote(exe) + " --solver " + shell_quote(run.solver) + " --out " + shell_quote(run.out_dir) +
+                    fmt::format(" --tolerance {} --step {} --repeat {}", run.options.rtol, run.options.h, run.repeat);
+  if (!run.csv) cmd += " --no-csv";
+  if (run.quiet) cmd += " --quiet";
+  std::fflush(stdout);
+  return exit_status(std::system(cmd.c_str()));
+}
+
+int run_interpreted(const SimModel& model, const rt::SceneRun& run) {
+  int status = run_one_interpreted(model, model.main, run, "");
+  if (status == 0 && model.rigid) status = run_one_interpreted(model, *model.rigid, run, ".rigid");
+  return status;
+}
+
+std::vector<std::string> plot_scene(const SimModel& model, const std::string& dir) {
+  std::vector<std::string> written;
+  const std::string name = model.scene.name;
+  const fs::path elastic_csv = fs::path(dir) / (name + ".csv");
+  const fs::path rigid_csv = fs::path(dir) / (name + ".rigid.csv");
+  for (const std::string kind : {"velocities", "forces"}) {
+    const std::string prefix = kind == "velocities" ? "omega_" : "F_";
+    std::vector<int> columns;  // 1-based gnuplot columns; column 1 is t
+    for (std::size_t i = 0; i < model.main.outputs.size(); ++i)
+      if (model.main.outputs[i].rfind(prefix, 0) == 0) columns.push_back(static_cast<int>(i) + 2);
+    if (columns.empty()) continue;
+    const fs::path svg = fs::path(dir) / fmt::format("{}.{}.svg", name, kind);
+    const fs::path tmp = fs::path(dir) / fmt::format(".{}.{}.svg.tmp{}", name, kind, ::getpid());
+    std::string script;
+    script += "set terminal svg size 900,560 dynamic enhanced font 'Helvetica,13' background rgb 'white'\n";
+    script += fmt::format("set output '{}'\n", tmp.string());
+    script += "set datafile separator ','\nset grid\nset key outside right top\n";
+    script += fmt::format("set title '{}: {}{}' noenhanced\n", name, kind == "velocities" ? "angular velocities" : "mesh forces",
+                          model.rigid ? " (rigid model dashed)" : "");
+    script += "set xlabel 't [s]'\n";
+    script += fmt::format("set ylabel '{}'\n", kind == "velocities" ? "{/Symbol w} [rad/s]" : "F [N]");
+    script += "plot ";
+    bool first = true;
+    for (int c : columns) {
+      script += fmt::format("{}'{}' using 1:{} with lines lw 2 title '{}'", first ? "" : ", \\\n     ",
+                            elastic_csv.string(), c, gnuplot_label(model.main.outputs[c - 2]));
+      first = false;
+    }
+    if (model.rigid)
+      for (std::size_t k = 0; k < columns.size(); ++k)
+        script += fmt::format(", \\\n     '{}' using 1:{} with lines dt 2 lw 1.5 lc rgb 'red' {}", rigid_csv.string(),
+                              columns[k], k == 0 ? "title 'rigid'" : "notitle");
+    script += "\n";
+    const fs::path script_file = fs::path(dir) / fmt::format(".{}.{}.gp", name, kind);
+    write_file_atomically(script_file.string(), script);
+    const int status = exit_status(std::system(fmt::format("gnuplot {} 2>&1", shell_quote(script_file.string())).c_str()));
+    std::error_code ec;
+    fs::remove(script_file, ec);
+    if (status != 0) {
+      fs::remove(tmp, ec);
+      throw std::runtime_error(fmt::format("gnuplot failed (status {}) drawing {}; is gnuplot-nox installed "
+                                           "(scripts/install-deps.sh)?", status, svg.string()));
+    }
+    fs::rename(tmp, svg);
+    written.push_back(svg.string());
+  }
+  return written;
+}
+
+}  // namespace pogear
