@@ -180,7 +180,10 @@ class Printer {
 
     const numeric c = GiNaC::abs(t.coefficient);
     std::vector<std::string> num, den;
-    if (c.is_rational()) {
+    if (n_ == Notation::cpp) {
+      // One correctly rounded double, not numerator/denominator (exact rationals are long).
+      if (c != 1 || up.empty()) num.push_back(number(c));
+    } else if (c.is_rational()) {
       if (c.numer() != 1 || up.empty()) num.push_back(number(c.numer()));
       if (c.denom() != 1) den.push_back(number(c.denom()));
     } else {

@@ -215,6 +215,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   if (!model) throw InputError(SourceLocation{path, 0, 0}, "the scene names no model; add model = \"path/to/model.toml\"");
   const fs::path scene_dir = fs::path(path).parent_path();
   const std::string model_name = r.string(*model, "model");
+  s.model_ref = model_name;
   s.model_file = (fs::path(model_name).is_absolute() ? fs::path(model_name) : scene_dir / model_name).lexically_normal().string();
   if (!fs::exists(s.model_file))
     r.fail(*model, fmt::format("model file '{}' does not exist; give its path relative to the scene file", s.model_file));

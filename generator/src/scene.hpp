@@ -45,6 +45,7 @@ struct Scene {
   std::string file;
   std::string name;
   std::string model_file;  // resolved relative to the scene file
+  std::string model_ref;   // as the scene file writes it
   Effects effects;
   std::vector<std::string> keep;  // empty: the model's default
   bool compare_rigid = false;

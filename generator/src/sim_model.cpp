@@ -23,7 +23,7 @@ GiNaC::exmap folding(const Scene& sc, Derivation& d, bool keep_tunables) {
   std::set<std::string> tunable(sc.tunable.begin(), sc.tunable.end());
   if (!keep_tunables) tunable.clear();
   for (const auto& [name, v] : d.radius.values)
-    if (!tunable.count(name)) fold[symbol(s, name)] = v;
+    if (!tunable.count(name)) fold[symbol(s, name)] = exact_number(v);
   // A dependent radius follows a tunable one through the geometry relations.
   for (const auto& g : d.radius.relations) {
     bool depends = false;
@@ -243,13 +243,18 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
   Derivation d = model.derivation;  // symbols are shared handles
   const GiNaC::exmap values = folding(model.scene, d, false);
   const ElasticModel& e = d.elastic;
+  // Exact rational arithmetic on the assembled matrices, rounded once at the end: the same
+  // numbers the specialized expressions give, by another formula.
+  auto exact = [&](const GiNaC::matrix& m) { return GiNaC::ex_to<GiNaC::matrix>(m.subs(values).evalm()); };
+  auto doubles = [](const GiNaC::matrix& m) { return evaluate_matrix(m, {}); };
   NumericSystem out;
   std::vector<int> input_bodies;
   for (const auto& tau : sys.inputs)
     input_bodies.push_back(static_cast<int>(std::find(e.torques.begin(), e.torques.end(), tau) - e.torques.begin()));
-  auto input_columns = [&](const Eigen::MatrixXd& B) {
-    Eigen::MatrixXd out(B.rows(), input_bodies.size());
-    for (std::size_t j = 0; j < input_bodies.size(); ++j) out.col(j) = B.col(input_bodies[j]);
+  auto input_columns = [&](const GiNaC::matrix& B) {
+    GiNaC::matrix out(B.rows(), input_bodies.size());
+    for (unsigned i = 0; i < B.rows(); ++i)
+      for (std::size_t j = 0; j < input_bodies.size(); ++j) out(i, j) = B(i, input_bodies[j]);
     return out;
   };
   const std::size_t nx = sys.states.size(), ny = sys.outputs.size(), nu = sys.inputs.size();
@@ -261,31 +266,28 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
     return static_cast<Eigen::Index>(std::find(sys.states.begin(), sys.states.end(), name) - sys.states.begin());
   };
   if (sys.kind == "elastic") {
-    const Eigen::MatrixXd L = evaluate_matrix(e.L, values), A = evaluate_matrix(e.A, values),
-                          B = evaluate_matrix(e.B, values);
-    const auto lu = L.partialPivLu();
-    out.M = lu.solve(A);
-    out.N = lu.solve(input_columns(B));
+    const GiNaC::matrix Linv = exact(e.L).inverse();
+    out.M = doubles(Linv.mul(exact(e.A)));
+    out.N = doubles(Linv.mul(input_columns(exact(e.B))));
     for (std::size_t i = 0; i < ny; ++i) out.C(i, state_index(sys.outputs[i])) = 1;
   } else {
-    const Eigen::MatrixXd L1 = evaluate_matrix(d.rigid.L1, values), A1 = evaluate_matrix(d.rigid.A1, values),
-                          B1 = evaluate_matrix(d.rigid.B1, values), Q1 = evaluate_matrix(d.rigid.Q1, values),
-                          R = evaluate_matrix(e.R, values), J = evaluate_matrix(e.J, values),
-                          BJ = evaluate_matrix(e.B_J, values);
-    const auto ldlt = L1.ldlt();
-    out.M = ldlt.solve(A1);
-    out.N = ldlt.solve(input_columns(B1));
+    const GiNaC::matrix L1inv = exact(d.rigid.L1).inverse();
+    const GiNaC::matrix Q1 = exact(d.rigid.Q1), R = exact(e.R), J = exact(e.J), BJ = exact(e.B_J);
+    out.M = doubles(L1inv.mul(exact(d.rigid.A1)));
+    out.N = doubles(L1inv.mul(input_columns(exact(d.rigid.B1))));
     // Eq. (8) literally: F = (R R^T)^-1 R (tau - J Q1 x1' - B_J Q1 x1).
-    const Eigen::MatrixXd P = (R * R.transpose()).ldlt().solve(R);
+    const GiNaC::matrix P = R.mul(R.transpose()).inverse().mul(R);
+    const Eigen::MatrixXd C_F = -doubles(P.mul(BJ).mul(Q1)), E_F = -doubles(P.mul(J).mul(Q1)), Pn = doubles(P),
+                          Q1n = doubles(Q1);
     for (std::size_t i = 0; i < ny; ++i) {
       const std::string& name = sys.outputs[i];
       if (name.rfind("omega_", 0) == 0) {
-        out.C.row(i) = Q1.row(find_body(d.topology, name.substr(6)));
+        out.C.row(i) = Q1n.row(find_body(d.topology, name.substr(6)));
       } else {
         const auto f = std::find(e.forces.begin(), e.forces.end(), name) - e.forces.begin();
-        out.C.row(i) = -(P * BJ * Q1).row(f);
-        out.E.row(i) = -(P * J * Q1).row(f);
-        for (std::size_t j = 0; j < nu; ++j) out.D(i, j) = P(f, input_bodies[j]);
+        out.C.row(i) = C_F.row(f);
+        out.E.row(i) = E_F.row(f);
+        for (std::size_t j = 0; j < nu; ++j) out.D(i, j) = Pn(f, input_bodies[j]);
       }
     }
   }

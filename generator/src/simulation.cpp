@@ -80,12 +80,16 @@ struct InterpretedSystem {
   }
 };
 
+std::vector<rt::Signal> signals_of(const SimModel& model, const SimSystem& sys) {
+  std::vector<rt::Signal> signals;
+  for (int i : sys.input_signal) signals.push_back(to_signal(model.scene.inputs[i].signal));
+  return signals;
+}
+
 int run_one_interpreted(const SimModel& model, const SimSystem& sys, const rt::SceneRun& run,
                         const std::string& suffix) {
   InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
-  std::vector<rt::Signal> signals;
-  for (int i : sys.input_signal) signals.push_back(to_signal(model.scene.inputs[i].signal));
-  return rt::run_system(is, {}, signals, is.ns.x0, run, suffix);
+  return rt::run_system(is, {}, signals_of(model, sys), is.ns.x0, run, suffix);
 }
 
 std::string gnuplot_label(const std::string& name) {
@@ -147,6 +151,42 @@ int run_interpreted(const SimModel& model, const rt::SceneRun& run) {
   int status = run_one_interpreted(model, model.main, run, "");
   if (status == 0 && model.rigid) status = run_one_interpreted(model, *model.rigid, run, ".rigid");
   return status;
+}
+
+Trajectory interpret_trajectory(const SimModel& model, const SimSystem& sys, const rt::SceneRun& run) {
+  const InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
+  const std::vector<rt::Signal> signals = signals_of(model, sys);
+  const auto nu = static_cast<Eigen::Index>(signals.size());
+  auto inputs = [&](double t, Eigen::VectorXd& u) {
+    for (Eigen::Index i = 0; i < nu; ++i) u(i) = rt::value(signals[static_cast<std::size_t>(i)], t);
+  };
+  Eigen::VectorXd u(nu), y(sys.outputs.size());
+  auto f = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
+    inputs(t, u);
+    is.rhs({}, x, u, dx);
+  };
+  auto jac = [&](double, const Eigen::VectorXd&, Eigen::MatrixXd& J) { J = is.ns.M; };
+  Trajectory tr;
+  auto obs = [&](double t, const Eigen::VectorXd& x) {
+    inputs(t, u);
+    is.outputs({}, x, u, y);
+    tr.t.push_back(t);
+    tr.x.push_back(x);
+    tr.y.push_back(y);
+  };
+  const std::vector<double> breaks = rt::breakpoints(signals, 0.0, run.horizon);
+  rt::SolverOptions opt = run.options;
+  if (run.solver == "exact") {
+    opt.h = rt::exact_step(run, signals);
+    tr.status = rt::simulate_exact(is.ns.M, is.ns.N, inputs, is.ns.x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
+  } else if (run.solver == "rk4") {
+    tr.status = rt::simulate_rk4(f, is.ns.x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
+  } else if (run.solver == "dopri5") {
+    tr.status = rt::simulate_dopri5(f, is.ns.x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
+  } else {
+    tr.status = rt::simulate_implicit(f, jac, true, is.ns.x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
+  }
+  return tr;
 }
 
 std::vector<std::string> plot_scene(const SimModel& model, const std::string& dir) {

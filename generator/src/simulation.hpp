@@ -22,6 +22,14 @@ int run_compiled(const std::string& executable, const rt::SceneRun& run);
 // Runs the same scene from the numeric matrices of the derivation, without compiling.
 int run_interpreted(const SimModel& model, const rt::SceneRun& run);
 
+// A run kept in memory: samples of the state and the outputs (for tests and benchmarks).
+struct Trajectory {
+  std::vector<double> t;
+  std::vector<Eigen::VectorXd> x, y;
+  rt::RunStatus status;
+};
+Trajectory interpret_trajectory(const SimModel& model, const SimSystem& system, const rt::SceneRun& run);
+
 // DIR/<scene>.velocities.svg and, with forces, DIR/<scene>.forces.svg: elastic solid, rigid
 // dashed on top, as in the paper's Figs. 8-9. Returns the files written.
 std::vector<std::string> plot_scene(const SimModel& model, const std::string& dir);

@@ -3,11 +3,19 @@
 
 #include <stdexcept>
 
+#include <cln/dfloat.h>
+#include <cln/rational.h>
+#include <cln/real.h>
+
 namespace pogear {
+
+GiNaC::numeric exact_number(double v) {
+  return GiNaC::numeric(cln::cl_N(cln::rational(cln::cl_DF(v))));
+}
 
 GiNaC::exmap numeric_substitutions(Symbols& s, const std::map<std::string, double>& values) {
   GiNaC::exmap m;
-  for (const auto& [name, v] : values) m[symbol(s, name)] = GiNaC::numeric(v);
+  for (const auto& [name, v] : values) m[symbol(s, name)] = exact_number(v);
   return m;
 }
 

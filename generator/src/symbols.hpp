@@ -19,7 +19,12 @@ inline GiNaC::realsymbol symbol(Symbols& s, const std::string& name) {
   return it->second;
 }
 
-// Substitutes numeric SI values for every symbol that has one.
+// The double v as an exact rational. Parameters enter the algebra exactly, so every number
+// pogear prints is the correctly rounded value of an exact expression: two different formulas
+// for the same quantity give the same double.
+GiNaC::numeric exact_number(double v);
+
+// Substitutes numeric SI values, as exact rationals, for every symbol that has one.
 GiNaC::exmap numeric_substitutions(Symbols& s, const std::map<std::string, double>& values);
 double to_double(const GiNaC::ex& e);  // throws std::domain_error when e is not a real number
 

@@ -65,6 +65,14 @@ inline bool parse_command_line(int argc, char** argv, SceneRun& run) {
   return true;
 }
 
+// The exact method is exact for inputs linear between breakpoints, so it steps a whole sample
+// period; a sine is held linear over the scene's `step` instead.
+inline double exact_step(const SceneRun& run, const std::vector<Signal>& signals) {
+  const bool piecewise_linear = std::none_of(signals.begin(), signals.end(),
+                                             [](const Signal& s) { return std::holds_alternative<Sine>(s); });
+  return piecewise_linear ? run.sample : std::min(run.sample, run.options.h);
+}
+
 // Runs `sys` (a generated system struct, or any object with the same members) and writes
 // OUT/<name><suffix>.csv. Returns 0, or 3 when the run failed (the CSV is kept, marked incomplete).
 template <class System>
@@ -94,12 +102,7 @@ int run_system(const System& sys, const typename System::Params& p, const std::v
   auto jac = [&](double, const State&, typename System::StateMatrix& J) { J = M; };
 
   SolverOptions opt = run.options;
-  if (run.solver == "exact") {
-    // Exact for inputs linear between breakpoints; a sine is held linear over `step`.
-    const bool smooth_only = std::none_of(signals.begin(), signals.end(),
-                                          [](const Signal& s) { return std::holds_alternative<Sine>(s); });
-    opt.h = smooth_only ? run.sample : std::min(run.sample, run.options.h);
-  }
+  if (run.solver == "exact") opt.h = exact_step(run, signals);
   if (run.solver == "rk4") {
     const double limit = rk4_stability_limit(M);
     if (opt.h > limit) {

@@ -1,0 +1,18 @@
+# Registers the `consumer_package` test: install this build, then build and run a user project
+# (this directory's CMakeLists.txt) against the installation. Included from tests/CMakeLists.txt.
+add_test(NAME consumer_package
+  COMMAND "${CMAKE_COMMAND}"
+    "-DPOGEAR_BUILD_DIR=${PROJECT_BINARY_DIR}"
+    "-DPOGEAR_CONFIG=$<CONFIG>"
+    "-DCONSUMER_SOURCE_DIR=${CMAKE_CURRENT_LIST_DIR}"
+    "-DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/consumer_package"
+    "-DSCENE=${PROJECT_SOURCE_DIR}/models/scenes/paper_one_stage.toml"
+    # The scene samples 2 s at 1 ms: rows at 0, 1, ..., 2000 ms.
+    -DEXPECTED_CSV=paper_one_stage.csv
+    -DEXPECTED_ROWS=2001
+    "-DGENERATOR=${CMAKE_GENERATOR}"
+    "-DCXX_COMPILER=${CMAKE_CXX_COMPILER}"
+    -P "${CMAKE_CURRENT_LIST_DIR}/run_consumer_test.cmake")
+# Installing needs pogear built first (ctest does not build); the consumer compiles an Eigen-heavy
+# simulator (~15 s), hence the generous timeout.
+set_tests_properties(consumer_package PROPERTIES LABELS consumer TIMEOUT 600)

@@ -1,0 +1,98 @@
+// Simulate only what the scene calls for: each effect left out removes operations, gives the
+// trajectory of that effect's parameters set to zero, and zero inputs or unrequested outputs
+// leave nothing behind.
+#include "sim_support.hpp"
+
+namespace pogear::test {
+namespace {
+
+const std::string all = "\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\", \"mesh_forces\"";
+
+int total_ops(const SimModel& m) { return m.main.rhs_ops.total() + m.main.output_ops.total(); }
+
+TEST(Specialization, EachEffectLeftOutRemovesOperations) {
+  for (const char* scene : {"paper_one_stage", "paper_two_stage"}) {
+    const std::string base = with_line(scene_text(scene), "compare_rigid = true", "compare_rigid = false");
+    const int full = total_ops(scene_model(with_effects(base, all)));
+    const int no_damping = total_ops(scene_model(with_effects(base, "\"mesh_compliance\", \"bearing_friction\", \"mesh_forces\"")));
+    const int no_friction = total_ops(scene_model(with_effects(base, "\"mesh_compliance\", \"mesh_damping\", \"mesh_forces\"")));
+    const SimModel no_forces_model = scene_model(with_effects(base, "\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\""));
+    const int rigid = total_ops(scene_model(with_effects(base, "\"bearing_friction\", \"mesh_forces\"")));
+    const int rigid_no_forces = total_ops(scene_model(with_effects(base, "\"bearing_friction\"")));
+    EXPECT_LT(no_damping, full) << scene;
+    EXPECT_LT(no_friction, full) << scene;
+    // The rigid model recovers forces from eq. (8) at each sample, which the elastic model has
+    // as states; per step it costs far less, which is what its rhs counts.
+    EXPECT_LT(scene_model(with_effects(base, "\"bearing_friction\", \"mesh_forces\"")).main.rhs_ops.total(),
+              scene_model(with_effects(base, all)).main.rhs_ops.total()) << scene;
+    EXPECT_LT(rigid_no_forces, rigid) << scene;
+    // Elastic forces are states: leaving them out of the outputs shrinks the output vector.
+    EXPECT_LT(no_forces_model.main.outputs.size(), scene_model(with_effects(base, all)).main.outputs.size());
+  }
+}
+
+// M of the specialized expressions, numerically.
+Eigen::MatrixXd specialized_M(const SimModel& m) {
+  Eigen::MatrixXd M(m.main.M.rows(), m.main.M.cols());
+  for (unsigned i = 0; i < m.main.M.rows(); ++i)
+    for (unsigned j = 0; j < m.main.M.cols(); ++j) M(i, j) = to_double(m.main.M(i, j));
+  return M;
+}
+
+TEST(Specialization, AnEffectLeftOutEqualsItsParametersAtZero) {
+  const std::string base = scene_text("paper_one_stage");
+  const SimModel no_friction = scene_model(with_effects(base, "\"mesh_compliance\", \"mesh_damping\", \"mesh_forces\""));
+  const SimModel zero_friction =
+      scene_model(with_parameters(base, "b_c = 0\nb_p = 0\nb_s = 0\nb_r = 0\nb_g = 0\nb_m = 0"));
+  // Same numbers through different expressions: equal to rounding of a few operations.
+  EXPECT_LT((specialized_M(no_friction) - specialized_M(zero_friction)).norm(), 1e-12 * specialized_M(zero_friction).norm());
+  const Trajectory a = interpret_trajectory(no_friction, no_friction.main, run_settings(no_friction));
+  const Trajectory b = interpret_trajectory(zero_friction, zero_friction.main, run_settings(zero_friction));
+  ASSERT_EQ(a.y.size(), b.y.size());
+  EXPECT_LT((a.y.back() - b.y.back()).norm(), 1e-12 * b.y.back().norm());
+
+  const SimModel no_damping = scene_model(with_effects(base, "\"mesh_compliance\", \"bearing_friction\", \"mesh_forces\""));
+  const SimModel zero_damping = scene_model(with_parameters(base, "b_ps = 0"));  // b_pr, b_sg, b_rm follow b_ps
+  EXPECT_LT((specialized_M(no_damping) - specialized_M(zero_damping)).norm(), 1e-12 * specialized_M(zero_damping).norm());
+}
+
+TEST(Specialization, ZeroInputsAreNotInputs) {
+  const std::string text = with_line(scene_text("paper_one_stage"), "tau_c = { constant = \"100*Nm\" }",
+                                     "tau_c = { constant = \"100*Nm\" }\ntau_p = \"0*Nm\"\ntau_g = { step = \"0*Nm\", at = \"1*s\" }");
+  const SimModel m = scene_model(text);
+  EXPECT_EQ(m.main.inputs, std::vector<std::string>{"tau_c"});
+  EXPECT_EQ(m.rigid->inputs, std::vector<std::string>{"tau_c"});
+}
+
+TEST(Specialization, OnlyRequestedOutputsAreComputed) {
+  const std::string text = with_line(scene_text("paper_one_stage"), "compare_rigid = true",
+                                     "compare_rigid = true\noutputs = [\"omega_c\", \"F_sg\"]");
+  const SimModel m = scene_model(text);
+  EXPECT_EQ(m.rigid->outputs, (std::vector<std::string>{"omega_c", "F_sg"}));
+  const SimModel full = scene_model(scene_text("paper_one_stage"));
+  EXPECT_LT(m.rigid->output_ops.total(), full.rigid->output_ops.total());
+  const GeneratedSources g = generate_sources(m);
+  EXPECT_NE(g.header.find("static constexpr int nx = 2, nu = 1, ny = 2;"), std::string::npos);
+}
+
+TEST(Specialization, NonTunableParametersAreLiteralsTunablesAreNot) {
+  const SimModel fixed = scene_model(scene_text("paper_one_stage"));
+  EXPECT_NE(generate_sources(fixed).header.find("struct Params {};"), std::string::npos);
+  const SimModel tuned = scene_model(with_line(scene_text("paper_one_stage"), "compare_rigid = true",
+                                               "compare_rigid = true\ntunable = [\"J_c\", \"r_p\"]"));
+  const std::string h = generate_sources(tuned).header;
+  EXPECT_NE(h.find("double J_c = 0.17648;"), std::string::npos);
+  EXPECT_NE(h.find("double r_p = 0.048;"), std::string::npos);
+  EXPECT_NE(h.find("const double J_c = p.J_c;"), std::string::npos);
+  // A tunable radius drags the radii the geometry ties to it: r_c = r_p + r_s1 stays symbolic.
+  EXPECT_NE(h.find("r_p + 0.1"), std::string::npos) << h.substr(0, 4000);
+}
+
+TEST(Specialization, GenerationIsDeterministic) {
+  const SimModel a = scene_model(scene_text("paper_two_stage"));
+  const SimModel b = scene_model(scene_text("paper_two_stage"));
+  EXPECT_EQ(generate_sources(a).header, generate_sources(b).header);
+}
+
+}  // namespace
+}  // namespace pogear::test
