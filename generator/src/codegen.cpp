@@ -254,6 +254,7 @@ std::string operation_summary(const SimModel& model) {
   auto one = [&](const SimSystem& sys) {
     s += fmt::format("{} ({} states, {} inputs, {} outputs): rhs {}; outputs {}\n", sys.kind, sys.states.size(),
                      sys.inputs.size(), sys.outputs.size(), ops(sys.rhs_ops), ops(sys.output_ops));
+    s += diagnostics_text(system_diagnostics(model, sys), "  ");
   };
   one(model.main);
   if (model.rigid) one(*model.rigid);

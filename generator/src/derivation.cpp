@@ -24,6 +24,10 @@ Derivation derive_topology(Topology topology, const std::optional<std::vector<st
       for (int b : valid[0]) d.keep.push_back(d.topology.bodies[b].name);
   }
   d.rigid = reduce_to_rigid(d.topology, d.radius, d.elastic, d.keep, where, d.symbols);
+  const GiNaC::exmap at = numeric_substitutions(d.symbols, d.radius.values);
+  const Eigen::MatrixXd L = evaluate_matrix(d.elastic.L, at);
+  const Eigen::MatrixXd M = L.diagonal().cwiseInverse().asDiagonal() * evaluate_matrix(d.elastic.A, at);
+  d.diagnostics = diagnose(M, evaluate_matrix(d.rigid.L1, at), evaluate_matrix(d.elastic.R, at));
   return d;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "diagnostics.hpp"
 #include "rigid_model.hpp"
 
 namespace pogear {
@@ -16,6 +17,7 @@ struct Derivation {
   ElasticModel elastic;
   RigidModel rigid;
   std::vector<std::string> keep;
+  Diagnostics diagnostics;  // of the elastic model with every effect, at the model's values
 };
 
 // `keep` overrides the model's default; `keep_where` locates it in messages.

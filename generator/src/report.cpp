@@ -153,7 +153,11 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
   s += w.heading("Mesh forces from the rigid model");
   if (d.rigid.redundant_meshes) {
     s += w.paragraph("$\\mathbf{R}\\mathbf{R}^{\\mathsf{T}}$ is singular (redundant meshes): the rigid model "
-                     "splits the load as $\\mathbf{F} = \\mathbf{K}\\mathbf{R}(\\mathbf{R}^{\\mathsf{T}}\\mathbf{K}\\mathbf{R})^{+}\\mathbf{g}$.");
+                     "splits the load as $\\mathbf{F} = \\mathbf{K}\\mathbf{R}(\\mathbf{R}^{\\mathsf{T}}\\mathbf{K}\\mathbf{R})^{+}\\mathbf{g}$, "
+                     "with weights at the model's parameter values:");
+    std::string f = "\\begin{aligned}\n";
+    for (std::size_t i = 0; i < p.forces.size(); ++i) f += fmt::format("  {} &= {} \\\\\n", p.forces[i], p.force_recovery[i]);
+    s += w.display(f + "\\end{aligned}");
   } else {
     s += w.paragraph("Eq. (8): $\\mathbf{F} = (\\mathbf{R}\\mathbf{R}^{\\mathsf{T}})^{-1}\\mathbf{R}(\\boldsymbol{\\tau} - "
                      "\\mathbf{J}\\mathbf{Q}_1\\dot{\\mathbf{x}}_1 - \\mathbf{B}_J\\mathbf{Q}_1\\mathbf{x}_1)$. "
@@ -222,6 +226,7 @@ std::string report_text(const Derivation& d) {
     if (!d.radius.derived.empty()) s += "  computed from them: " + join(d.radius.derived, ", ") + "\n";
     s += "\n";
   }
+  s += "diagnostics (elastic model, every effect, at the model's values):\n" + diagnostics_text(d.diagnostics, "  ") + "\n";
   s += fmt::format("rank R = {}, degrees of freedom = {}, kept x1 = ({})\n\n", d.rigid.rank,
                    d.elastic.velocities.size() - d.rigid.rank, join(p.kept, ", "));
   s += text_matrix("Q1", p.Q1) + "\n";
@@ -233,8 +238,10 @@ std::string report_text(const Derivation& d) {
     s += text_matrix("L1", p.L1) + "\n" + text_matrix("A1", p.A1) + "\nB1 = Q1^T\n\n";
   }
   if (d.rigid.redundant_meshes) {
-    s += "mesh forces: R R^T is singular (redundant meshes); the rigid model splits the load as\n"
-         "  F = K R (R^T K R)^+ (tau - J Q1 dx1/dt - B_J Q1 x1)\n";
+    s += "mesh forces: R R^T is singular (redundant meshes), so eq. (8) does not apply; the elastic model's\n"
+         "limit splits the load by stiffness, F = K R (R^T K R)^+ g, g = tau - J Q1 dx1/dt - B_J Q1 x1\n"
+         "(weights at the model's parameter values; domega = d omega/dt):\n";
+    for (std::size_t i = 0; i < p.forces.size(); ++i) s += fmt::format("  {} = {}\n", p.forces[i], p.force_recovery[i]);
   } else {
     std::vector<std::string> S;
     for (int b : d.rigid.force_bodies) S.push_back(d.topology.bodies[b].name);
@@ -308,7 +315,8 @@ std::string report_json(const Derivation& d) {
   j += "    \"Q1\": " + json_number_matrix(evaluate_matrix(d.rigid.Q1, values)) + ",\n";
   j += "    \"L1\": " + json_number_matrix(evaluate_matrix(d.rigid.L1, values)) + ",\n";
   j += "    \"A1\": " + json_number_matrix(evaluate_matrix(d.rigid.A1, values)) + "\n";
-  j += "  }\n}\n";
+  j += "  },\n";
+  j += "  \"diagnostics\": " + diagnostics_json(d.diagnostics, "  ") + "\n}\n";
   return j;
 }
 

@@ -18,8 +18,9 @@ struct RigidModel {
   GiNaC::matrix Q1, L1, A1, B1;
   // Eq. (8), F = (R R^T)^-1 R g with g = tau - J Q1 dx1/dt - B_J Q1 x1, written as the equal
   // (on every rigid motion) F = (R_S^T)^-1 g_S over the bodies S = force_bodies: one expression
-  // per mesh in tau_<body>, omega_<kept> and domega_<kept> (= d omega/dt). Empty when R R^T is
-  // singular (redundant meshes): then the split of DESIGN.md §4 applies, numerically.
+  // per mesh in tau_<body>, omega_<kept> and domega_<kept> (= d omega/dt). When R R^T is
+  // singular (redundant meshes) eq. (8) does not exist; then F = K R (R^T K R)^+ g, the
+  // stiffness-weighted split of DESIGN.md §4, with its weights as numbers.
   std::vector<GiNaC::ex> force_recovery;
   std::vector<int> force_bodies;
   bool redundant_meshes = false;

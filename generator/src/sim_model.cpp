@@ -230,10 +230,12 @@ SimModel specialize(const Scene& scene) {
   std::optional<std::vector<std::string>> keep;
   if (!scene.keep.empty()) keep = scene.keep;
   model.derivation = derive_topology(std::move(t), keep, scene.keep_where);
-  if (model.derivation.rigid.redundant_meshes && (scene.effects.mesh_forces && (!scene.effects.mesh_compliance || scene.compare_rigid)))
+  const bool rigid_forces = scene.effects.mesh_forces && (!scene.effects.mesh_compliance || scene.compare_rigid);
+  if (model.derivation.rigid.redundant_meshes && rigid_forces && !scene.tunable.empty())
     throw InputError(SourceLocation{scene.file, 0, 0},
-                     "this model has redundant meshes (R R^T is singular), and the rigid model's mesh forces "
-                     "for that case are not supported yet; drop mesh_forces or simulate the elastic model only");
+                     "this model has redundant meshes, whose rigid load split depends on every stiffness and "
+                     "radius; it is computed at fixed values, so it cannot be combined with tunable parameters: "
+                     "drop 'tunable' or 'mesh_forces'");
   model.main = specialize_system(scene, model.derivation, scene.effects.mesh_compliance);
   if (scene.compare_rigid) model.rigid = specialize_system(scene, model.derivation, false);
   return model;
@@ -275,8 +277,17 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
     const GiNaC::matrix Q1 = exact(d.rigid.Q1), R = exact(e.R), J = exact(e.J), BJ = exact(e.B_J);
     out.M = doubles(L1inv.mul(exact(d.rigid.A1)));
     out.N = doubles(L1inv.mul(input_columns(exact(d.rigid.B1))));
-    // Eq. (8) literally: F = (R R^T)^-1 R (tau - J Q1 x1' - B_J Q1 x1).
-    const GiNaC::matrix P = R.mul(R.transpose()).inverse().mul(R);
+    // Eq. (8) literally, F = (R R^T)^-1 R g with g = tau - J Q1 x1' - B_J Q1 x1; with redundant
+    // meshes the stiffness-weighted split F = K R (R^T K R)^+ g, which equals
+    // K R (R^T K R + Q1 Q1^T)^-1 g because g is orthogonal to ker R = span Q1.
+    GiNaC::matrix P;
+    if (!d.rigid.redundant_meshes) {
+      P = R.mul(R.transpose()).inverse().mul(R);
+    } else {
+      const GiNaC::matrix K = exact(e.K);
+      const GiNaC::matrix S = R.transpose().mul(K).mul(R).add(Q1.mul(Q1.transpose()));
+      P = K.mul(R).mul(S.inverse());
+    }
     const Eigen::MatrixXd C_F = -doubles(P.mul(BJ).mul(Q1)), E_F = -doubles(P.mul(J).mul(Q1)), Pn = doubles(P),
                           Q1n = doubles(Q1);
     for (std::size_t i = 0; i < ny; ++i) {
@@ -292,6 +303,12 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
     }
   }
   return out;
+}
+
+Diagnostics system_diagnostics(const SimModel& model, const SimSystem& sys) {
+  Derivation d = model.derivation;
+  const GiNaC::exmap values = folding(model.scene, d, false);
+  return diagnose(numeric_system(model, sys).M, evaluate_matrix(d.rigid.L1, values), evaluate_matrix(d.elastic.R, values));
 }
 
 }  // namespace pogear

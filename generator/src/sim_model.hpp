@@ -63,4 +63,7 @@ struct NumericSystem {
 };
 NumericSystem numeric_system(const SimModel& model, const SimSystem& system);
 
+// Diagnostics of a specialized system (its own M, the scene's values and effects).
+Diagnostics system_diagnostics(const SimModel& model, const SimSystem& system);
+
 }  // namespace pogear

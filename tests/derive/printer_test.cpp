@@ -31,7 +31,9 @@ TEST(Printer, NumbersAndRationals) {
   realsymbol x("x");
   EXPECT_EQ(print_expression(x / 2, Notation::ginac), "x/2");
   EXPECT_EQ(print_expression(x / 2, Notation::latex), "\\frac{x}{2}");
-  EXPECT_EQ(print_expression(x / 2, Notation::cpp), "x/2.0");
+  // C++ gets one correctly rounded coefficient, never a quotient of two long integers.
+  EXPECT_EQ(print_expression(x / 2, Notation::cpp), "0.5*x");
+  EXPECT_EQ(print_expression(x / 3, Notation::cpp), "0.3333333333333333*x");
   EXPECT_EQ(print_expression(ex(-3), Notation::ginac), "-3");
   EXPECT_EQ(print_expression(1 / x, Notation::ginac), "1/x");
 }

@@ -1,0 +1,88 @@
+// Eigenvalues of M give the time scales; a mode whose decay rate is below rounding of the
+// fastest one counts as not decaying (a free rotation without friction, an undamped mesh).
+#include "diagnostics.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "pogear/steppers.hpp"
+
+namespace pogear {
+namespace {
+
+double condition(const Eigen::MatrixXd& A) {
+  if (A.size() == 0) return 1;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A);
+  const auto& s = svd.singularValues();
+  return s(s.size() - 1) > 0 ? s(0) / s(s.size() - 1) : std::numeric_limits<double>::infinity();
+}
+
+std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "inf"; }
+
+}  // namespace
+
+Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R) {
+  Diagnostics d;
+  const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(M, false).eigenvalues();
+  d.fastest_rate = lambda.cwiseAbs().maxCoeff();
+  d.fastest_time_constant = d.fastest_rate > 0 ? 1 / d.fastest_rate : std::numeric_limits<double>::infinity();
+  double slowest_decay = std::numeric_limits<double>::infinity();
+  // Rounding in the eigenvalues of M is ~1e-13 of its largest one; below that a decay rate is noise.
+  const double floor = 1e-11 * d.fastest_rate;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
+    const double decay = -lambda(i).real();
+    if (std::abs(decay) <= floor) {
+      ++d.undecaying_modes;
+      continue;
+    }
+    slowest_decay = std::min(slowest_decay, decay);
+  }
+  if (std::isfinite(slowest_decay) && slowest_decay > 0) {
+    d.slowest_time_constant = 1 / slowest_decay;
+    // The fastest time scale over the slowest time constant, |lambda|max / min|Re lambda|: mesh
+    // modes are lightly damped oscillations, and it is their frequency, not their decay rate,
+    // that bounds an explicit method's step against the time the scene must cover.
+    d.stiffness_ratio = d.fastest_rate / slowest_decay;
+  }
+  d.cond_L1 = condition(L1);
+  const Eigen::MatrixXd RRt = R * R.transpose();
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(RRt);
+  qr.setThreshold(1e-9);
+  if (qr.rank() == RRt.rows()) d.cond_RRt = condition(RRt);
+  d.rk4_max_step = rt::rk4_stability_limit(M);
+  d.suggested_solver = "exact";
+  d.reason = fmt::format("the scene is linear: exact stepping is exact for any stiffness; among adaptive methods use {}",
+                         d.stiffness_ratio > 1e3 ? fmt::format("implicit (stiffness ratio {})", number(d.stiffness_ratio))
+                                                 : "dopri5 (not stiff)");
+  return d;
+}
+
+std::string diagnostics_text(const Diagnostics& d, const std::string& in) {
+  std::string s;
+  s += fmt::format("{}stiffness ratio {}; fastest time scale {} s; slowest time constant {} s{}\n", in,
+                   number(d.stiffness_ratio), number(d.fastest_time_constant), number(d.slowest_time_constant),
+                   d.undecaying_modes ? fmt::format("; {} mode(s) do not decay", d.undecaying_modes) : "");
+  s += fmt::format("{}cond(L1) = {}; cond(R R^T) = {}\n", in, number(d.cond_L1),
+                   d.cond_RRt ? number(*d.cond_RRt) : "singular (redundant meshes)");
+  s += fmt::format("{}largest stable rk4 step {} s; suggested solver: {} ({})\n", in, number(d.rk4_max_step),
+                   d.suggested_solver, d.reason);
+  return s;
+}
+
+std::string diagnostics_json(const Diagnostics& d, const std::string& in) {
+  auto num = [](double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); };
+  std::string s = "{\n";
+  s += fmt::format("{}  \"stiffness_ratio\": {},\n", in, num(d.stiffness_ratio));
+  s += fmt::format("{}  \"fastest_time_scale\": {},\n", in, num(d.fastest_time_constant));
+  s += fmt::format("{}  \"slowest_time_constant\": {},\n", in, num(d.slowest_time_constant));
+  s += fmt::format("{}  \"undecaying_modes\": {},\n", in, d.undecaying_modes);
+  s += fmt::format("{}  \"cond_L1\": {},\n", in, num(d.cond_L1));
+  s += fmt::format("{}  \"cond_RRt\": {},\n", in, d.cond_RRt ? num(*d.cond_RRt) : "null");
+  s += fmt::format("{}  \"rk4_max_step\": {},\n", in, num(d.rk4_max_step));
+  s += fmt::format("{}  \"suggested_solver\": \"{}\"\n", in, d.suggested_solver);
+  return s + in + "}";
+}
+
+}  // namespace pogear

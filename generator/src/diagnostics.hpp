@@ -1,0 +1,32 @@
+// Numbers that tell, before a run, whether a scene is hard: the stiffness ratio and time
+// constants of the elastic model, the conditioning of L1 and R R^T, the largest stable rk4
+// step, and the solver to use.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <Eigen/Dense>
+
+namespace pogear {
+
+struct Diagnostics {
+  double fastest_rate = 0;            // largest |lambda| of M [1/s]
+  double fastest_time_constant = 0;   // 1 / fastest_rate [s]
+  double slowest_time_constant = 0;   // 1 / smallest decay rate among decaying modes [s]; 0 if none
+  double stiffness_ratio = 1;         // fastest_rate / smallest decay rate among decaying modes
+  int undecaying_modes = 0;           // |Re lambda| below rounding: free rotation, undamped motion
+  double cond_L1 = 0;                 // 2-norm condition number of the reduced inertia
+  std::optional<double> cond_RRt;     // of R R^T; none when singular (redundant meshes)
+  double rk4_max_step = 0;            // largest stable rk4 step [s]
+  std::string suggested_solver;
+  std::string reason;
+};
+
+// M: the system matrix of the simulated model (elastic or rigid); L1, R: numeric.
+Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R);
+
+std::string diagnostics_text(const Diagnostics& d, const std::string& indent);
+std::string diagnostics_json(const Diagnostics& d, const std::string& indent);
+
+}  // namespace pogear
