@@ -23,6 +23,7 @@ inline constexpr double sample_period = 0.001;  // s
 inline constexpr std::string_view default_solver = "exact";
 inline constexpr double default_tolerance = 1e-09;
 inline constexpr double default_step = 5e-05;  // s
+inline constexpr long default_max_steps = 10000000;
 
 // elastic POG model (eqs. 2-3): J omega' = tau - B_J omega - R^T (B_K R omega + F), K^-1 F' = R omega
 struct Elastic {

@@ -213,7 +213,8 @@ GeneratedSources generate_sources(const SimModel& model) {
   h += fmt::format("inline constexpr double sample_period = {};  // s\n", cpp_double(sc.sample));
   h += fmt::format("inline constexpr std::string_view default_solver = \"{}\";\n", solver_name(sc.solver));
   h += fmt::format("inline constexpr double default_tolerance = {};\n", cpp_double(sc.tolerance));
-  h += fmt::format("inline constexpr double default_step = {};  // s\n\n", cpp_double(sc.step));
+  h += fmt::format("inline constexpr double default_step = {};  // s\n", cpp_double(sc.step));
+  h += fmt::format("inline constexpr long default_max_steps = {};\n\n", sc.max_steps);
   const std::string main_struct = model.main.kind == "elastic" ? "Elastic" : "Rigid";
   h += system_struct(model.main, main_struct) + "\n";
   h += signals_function(model, model.main, main_struct) + "\n";
@@ -229,14 +230,15 @@ GeneratedSources generate_sources(const SimModel& model) {
   m += fmt::format("// Simulates the scene and writes DIR/{}.csv{}.\n", sc.name,
                    model.rigid ? fmt::format(" and DIR/{}.rigid.csv", sc.name) : "");
   m += "// Usage: PROGRAM [--solver exact|rk4|dopri5|implicit] [--tolerance R] [--step S] [--out DIR]\n"
-       "//                [--no-csv] [--repeat N]\n";
+       "//                [--max-steps N] [--no-csv] [--repeat N] [--quiet]\n";
   m += fmt::format("#include \"{}\"\n\n#include <pogear/scene_runner.hpp>\n\n", g.header_name);
   m += fmt::format("namespace scene = pogear_generated::{};\n\n", sc.name);
   m += "int main(int argc, char** argv) {\n";
   m += "  pogear::rt::SceneRun run;\n";
   m += "  run.name = scene::scene_name;\n  run.horizon = scene::horizon;\n  run.sample = scene::sample_period;\n";
   m += "  run.solver = scene::default_solver;\n  run.options.rtol = scene::default_tolerance;\n";
-  m += "  run.options.h = scene::default_step;\n";
+  m += "  run.options.atol = scene::default_tolerance * 1e-2;\n";
+  m += "  run.options.h = scene::default_step;\n  run.options.max_steps = scene::default_max_steps;\n";
   m += "  if (!pogear::rt::parse_command_line(argc, argv, run)) return 1;\n";
   m += fmt::format("  const scene::{} system;\n", main_struct);
   m += fmt::format("  int status = pogear::rt::run_system(system, {{}}, scene::{}_signals(), scene::{}::initial_state(), run, \"\");\n",

@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 1;
   }
 
+  pogear::install_interrupt_cleanup();  // Ctrl-C leaves no temporary file behind
   try {
     if (*derive) {
       std::optional<std::vector<std::string>> kept;
@@ -93,16 +94,22 @@ int main(int argc, char** argv) {
       run.options.rtol = model.scene.tolerance;
       run.options.atol = model.scene.tolerance * 1e-2;
       run.options.h = model.scene.step;
+      run.options.max_steps = model.scene.max_steps;
       run.out_dir = simulate_dir;
       run.repeat = repeat;
       std::filesystem::create_directories(simulate_dir);
       std::cout << pogear::operation_summary(model);
+      // The simulator writes <name>.csv.tmp and renames it when done; an interrupt must not leave it.
+      for (const char* suffix : {".csv.tmp", ".rigid.csv.tmp"})
+        pogear::remember_temporary(simulate_dir + "/" + run.name + suffix);
       int status = 0;
       if (interpreted) {
         status = pogear::run_interpreted(model, run);
       } else {
         const std::string exe = pogear::build_simulator(pogear::generate_sources(model));
         status = pogear::run_compiled(exe, run);
+        // std::system ignores SIGINT in pogear while the simulator runs; if it died of one, clean up.
+        if (status > 128) pogear::remove_remembered_temporaries();
       }
       if (status != 0) return status;
       for (const auto& svg : pogear::plot_scene(model, simulate_dir)) std::cout << "wrote " << svg << "\n";

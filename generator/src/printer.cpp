@@ -169,10 +169,16 @@ class Printer {
   std::string magnitude(const Term& t) const {
     std::vector<const Factor*> up, down;
     for (const auto& f : t.factors) (f.exponent.is_negative() ? down : up).push_back(&f);
+    // Parameters first, then compound factors, then the variables (tau, omega, d omega/dt):
+    // J_p r_r1 domega_r and (J_c r_p^2 + J_p r_c^2) domega_c, as the paper writes them.
+    auto rank = [](const Factor* f) {
+      if (!GiNaC::is_a<GiNaC::symbol>(f->base)) return 1;
+      const std::string& n = GiNaC::ex_to<GiNaC::symbol>(f->base).get_name();
+      const bool variable = n.rfind("tau_", 0) == 0 || n.rfind("omega_", 0) == 0 || n.rfind("domega_", 0) == 0;
+      return variable ? 2 : 0;
+    };
     auto order = [&](const Factor* a, const Factor* b) {
-      const bool sa = GiNaC::is_a<GiNaC::symbol>(a->base);
-      const bool sb = GiNaC::is_a<GiNaC::symbol>(b->base);
-      if (sa != sb) return sa;
+      if (rank(a) != rank(b)) return rank(a) < rank(b);
       return print(a->base) < print(b->base);
     };
     std::sort(up.begin(), up.end(), order);

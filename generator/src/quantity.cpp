@@ -88,6 +88,18 @@ class Parser {
     }
     return false;
   }
+  // Every operation's result is checked where it happens, so the message points at the operator
+  // that overflowed: GiNaC and the exact rationals downstream cannot take inf or NaN.
+  Quantity checked(Quantity q, std::size_t at) const {
+    if (!std::isfinite(q.si))
+      fail(at, "the value here is not a finite number (an overflow, or a negative number to a fractional "
+               "power); write numbers of a physical size");
+    for (int e : q.dimension.exponent)
+      if (std::abs(e) > max_unit_power)
+        fail(at, fmt::format("the unit {} has a power above {}; no physical parameter has such a unit",
+                             describe(q.dimension), max_unit_power));
+    return q;
+  }
   void enter(int depth) const {
     if (depth > max_expression_depth)
       fail(pos_, fmt::format("expression nested deeper than {} levels; simplify it", max_expression_depth));
@@ -100,9 +112,9 @@ class Parser {
       skip_space();
       const std::size_t at = pos_;
       if (accept('+')) {
-        q = add(q, term(depth + 1), at, +1);
+        q = checked(add(q, term(depth + 1), at, +1), at);
       } else if (accept('-')) {
-        q = add(q, term(depth + 1), at, -1);
+        q = checked(add(q, term(depth + 1), at, -1), at);
       } else {
         return q;
       }
@@ -130,11 +142,11 @@ class Parser {
       if (accept('*')) {
         if (pos_ < text_.size() && text_[pos_] == '*') fail(pos_, "'**' is not a power; write '^'");
         Quantity b = unary(depth + 1);
-        q = Quantity{q.si * b.si, q.dimension + b.dimension, q.has_unit || b.has_unit};
+        q = checked(Quantity{q.si * b.si, q.dimension + b.dimension, q.has_unit || b.has_unit}, at);
       } else if (accept('/')) {
         Quantity b = unary(depth + 1);
         if (b.si == 0.0) fail(at, "division by zero");
-        q = Quantity{q.si / b.si, q.dimension - b.dimension, q.has_unit || b.has_unit};
+        q = checked(Quantity{q.si / b.si, q.dimension - b.dimension, q.has_unit || b.has_unit}, at);
       } else {
         return q;
       }
@@ -165,9 +177,9 @@ class Parser {
     if (base.has_unit && !(base.dimension == Dimension{})) {
       if (rounded != exponent.si || std::abs(rounded) > 16)
         fail(at + 1, "a unit can only be raised to a whole power between -16 and 16");
-      return Quantity{std::pow(base.si, rounded), scaled(base.dimension, static_cast<int>(rounded)), true};
+      return checked(Quantity{std::pow(base.si, rounded), scaled(base.dimension, static_cast<int>(rounded)), true}, at);
     }
-    return Quantity{std::pow(base.si, exponent.si), base.dimension, base.has_unit};
+    return checked(Quantity{std::pow(base.si, exponent.si), base.dimension, base.has_unit}, at);
   }
 
   Quantity primary(int depth) {
@@ -257,7 +269,8 @@ Dimension time_dimension() { return dim(0, 0, 1); }
 Quantity evaluate_quantity(std::string_view text, const std::map<std::string, Quantity>& known,
                            const SourceLocation& where, int column_offset) {
   if (text.size() > max_expression_length)
-    throw InputError(where, fmt::format("expression longer than {} characters", max_expression_length));
+    throw InputError(where, fmt::format("expression longer than {} characters; split it into parameters that "
+                                        "name each other", max_expression_length));
   return Parser(text, known, where, column_offset).parse();
 }
 

@@ -39,6 +39,9 @@ struct Quantity {
 // Limits that keep hostile input bounded.
 inline constexpr std::size_t max_expression_length = 4096;
 inline constexpr int max_expression_depth = 64;
+// No physical parameter has a unit to a power near 64 (stiffness is kg/s^2); the bound keeps the
+// exponent arithmetic of `((m^16)^16)^16...` far from int overflow.
+inline constexpr int max_unit_power = 64;
 
 // Parses `text` with units and the named symbols in `known` (each with its own quantity).
 // Throws InputError located at `where` shifted to the offending character.

@@ -248,7 +248,7 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
     if (!p) {
       if (!(*implied > 0))
         throw InputError(t.meshes[g.mesh].where,
-                         fmt::format("{} makes '{}' = {} m, which is not positive; check the layout",
+                         fmt::format("{} makes '{}' = {:.6g} m, which is not positive; check the layout",
                                      describe_mesh(t, g.mesh), g.parameter, *implied));
       rm.values[g.parameter] = *implied;
       rm.derived.push_back(g.parameter);

@@ -183,9 +183,10 @@ RigidModel reduce_to_rigid(const Topology& t, const RadiusMatrix& rm, const Elas
   }
   const auto valid = valid_keep_sets(Rn, 12);
   if (static_cast<int>(r.kept.size()) != dof) {
-    throw InputError(where, fmt::format("{} velocities kept, but this gear has {} degrees of freedom ({} bodies, "
+    throw InputError(where, fmt::format("{} {} kept, but this gear has {} degrees of freedom ({} bodies, "
                                         "rank of R {}); keep {}, e.g. {}",
-                                        r.kept.size(), dof, n, r.rank, dof,
+                                        r.kept.size(), r.kept.size() == 1 ? "velocity" : "velocities", dof, n,
+                                        r.rank, dof,
                                         valid.empty() ? "" : names_of(t, valid[0])));
   }
   for (int b = 0; b < n; ++b)

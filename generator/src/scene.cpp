@@ -64,7 +64,10 @@ struct Reader {
       fail(n, fmt::format("{} must be a number (SI) or a string with a unit", what));
     }
     if (q.has_unit && !(q.dimension == dim))
-      fail(n, fmt::format("{} has unit {}; it needs {}", what, describe(q.dimension), describe(dim)));
+      fail(n, q.dimension == Dimension{}
+                  ? fmt::format("{} has no unit (rad, deg, rev and pi are plain numbers); it needs {}", what,
+                                describe(dim))
+                  : fmt::format("{} has unit {}; it needs {}", what, describe(q.dimension), describe(dim)));
     if (!std::isfinite(q.si)) fail(n, fmt::format("{} is not finite", what));
     return q.si;
   }
@@ -119,18 +122,23 @@ SignalSpec read_signal(const Reader& r, const toml::node& n, const fs::path& sce
     std::string error;
     const auto table = rt::load_table_csv(s.table_file, error);
     if (!table) {
-      // The runtime reports "PATH:LINE: what"; keep its position, add ours when it has none.
-      const auto colon = error.find(": ");
-      SourceLocation where = r.loc(*v);
-      std::string what = error;
-      if (colon != std::string::npos && error.rfind(s.table_file, 0) == 0) {
-        where = SourceLocation{s.table_file, 0, 0};
-        const std::string head = error.substr(0, colon);
-        if (const auto c = head.rfind(':'); c != std::string::npos && c > s.table_file.size() - 1)
-          where.line = std::atoi(head.c_str() + c + 1);
-        what = error.substr(colon + 2);
+      // The runtime reports "PATH:LINE: what" or "PATH: what". A line points into the table; a
+      // complaint about the whole file (missing, empty, too large) points at this `table =`.
+      std::string rest = error.rfind(s.table_file, 0) == 0 ? error.substr(s.table_file.size()) : ": " + error;
+      int line = 0;
+      if (rest.size() > 1 && rest[0] == ':' && std::isdigit(static_cast<unsigned char>(rest[1]))) {
+        std::size_t end = 1;
+        while (end < rest.size() && std::isdigit(static_cast<unsigned char>(rest[end]))) ++end;
+        line = std::atoi(rest.c_str() + 1);
+        rest = rest.substr(end);
       }
-      throw InputError(where, what + "; the table needs two columns: time [s], torque [N m]");
+      const std::string what = rest.rfind(": ", 0) == 0 ? rest.substr(2) : rest;
+      const std::string layout = "the table needs two columns: time [s], torque [N m]";
+      if (line > 0) throw InputError(SourceLocation{s.table_file, line, 0}, what + "; " + layout);
+      std::string advice;
+      if (what.rfind("cannot open", 0) == 0) advice = "; give its path relative to the scene file";
+      else if (what.rfind("no data rows", 0) == 0) advice = "; " + layout;
+      throw InputError(r.loc(*v), fmt::format("table '{}': {}{}", s.table_file, what, advice));
     }
     s.table_t = table->t;
     s.table_v = table->v;
@@ -139,6 +147,37 @@ SignalSpec read_signal(const Reader& r, const toml::node& n, const fs::path& sce
               "frequency = ... } or { table = \"file.csv\" }");
   }
   return s;
+}
+
+// C++ keywords and the macros of the headers generated code includes: no name in it can be one.
+bool is_cpp_reserved(const std::string& name) {
+  static const std::set<std::string> reserved{
+      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
+      "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
+      "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
+      "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for",
+      "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
+      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast",
+      "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
+      "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
+      "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
+      "errno", "assert", "stdin", "stdout", "stderr", "EOF", "NULL", "BUFSIZ", "INFINITY", "NAN", "HUGE_VAL",
+      "EXIT_SUCCESS", "EXIT_FAILURE", "RAND_MAX"};
+  return reserved.count(name) || name.rfind("M_", 0) == 0 || name.rfind("EIGEN_", 0) == 0 || name.rfind("FP_", 0) == 0;
+}
+
+// Tunable parameters become variables of the generated C++, beside the states, inputs and the
+// functions' own arguments; these names would not compile there.
+bool clashes_with_generated_code(const std::string& name, const Topology& t) {
+  static const std::set<std::string> arguments{"p", "x", "u", "dx", "y", "M", "N"};  // of rhs, outputs, matrices
+  if (is_cpp_reserved(name) || arguments.count(name)) return true;
+  for (const auto& b : t.bodies)
+    for (const char* prefix : {"omega_", "tau_", "domega_"})
+      if (name == prefix + b.name) return true;
+  for (const auto& m : t.meshes)
+    for (const char* prefix : {"F_", "v_", "w_", "dF_"})
+      if (name == prefix + m.name) return true;
+  return false;
 }
 
 Effects read_effects(const Reader& r, const toml::node& n) {
@@ -192,6 +231,9 @@ const char* solver_name(Solver s) {
 
 Scene parse_scene_text(const std::string& text, const std::string& path) {
   Reader r{path};
+  if (text.size() > max_model_file_bytes)
+    throw InputError(SourceLocation{path, 0, 0}, fmt::format("the scene file is larger than {} bytes; a model or scene "
+                                                             "file is a few kilobytes", max_model_file_bytes));
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -210,14 +252,27 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   if (!name_ok)
     throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
                      fmt::format("scene name '{}' must be letters, digits and '_' (it names C++ code and files)", s.name));
+  if (s.name.size() > max_name_length)
+    throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
+                     fmt::format("the scene name is {} characters long; names have at most {}", s.name.size(),
+                                 max_name_length));
+  // The generated code lives in namespace pogear_generated::<name>.
+  if (is_cpp_reserved(s.name))
+    throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
+                     fmt::format("scene name '{}' is a C++ keyword or macro, which cannot name the generated code; "
+                                 "choose another name", s.name));
 
   const toml::node* model = root.get("model");
   if (!model) throw InputError(SourceLocation{path, 0, 0}, "the scene names no model; add model = \"path/to/model.toml\"");
   const fs::path scene_dir = fs::path(path).parent_path();
   const std::string model_name = r.string(*model, "model");
   s.model_ref = model_name;
+  // The path is quoted in a comment of the generated code, which a line break would end.
+  if (std::any_of(model_name.begin(), model_name.end(), [](char c) { return c == '\n' || c == '\r'; }))
+    r.fail(*model, "the model path contains a line break; give the path of the model file");
   s.model_file = (fs::path(model_name).is_absolute() ? fs::path(model_name) : scene_dir / model_name).lexically_normal().string();
-  if (!fs::exists(s.model_file))
+  std::error_code exists_error;  // a path too long or unreadable is as good as missing here
+  if (!fs::exists(s.model_file, exists_error))
     r.fail(*model, fmt::format("model file '{}' does not exist; give its path relative to the scene file", s.model_file));
   const Topology topology = parse_topology(s.model_file);
   r.model = &topology;
@@ -253,6 +308,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       if (value.is_string()) {
         p.text = *value.value<std::string>();
       } else if (value.is_integer() || value.is_floating_point()) {
+        if (!std::isfinite(*value.value<double>())) r.fail(value, fmt::format("parameter '{}' is not finite", name));
         p.text = fmt::format("{}", *value.value<double>());
         p.column_offset = 0;
       } else {
@@ -263,8 +319,14 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   }
   if (const toml::node* n = root.get("tunable")) {
     s.tunable = r.strings(*n, "tunable");
-    for (const auto& name : s.tunable)
+    std::set<std::string> seen;
+    for (const auto& name : s.tunable) {
       if (!parameter_names.count(name)) r.fail(*n, fmt::format("tunable '{}' is not a parameter of the model", name));
+      if (!seen.insert(name).second) r.fail(*n, fmt::format("tunable '{}' is listed twice", name));
+      if (clashes_with_generated_code(name, topology))
+        r.fail(*n, fmt::format("tunable '{}' cannot be a variable of the generated C++ (a keyword, a macro or a name "
+                               "the code uses itself); rename the parameter in the model", name));
+    }
   }
 
   std::set<std::string> driven;
@@ -308,7 +370,9 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   if (const toml::node* n = root.get("outputs")) {
     s.outputs = r.strings(*n, "outputs");
     s.outputs_where = r.loc(*n);
+    std::set<std::string> seen;
     for (const auto& o : s.outputs) {
+      if (!seen.insert(o).second) r.fail(*n, fmt::format("output '{}' is listed twice", o));
       const bool velocity = o.rfind("omega_", 0) == 0 && find_body(topology, o.substr(6)) >= 0;
       const bool force = o.rfind("F_", 0) == 0 && std::any_of(topology.meshes.begin(), topology.meshes.end(),
                                                              [&](const Mesh& m) { return m.name == o.substr(2); });
@@ -322,7 +386,11 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   if (const toml::node* n = root.get("simulation")) {
     if (!n->is_table()) r.fail(*n, "[simulation] must be a table");
     const toml::table& t = *n->as_table();
-    r.only_keys(t, {"horizon", "sample", "solver", "tolerance", "step"}, "[simulation]");
+    r.only_keys(t, {"horizon", "sample", "solver", "tolerance", "step", "max_steps"}, "[simulation]");
+    if (const toml::node* v = t.get("max_steps")) {
+      if (!v->is_integer() || *v->value<long>() < 1) r.fail(*v, "max_steps is a whole number of at least 1");
+      s.max_steps = *v->value<long>();
+    }
     if (const toml::node* v = t.get("horizon")) s.horizon = r.quantity(*v, time_dimension(), "horizon");
     if (const toml::node* v = t.get("sample")) s.sample = r.quantity(*v, time_dimension(), "sample");
     if (const toml::node* v = t.get("step")) s.step = r.quantity(*v, time_dimension(), "step");
@@ -347,13 +415,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
 }
 
 Scene parse_scene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot read the scene file; check the path");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (ss.str().size() > max_model_file_bytes)
-    throw InputError(SourceLocation{path, 0, 0}, "the scene file is larger than 1 MiB");
-  return parse_scene_text(ss.str(), path);
+  return parse_scene_text(read_input_file(path, max_model_file_bytes, "scene file"), path);
 }
 
 Topology apply_overrides(Topology t, const Scene& scene) {
@@ -365,6 +427,9 @@ Topology apply_overrides(Topology t, const Scene& scene) {
         p.column_offset = o.column_offset;
       }
   evaluate_parameters(t.parameters);
+  // An override of 0 for an inertia or a length for a stiffness would reach the algebra as a
+  // singular matrix; it is the scene's mistake, and the location is the override's.
+  check_parameter_roles(t);
   return t;
 }
 

@@ -59,6 +59,7 @@ struct Scene {
   Solver solver = Solver::exact;
   double tolerance = 1e-8;  // adaptive methods, relative
   double step = 1e-4;       // fixed-step methods
+  long max_steps = 10000000;  // adaptive methods: a stiff scene stops with an error, not a hang
   SourceLocation solver_where, outputs_where, keep_where;
 };
 

@@ -127,10 +127,12 @@ SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
 
   // Names of temporaries must not shadow anything else in the generated function.
   auto fresh = [&](const std::string& name) {
-    if (d.radius.values.count(name))
-      throw InputError(SourceLocation{sc.file, 0, 0},
+    if (d.radius.values.count(name)) {
+      const Parameter* p = find_parameter(t, name);  // the model's line is where to rename it
+      throw InputError(p ? p->where : SourceLocation{sc.file, 0, 0},
                        fmt::format("the model has a parameter named '{}', which pogear's generated code uses for a "
                                    "mesh velocity; rename the parameter", name));
+    }
     return name;
   };
 

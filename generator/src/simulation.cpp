@@ -140,7 +140,8 @@ std::string build_simulator(const GeneratedSources& g) {
 
 int run_compiled(const std::string& exe, const rt::SceneRun& run) {
   std::string cmd = shell_quote(exe) + " --solver " + shell_quote(run.solver) + " --out " + shell_quote(run.out_dir) +
-                    fmt::format(" --tolerance {} --step {} --repeat {}", run.options.rtol, run.options.h, run.repeat);
+                    fmt::format(" --tolerance {} --step {} --repeat {} --max-steps {}", run.options.rtol, run.options.h,
+                                run.repeat, run.options.max_steps);
   if (!run.csv) cmd += " --no-csv";
   if (run.quiet) cmd += " --quiet";
   std::fflush(stdout);

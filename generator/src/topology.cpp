@@ -3,6 +3,8 @@
 #include "topology.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -57,8 +59,10 @@ struct Reader {
                     std::all_of(s.begin(), s.end(), [](char c) {
                       return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
                     });
-    if (!ok || s.size() > 64)
+    if (!ok)
       fail(n, fmt::format("{} '{}' is not a name; use letters, digits and '_', starting with a letter", what, s));
+    if (s.size() > max_name_length)
+      fail(n, fmt::format("{} is {} characters long; names have at most {}", what, s.size(), max_name_length));
     return s;
   }
 };
@@ -178,7 +182,8 @@ WheelRef resolve_wheel(const Reader& r, const Topology& t, const toml::node& n) 
       for (const auto& w : b.wheels) list += (list.empty() ? "" : ", ") + w.name;
     r.fail(n, fmt::format("no wheel or body named '{}'; the wheels are {}", name, list));
   }
-  r.fail(n, fmt::format("wheel name '{}' is ambiguous", name));
+  r.fail(n, fmt::format("wheel name '{}' is ambiguous: a body of that name has it as its only wheel, and another "
+                        "body has a wheel of that name too; rename one of them", name));
 }
 
 void check_unique_names(const Topology& t, bool meshes) {
@@ -218,14 +223,21 @@ void check_carriers(Topology& t) {
 
 // Reads [parameters] as written; evaluate_parameters gives them values.
 void read_parameters(const Reader& r, const toml::table& params, Topology& t) {
-  if (params.size() > max_parameters) r.fail(params, fmt::format("more than {} parameters", max_parameters));
+  if (params.size() > max_parameters)
+    r.fail(params, fmt::format("{} parameters; a model has at most {}", params.size(), max_parameters));
   for (const auto& [key, node] : params) {
     const std::string name(key.str());
     const bool ok = !name.empty() && std::isalpha(static_cast<unsigned char>(name[0])) &&
                     std::all_of(name.begin(), name.end(), [](char c) {
                       return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
                     });
-    if (!ok) throw InputError(at(r.file, key.source()), fmt::format("'{}' is not a parameter name", name));
+    if (!ok)
+      throw InputError(at(r.file, key.source()),
+                       fmt::format("'{}' is not a parameter name; use letters, digits and '_', starting with a letter",
+                                   name));
+    if (name.size() > max_name_length)
+      throw InputError(at(r.file, key.source()), fmt::format("a parameter name is {} characters long; names have at "
+                                                             "most {}", name.size(), max_name_length));
     if (is_unit_name(name))
       throw InputError(at(r.file, key.source()), fmt::format("parameter '{}' has the name of a unit; rename it", name));
     Parameter p;
@@ -250,8 +262,8 @@ void read_parameters(const Reader& r, const toml::table& params, Topology& t) {
   });
 }
 
-// Every parameter a role needs must exist (radii may come from geometry later), carry the
-// right unit and a sensible sign.
+}  // namespace
+
 void check_parameter_roles(const Topology& t) {
   struct Role {
     std::string name;
@@ -281,22 +293,33 @@ void check_parameter_roles(const Topology& t) {
                                                  role.name, role.what, role.name));
     }
     if (p->value.has_unit && !(p->value.dimension == role.dimension))
-      throw InputError(p->where, fmt::format("parameter '{}' is {} but has unit {}; it needs {}", role.name,
-                                             role.what, describe(p->value.dimension), describe(role.dimension)));
+      throw InputError(p->where, p->value.dimension == Dimension{}
+                                     ? fmt::format("parameter '{}' is {} but has no unit (rad, deg, rev and pi are "
+                                                   "plain numbers); it needs {}",
+                                                   role.name, role.what, describe(role.dimension))
+                                     : fmt::format("parameter '{}' is {} but has unit {}; it needs {}", role.name,
+                                                   role.what, describe(p->value.dimension), describe(role.dimension)));
     const double v = p->value.si;
     if (role.positive ? !(v > 0.0) : !(v >= 0.0))
       throw InputError(p->where, fmt::format("parameter '{}' is {} and must be {} (it is {})", role.name, role.what,
                                              role.positive ? "positive" : "zero or positive", v));
+    // Physical gears span 1e-12 (small inertias, damping) to 1e12 (stiffness) in SI. Products of
+    // a few such factors stay finite within these bounds; beyond them, ranks and the elastic
+    // model's matrices overflow or underflow to garbage (a 1e200 m radius gave "rank of R 0").
+    constexpr double smallest = 1e-30, largest = 1e30;
+    if (v != 0.0 && !(v >= smallest && v <= largest))
+      throw InputError(p->where, fmt::format("parameter '{}' is {} of {} (SI), outside the range pogear computes "
+                                             "with, {:g} to {:g}; check the value and its unit",
+                                             role.name, role.what, v, smallest, largest));
   }
 }
-
-}  // namespace
 
 Topology parse_topology_text(const std::string& text, const std::string& path) {
   Reader r{path};
   if (text.size() > max_model_file_bytes)
     throw InputError(SourceLocation{path, 0, 0},
-                     fmt::format("the file is larger than {} bytes; a model file is a few kilobytes", max_model_file_bytes));
+                     fmt::format("the file is larger than {} bytes; a model or scene file is a few kilobytes",
+                                 max_model_file_bytes));
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -309,16 +332,25 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   t.file = path;
   if (const toml::node* n = root.get("name")) t.name = r.identifier(*n, "the model name");
   else t.name = std::filesystem::path(path).stem().string();
-  if (auto s = r.optional_string(root, "title", "title")) t.title = *s;
+  if (auto s = r.optional_string(root, "title", "title")) {
+    // The title is quoted in one-line comments of generated code, which a line break would end.
+    if (std::any_of(s->begin(), s->end(), [](char c) { return c == '\n' || c == '\r'; }))
+      r.fail(*root.get("title"), "the title is one line; remove the line break");
+    t.title = *s;
+  }
 
   const toml::array& bodies = array_of_tables(r, root, "body", "[[body]] name = \"c\"");
-  if (bodies.size() > max_bodies) r.fail(bodies, fmt::format("more than {} bodies", max_bodies));
+  if (bodies.size() > max_bodies)
+    r.fail(bodies, fmt::format("{} bodies; pogear derives gears of at most {} (the symbolic derivation grows steeply "
+                               "with the size); model a smaller part of the gear", bodies.size(), max_bodies));
   for (const toml::node& n : bodies) t.bodies.push_back(read_body(r, *n.as_table()));
   check_unique_names(t, false);
   check_carriers(t);
 
   const toml::array& meshes = array_of_tables(r, root, "mesh", "[[mesh]] first = \"p\", second = \"s1\"");
-  if (meshes.size() > max_meshes) r.fail(meshes, fmt::format("more than {} meshes", max_meshes));
+  if (meshes.size() > max_meshes)
+    r.fail(meshes, fmt::format("{} meshes; pogear derives gears of at most {} (the symbolic derivation grows steeply "
+                               "with the size); model a smaller part of the gear", meshes.size(), max_meshes));
   for (const toml::node& n : meshes) {
     const toml::table& mt = *n.as_table();
     r.only_keys(mt, {"first", "second", "name", "stiffness", "damping"}, "a [[mesh]]");
@@ -356,18 +388,34 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   return t;
 }
 
-Topology parse_topology(const std::string& path) {
+std::string read_input_file(const std::string& path, std::size_t limit, const std::string& what) {
+  const SourceLocation where{path, 0, 0};
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(where, fmt::format("this is a directory; give the {} itself", what));
+  errno = 0;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(SourceLocation{path, 0, 0}, "cannot read the file; check the path");
-  in.seekg(0, std::ios::end);
-  const auto size = in.tellg();
-  if (size > static_cast<std::streamoff>(max_model_file_bytes))
-    throw InputError(SourceLocation{path, 0, 0},
-                     fmt::format("the file is larger than {} bytes; a model file is a few kilobytes", max_model_file_bytes));
-  in.seekg(0);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_topology_text(ss.str(), path);
+  if (!in)
+    throw InputError(where, fmt::format("cannot read the {} ({}); check the path", what,
+                                        errno ? std::strerror(errno) : "cannot open"));
+  // Chunks up to one byte past the limit: the size a file reports (0 for a FIFO or /dev/zero)
+  // says nothing about what reading it gives.
+  std::string text;
+  char chunk[1 << 16];
+  while (text.size() <= limit) {
+    in.read(chunk, sizeof chunk);
+    if (in.gcount() <= 0) break;
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+  }
+  if (text.size() > limit)
+    throw InputError(where, fmt::format("the {} is larger than {} bytes; a model or scene file is a few kilobytes",
+                                        what, limit));
+  if (in.bad()) throw InputError(where, fmt::format("cannot read the {}: a read error; check the file", what));
+  return text;
+}
+
+Topology parse_topology(const std::string& path) {
+  return parse_topology_text(read_input_file(path, max_model_file_bytes, "file"), path);
 }
 
 // In dependency order, so that `b_p = "b_c"` works wherever b_c stands in the file.

@@ -72,9 +72,23 @@ struct Topology {
 
 // Limits that keep hostile input bounded.
 inline constexpr std::size_t max_model_file_bytes = 1 << 20;
-inline constexpr std::size_t max_bodies = 512;
-inline constexpr std::size_t max_meshes = 1024;
-inline constexpr std::size_t max_parameters = 4096;
+// The symbolic derivation grows like n^4 in the number of bodies. `pogear derive`, Release build,
+// one core: a chain of fixed-axis gears takes 0.8 s at 35 bodies, 1.6 s at 40, 3.0 s at 48 and
+// 7.2 s at 64; scripts/make_chain.sh's planetary chain 1.5 s at 46 bodies, 4.4 s at 61 and 78 s
+// at 121. 48 keeps any model within seconds; the paper's gears have 6 and 7 bodies.
+inline constexpr std::size_t max_bodies = 48;
+// Two meshes per body, as for planets between a sun and a ring (45 planets: 90 meshes, 0.8 s).
+inline constexpr std::size_t max_meshes = 96;
+// Well above what 48 bodies and 96 meshes name (a radius, inertia, friction or stiffness each),
+// and a bound on how deep parameters may refer to one another.
+inline constexpr std::size_t max_parameters = 1024;
+// Names become C++ identifiers and column headers; 64 characters is generous for `J_planet_3`.
+inline constexpr std::size_t max_name_length = 64;
+
+// The contents of an input file, read at most `limit` bytes far (a FIFO or /dev/zero must not
+// fill the memory). Throws InputError naming the file when it cannot be read, is a directory or
+// is larger; `what` names it in messages: "file" (a model), "scene file".
+std::string read_input_file(const std::string& path, std::size_t limit, const std::string& what);
 
 // Reads a model file (TOML). Throws InputError for anything wrong, located in the file.
 Topology parse_topology(const std::string& path);
@@ -83,6 +97,9 @@ Topology parse_topology_text(const std::string& text, const std::string& path);
 
 // Gives every parameter its value from its text; they may refer to each other.
 void evaluate_parameters(std::vector<Parameter>& parameters);
+// Every parameter a role needs must exist (radii may come from the geometry later), carry the
+// right unit and a sensible sign; also after a scene's overrides, which may change any of them.
+void check_parameter_roles(const Topology& t);
 
 int find_body(const Topology& t, const std::string& name);  // -1 when absent
 const Parameter* find_parameter(const Topology& t, const std::string& name);

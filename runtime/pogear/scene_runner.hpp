@@ -32,9 +32,11 @@ struct SceneRun {
 inline bool parse_command_line(int argc, char** argv, SceneRun& run) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    bool missing_value = false;  // a known option without its value: reported once, not twice
     auto value = [&](const char* what) -> const char* {
       if (i + 1 >= argc) {
         std::fprintf(stderr, "%s: error: %s needs a value\n", argv[0], what);
+        missing_value = true;
         return nullptr;
       }
       return argv[++i];
@@ -45,11 +47,12 @@ inline bool parse_command_line(int argc, char** argv, SceneRun& run) {
     else if (a == "--step" && (v = value("--step"))) run.options.h = std::atof(v);
     else if (a == "--out" && (v = value("--out"))) run.out_dir = v;
     else if (a == "--repeat" && (v = value("--repeat"))) run.repeat = std::max(1, std::atoi(v));
+    else if (a == "--max-steps" && (v = value("--max-steps"))) run.options.max_steps = std::max(1L, std::atol(v));
     else if (a == "--no-csv") run.csv = false;
     else if (a == "--quiet") run.quiet = true;
     else {
-      if (!v) std::fprintf(stderr, "%s: error: unknown option '%s'; options are --solver, --tolerance, --step, "
-                                   "--out, --repeat, --no-csv, --quiet\n", argv[0], a.c_str());
+      if (!missing_value) std::fprintf(stderr, "%s: error: unknown option '%s'; options are --solver, --tolerance, --step, "
+                                   "--out, --repeat, --max-steps, --no-csv, --quiet\n", argv[0], a.c_str());
       return false;
     }
   }
@@ -126,7 +129,8 @@ int run_system(const System& sys, const typename System::Params& p, const std::v
     if (run.csv) {
       csv.emplace(run.out_dir + "/" + label + ".csv", columns);
       if (!csv->ok()) {
-        std::fprintf(stderr, "%s: error: %s: %s\n", label.c_str(), csv->path().c_str(), csv->error().c_str());
+        std::fprintf(stderr, "%s: error: cannot write %s (%s); check the output directory and the free space\n",
+                     label.c_str(), csv->path().c_str(), csv->error().c_str());
         return 3;
       }
     }
@@ -142,7 +146,8 @@ int run_system(const System& sys, const typename System::Params& p, const std::v
     else st = simulate_implicit(f, jac, true, x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
     if (csv) {
       if (st.ok ? !csv->commit() : !csv->commit_incomplete(st.message)) {
-        std::fprintf(stderr, "%s: error: %s: %s\n", label.c_str(), csv->path().c_str(), csv->error().c_str());
+        std::fprintf(stderr, "%s: error: cannot write %s (%s); check the output directory and the free space\n",
+                     label.c_str(), csv->path().c_str(), csv->error().c_str());
         return 3;
       }
     }

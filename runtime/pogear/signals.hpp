@@ -8,6 +8,7 @@
 #include <fstream>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -103,6 +104,11 @@ inline std::optional<double> parse_double(std::string_view s) {
 }
 }  // namespace detail
 
+// Bounds on a table file, so that a hostile one (or /dev/zero) cannot exhaust memory or time: the
+// table is embedded in generated code, where 1e5 rows are already a 5 MB source file.
+inline constexpr std::size_t max_table_rows = 100000;
+inline constexpr std::size_t max_table_bytes = std::size_t{16} << 20;  // 1e5 rows of ~50 characters, with room
+
 // Reads a two-column CSV "t,value". The first line may be a header (its first field is not a number);
 // blank lines and lines starting with '#' are skipped. On failure returns nullopt and sets `error` to
 // "PATH:LINE: what is wrong" (or "PATH: what is wrong" when no line is concerned). Never throws for
@@ -114,6 +120,25 @@ inline std::optional<Table> load_table_csv(const std::string& path, std::string&
     error = path + ": cannot open file";
     return std::nullopt;
   }
+  // Read in chunks, at most one past the bound: what a file's size says (0 for a FIFO or
+  // /dev/zero) does not bound what reading it gives.
+  std::string content;
+  char chunk[1 << 16];
+  while (content.size() <= max_table_bytes) {
+    in.read(chunk, sizeof chunk);
+    if (in.gcount() <= 0) break;
+    content.append(chunk, static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad()) {
+    error = path + ": read error";
+    return std::nullopt;
+  }
+  if (content.size() > max_table_bytes) {
+    error = path + ": larger than " + std::to_string(max_table_bytes) + " bytes; a table has at most " +
+            std::to_string(max_table_rows) + " rows";
+    return std::nullopt;
+  }
+  std::istringstream lines(content);
   Table tab;
   std::string line;
   long lineno = 0;
@@ -122,7 +147,9 @@ inline std::optional<Table> load_table_csv(const std::string& path, std::string&
     error = path + ":" + std::to_string(lineno) + ": " + what;
     return std::nullopt;
   };
-  while (std::getline(in, line)) {
+  // A field quoted in a message, cut short: a garbage line may be megabytes long.
+  auto shown = [](std::string_view f) { return f.size() <= 40 ? std::string(f) : std::string(f.substr(0, 40)) + "..."; };
+  while (std::getline(lines, line)) {
     ++lineno;
     const std::string_view l = detail::trim(line);
     if (l.empty() || l.front() == '#') continue;
@@ -137,16 +164,14 @@ inline std::optional<Table> load_table_csv(const std::string& path, std::string&
     if (comma == std::string_view::npos) return fail("expected 2 columns 't,value', found 1");
     const std::string_view f2 = detail::trim(l.substr(comma + 1));
     const auto v = detail::parse_double(f2);
-    if (!t) return fail("bad number '" + std::string(f1) + "' in column 1 (time)");
-    if (!v) return fail("bad number '" + std::string(f2) + "' in column 2 (value)");
+    if (!t) return fail("bad number '" + shown(f1) + "' in column 1 (time)");
+    if (!v) return fail("bad number '" + shown(f2) + "' in column 2 (value)");
     if (!std::isfinite(*t) || !std::isfinite(*v)) return fail("non-finite number");
-    if (!tab.t.empty() && *t < tab.t.back()) return fail("time " + std::string(f1) + " is before the previous row's");
+    if (!tab.t.empty() && *t < tab.t.back()) return fail("time " + shown(f1) + " is before the previous row's");
+    if (tab.t.size() == max_table_rows)
+      return fail("more than " + std::to_string(max_table_rows) + " rows; resample the table more coarsely");
     tab.t.push_back(*t);
     tab.v.push_back(*v);
-  }
-  if (in.bad()) {
-    error = path + ": read error";
-    return std::nullopt;
   }
   if (tab.t.empty()) {
     error = path + ": no data rows";

@@ -149,3 +149,52 @@ TEST(Exact, DriverWithoutInputs) {
   // 10^4 steps, each rounding at a few eps: ~1e-12 accumulated, against a state of norm ~3.
   EXPECT_LE((last - oscillator(3, 0, 0, Eigen::Vector2d(1, 0), 1.0)).norm(), 1e-11);
 }
+
+// A gear's state mixes units: velocities in rad/s and mesh forces in N, so M h has entries from 1e-6
+// to 1e3 while its eigenvalues are O(0.03). The exponential is taken through a balanced matrix
+// (exact.hpp, balanced_exp); unbalanced, Phi was off by 1.5e-9 relative here. Expected: each entry
+// of Phi to a few eps of itself, and 10^4 steps to ~1e-12 of the amplitude (rounding accumulated,
+// plus the closed form's own cos(w t) rounding at w t = 316).
+TEST(Exact, BadlyScaledOscillator) {
+  const double a = 1e-3, b = 1e6, w = std::sqrt(a * b), h = 1e-3;
+  Eigen::Matrix2d M;
+  M << 0, -a, b, 0;
+  const rt::ExactDiscretization<2, 1> disc(M, Eigen::Vector2d(1, 0), h);
+  Eigen::Matrix2d phi;
+  phi << std::cos(w * h), -a / w * std::sin(w * h), b / w * std::sin(w * h), std::cos(w * h);
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) EXPECT_NEAR(disc.Phi(i, j), phi(i, j), 1e-15 * std::abs(phi(i, j))) << i << "," << j;
+  Eigen::Vector2d x(1, 0), xn;
+  const Eigen::Matrix<double, 1, 1> u(0.0);
+  for (int k = 0; k < 10000; ++k) {
+    disc.step(x, u, u, xn);
+    x = xn;
+  }
+  const double t = 10000 * h;
+  EXPECT_NEAR(x(0), std::cos(w * t), 1e-11);
+  EXPECT_NEAR(x(1) / (b / w), std::sin(w * t), 1e-11);
+}
+
+// Sweeps reuse one discretization across runs: the result is the same, bit for bit, as computing
+// it inside, and a discretization of another step is refused rather than used.
+TEST(Exact, PrecomputedDiscretization) {
+  Eigen::Matrix2d M;
+  M << 0, 1, -9, -0.5;
+  const Eigen::Vector2d N(0, 1);
+  rt::SolverOptions opt;
+  opt.h = 0.1;
+  std::vector<Eigen::Vector2d> a, b;
+  auto u = [](double t, Eigen::Matrix<double, 1, 1>& out) { out(0) = 0.8 + t; };
+  const rt::RunStatus sa = rt::simulate_exact(M, N, u, Eigen::Vector2d(1, 0), 0.0, 1.05, 0.1, opt,
+                                              [&](double, const Eigen::Vector2d& x) { a.push_back(x); });
+  const rt::ExactDiscretization<2, 1> disc(M, N, rt::exact_nominal_step(0.1, opt.h));
+  const rt::RunStatus sb = rt::simulate_exact(disc, M, N, u, Eigen::Vector2d(1, 0), 0.0, 1.05, 0.1, opt,
+                                              [&](double, const Eigen::Vector2d& x) { b.push_back(x); });
+  ASSERT_TRUE(sa.ok && sb.ok) << sa.message << sb.message;
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) EXPECT_EQ(a[k], b[k]) << k;
+  const rt::ExactDiscretization<2, 1> other(M, N, 0.05);
+  const rt::RunStatus sc = rt::simulate_exact(other, M, N, u, Eigen::Vector2d(1, 0), 0.0, 1.05, 0.1, opt,
+                                              [](double, const Eigen::Vector2d&) {});
+  EXPECT_FALSE(sc.ok);
+}

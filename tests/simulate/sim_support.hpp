@@ -49,6 +49,7 @@ inline rt::SceneRun run_settings(const SimModel& m, const std::string& solver = 
   r.options.rtol = m.scene.tolerance;
   r.options.atol = m.scene.tolerance * 1e-2;
   r.options.h = m.scene.step;
+  r.options.max_steps = m.scene.max_steps;
   return r;
 }
 

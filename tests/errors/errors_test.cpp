@@ -1,0 +1,794 @@
+// Every error pogear reports, with the exact text and position users see: each test is an entry
+// of docs/errors.md, which shows the same text verbatim and names the test.
+#include <regex>
+
+#include "pogear/signals.hpp"
+
+#include "error_support.hpp"
+
+namespace pogear::test {
+namespace {
+
+// ---------------------------------------------------------------- model files: reading
+
+class ModelFiles : public ErrorTest {};
+
+TEST_F(ModelFiles, CannotRead) {
+  expect_documented(model_file_error("missing.toml"),
+      R"~(missing.toml: error: cannot read the file (No such file or directory); check the path)~");
+}
+
+TEST_F(ModelFiles, Directory) {
+  fs::create_directory("models");
+  expect_documented(model_file_error("models"), R"~(models: error: this is a directory; give the file itself)~");
+}
+
+TEST_F(ModelFiles, TooLarge) {
+  write_text("huge.toml", std::string((1 << 20) + 1, '#'));
+  expect_documented(model_file_error("huge.toml"),
+      R"~(huge.toml: error: the file is larger than 1048576 bytes; a model or scene file is a few kilobytes)~");
+}
+
+TEST_F(ModelFiles, EndlessFile) {
+  expect_documented(model_file_error("/dev/zero"),
+      R"~(/dev/zero: error: the file is larger than 1048576 bytes; a model or scene file is a few kilobytes)~");
+}
+
+TEST_F(ModelFiles, ReadError) {
+  // Reading /proc/self/mem from offset 0 fails with EIO: a file that opens but cannot be read.
+  expect_documented(model_file_error("/proc/self/mem"),
+      R"~(/proc/self/mem: error: cannot read the file: a read error; check the file)~");
+}
+
+TEST_F(ModelFiles, TomlSyntax) {
+  expect_model_error({{R"(r_s1 = "10*cm")", R"(r_s1 = "10*cm)"}},
+      R"~(gear.toml:37:14: error: Error while parsing string: unescaped control characters other than TAB (U+0009) are explicitly prohibited; fix the TOML syntax)~");
+}
+
+TEST_F(ModelFiles, UnknownTopLevelKey) {
+  expect_model_error({{R"(keep = ["c", "r"])", "keep = [\"c\", \"r\"]\ngears = 2"}},
+      R"~(gear.toml:4:1: error: unknown key 'gears' in the model file; the keys are name, title, keep, body, mesh, parameters)~");
+}
+
+// ---------------------------------------------------------------- model files: structure
+
+class ModelStructure : public ErrorTest {};
+
+TEST_F(ModelStructure, NotAName) {
+  expect_model_error({{R"(name = "gear")", R"(name = "2gear")"}},
+      R"~(gear.toml:2:8: error: the model name '2gear' is not a name; use letters, digits and '_', starting with a letter)~");
+}
+
+TEST_F(ModelStructure, NameTooLong) {
+  expect_model_error({{R"(name = "c")", "name = \"" + std::string(65, 'c') + "\""}},
+      R"~(gear.toml:6:8: error: a body name is 65 characters long; names have at most 64)~");
+}
+
+TEST_F(ModelStructure, NameNotAString) {
+  expect_model_error({{R"(name = "c")", "name = 3"}},
+      R"~(gear.toml:6:8: error: a body name must be a string in quotes)~");
+}
+
+TEST_F(ModelStructure, TitleNotAString) {
+  expect_model_error({{R"(name = "gear")", "name = \"gear\"\ntitle = 5"}},
+      R"~(gear.toml:3:9: error: title must be a string in quotes)~");
+}
+
+TEST_F(ModelStructure, TitleWithLineBreak) {
+  expect_model_error({{R"(name = "gear")", "name = \"gear\"\ntitle = \"one\\ntwo\""}},
+      R"~(gear.toml:3:9: error: the title is one line; remove the line break)~");
+}
+
+TEST_F(ModelStructure, NoBodies) {
+  expect_documented(model_error("name = \"empty\"\n"),
+      R"~(gear.toml: error: no [[body]] entries; add at least one, e.g. [[body]] name = "c")~");
+}
+
+TEST_F(ModelStructure, BodiesNotTables) {
+  expect_documented(model_error("body = 3\n"), R"~(gear.toml:1:8: error: 'body' must be written as [[body]] tables)~");
+}
+
+TEST_F(ModelStructure, TooManyBodies) {
+  std::string text = "# 49 bodies\n";
+  for (int i = 0; i < 49; ++i) text += "[[body]]\nname = \"b" + std::to_string(i) + "\"\n";
+  expect_documented(model_error(text),
+      R"~(gear.toml:2:1: error: 49 bodies; pogear derives gears of at most 48 (the symbolic derivation grows steeply with the size); model a smaller part of the gear)~");
+}
+
+TEST_F(ModelStructure, BodyUnknownKey) {
+  expect_model_error({{R"(axis = { fixed = "below" })", R"(axsi = { fixed = "below" })"}},
+      R"~(gear.toml:22:1: error: unknown key 'axsi' in a [[body]]; the keys are name, axis, arrow, inertia, friction, wheels)~");
+}
+
+TEST_F(ModelStructure, BodyWithoutName) {
+  expect_model_error({{"name = \"c\"\n", ""}}, R"~(gear.toml:5:1: error: a [[body]] needs a name, e.g. name = "c")~");
+}
+
+TEST_F(ModelStructure, UnknownAxis) {
+  expect_model_error({{R"(name = "c")", "name = \"c\"\naxis = \"middle\""}},
+      R"~(gear.toml:7:8: error: axis "middle" is not known; write "central", { fixed = "below" } or { carrier = "c", distance = "r_c" })~");
+}
+
+TEST_F(ModelStructure, AxisNotATable) {
+  expect_model_error({{R"(axis = { fixed = "below" })", "axis = 3"}},
+      R"~(gear.toml:22:8: error: axis must be a table { ... })~");
+}
+
+TEST_F(ModelStructure, AxisUnknownKey) {
+  expect_model_error({{R"(distance = "r_c" })", R"(distance = "r_c", height = 1 })"}},
+      R"~(gear.toml:10:43: error: unknown key 'height' in an axis; the keys are carrier, distance, side, fixed)~");
+}
+
+TEST_F(ModelStructure, FixedAndCarried) {
+  expect_model_error({{R"(axis = { fixed = "below" })", R"(axis = { fixed = "below", carrier = "c" })"}},
+      R"~(gear.toml:22:8: error: an axis is either fixed or carried, not both)~");
+}
+
+TEST_F(ModelStructure, FixedSide) {
+  expect_model_error({{R"(axis = { fixed = "below" })", R"(axis = { fixed = "left" })"}},
+      R"~(gear.toml:22:18: error: fixed must be "above" or "below": where the axis is drawn relative to the wheels it meshes with)~");
+}
+
+TEST_F(ModelStructure, CarriedIncomplete) {
+  expect_model_error({{R"({ carrier = "c", distance = "r_c" })", R"({ carrier = "c" })"}},
+      R"~(gear.toml:10:8: error: a carried axis needs carrier = "<body>" and distance = "<parameter>")~");
+}
+
+TEST_F(ModelStructure, CarriedSide) {
+  expect_model_error({{R"(distance = "r_c" })", R"(distance = "r_c", side = "up" })"}},
+      R"~(gear.toml:10:50: error: side must be "above" or "below")~");
+}
+
+TEST_F(ModelStructure, Arrow) {
+  expect_model_error({{R"(name = "c")", "name = \"c\"\narrow = \"up\""}},
+      R"~(gear.toml:7:9: error: arrow must be "right" or "left": the positive direction of omega as drawn)~");
+}
+
+TEST_F(ModelStructure, InertiaNotAName) {
+  expect_model_error({{R"(name = "c")", "name = \"c\"\ninertia = \"J c\""}},
+      R"~(gear.toml:7:11: error: inertia 'J c' is not a name; use letters, digits and '_', starting with a letter)~");
+}
+
+TEST_F(ModelStructure, WheelsNotAList) {
+  expect_model_error({{R"(wheels = [ { name = "r1", radius = "r_r1", internal = true } ])", R"(wheels = "r1")"}},
+                     R"~(gear.toml:18:10: error: wheels must be a list: [ { name = "s1", radius = "r_s1" } ])~");
+}
+
+TEST_F(ModelStructure, WheelNotATable) {
+  expect_model_error({{R"(wheels = [ { name = "r1", radius = "r_r1", internal = true } ])", R"(wheels = [ "r1" ])"}},
+                     R"~(gear.toml:18:12: error: a wheel must be a table { ... })~");
+}
+
+TEST_F(ModelStructure, WheelUnknownKey) {
+  expect_model_error({{"internal = true }", "internal = true, teeth = 80 }"}},
+      R"~(gear.toml:18:61: error: unknown key 'teeth' in a wheel; the keys are name, radius, internal)~");
+}
+
+TEST_F(ModelStructure, WheelWithoutName) {
+  expect_model_error({{R"({ name = "r1", radius = "r_r1", internal = true })", R"({ radius = "r_r1", internal = true })"}},
+                     R"~(gear.toml:18:12: error: a wheel needs a name, e.g. { name = "s1", radius = "r_s1" })~");
+}
+
+TEST_F(ModelStructure, InternalNotBoolean) {
+  expect_model_error({{"internal = true", R"(internal = "yes")"}},
+      R"~(gear.toml:18:55: error: internal must be true or false)~");
+}
+
+TEST_F(ModelStructure, EmptyWheelList) {
+  expect_model_error({{R"(wheels = [ { name = "r1", radius = "r_r1", internal = true } ])", "wheels = []"}},
+      R"~(gear.toml:18:10: error: an empty wheel list; leave 'wheels' out for a body without teeth)~");
+}
+
+TEST_F(ModelStructure, DuplicateBody) {
+  expect_model_error({{R"(name = "g")", R"(name = "c")"}},
+      R"~(gear.toml:21:8: error: duplicate name 'c' (body); it is already used at line 6)~");
+}
+
+TEST_F(ModelStructure, DuplicateWheel) {
+  expect_model_error({{R"({ name = "s2", radius = "r_s2" })", R"({ name = "s1", radius = "r_s2" })"}},
+      R"~(gear.toml:14:55: error: duplicate name 's1' (wheel); it is already used at line 14)~");
+}
+
+TEST_F(ModelStructure, CarrierNotABody) {
+  expect_model_error({{R"(carrier = "c")", R"(carrier = "x")"}},
+      R"~(gear.toml:9:8: error: body 'p' is carried by 'x', which is not a body of this model)~");
+}
+
+TEST_F(ModelStructure, CarrierLoop) {
+  expect_model_error({{R"(name = "c")", "name = \"c\"\naxis = { carrier = \"p\", distance = \"r_c\" }"}},
+      R"~(gear.toml:6:8: error: body 'c' is carried, through its carriers, by itself)~");
+}
+
+TEST_F(ModelStructure, NoMeshes) {
+  expect_documented(model_error("[[body]]\nname = \"a\"\n"),
+      R"~(gear.toml: error: no [[mesh]] entries; add at least one, e.g. [[mesh]] first = "p", second = "s1")~");
+}
+
+TEST_F(ModelStructure, TooManyMeshes) {
+  std::string text = "# 97 meshes\n[[body]]\nname = \"a\"\n\n[[body]]\nname = \"b\"\naxis = { fixed = \"below\" }\n\n";
+  for (int i = 0; i < 97; ++i) text += "[[mesh]]\nfirst = \"a\"\nsecond = \"b\"\nname = \"m" + std::to_string(i) + "\"\n";
+  expect_documented(model_error(text),
+      R"~(gear.toml:9:1: error: 97 meshes; pogear derives gears of at most 96 (the symbolic derivation grows steeply with the size); model a smaller part of the gear)~");
+}
+
+TEST_F(ModelStructure, MeshUnknownKey) {
+  expect_model_error({{R"(second = "g")", "second = \"g\"\nratio = 2"}},
+      R"~(gear.toml:35:1: error: unknown key 'ratio' in a [[mesh]]; the keys are first, second, name, stiffness, damping)~");
+}
+
+TEST_F(ModelStructure, MeshIncomplete) {
+  expect_model_error({{"second = \"g\"\n", ""}},
+      R"~(gear.toml:32:1: error: a [[mesh]] needs first = "<wheel>" and second = "<wheel>")~");
+}
+
+TEST_F(ModelStructure, UnknownWheel) {
+  expect_model_error({{R"(second = "s1")", R"(second = "s9")"}},
+      R"~(gear.toml:26:10: error: no wheel or body named 's9'; the wheels are c, p, s1, s2, r1, g)~");
+}
+
+TEST_F(ModelStructure, BodyWithSeveralWheels) {
+  expect_model_error({{R"(second = "s1")", R"(second = "s")"}},
+      R"~(gear.toml:26:10: error: body 's' has several wheels (s1, s2); name the one that meshes)~");
+}
+
+TEST_F(ModelStructure, AmbiguousWheel) {
+  // Body g's only wheel is called c, and body c's default wheel is c too.
+  expect_model_error({{"axis = { fixed = \"below\" }\n", "axis = { fixed = \"below\" }\nwheels = [ { name = \"c\", radius = \"r_g\" } ]\n"},
+                      {R"(second = "g")", R"(second = "c")"}},
+                     R"~(gear.toml:35:10: error: wheel name 'c' is ambiguous: a body of that name has it as its only wheel, and another body has a wheel of that name too; rename one of them)~");
+}
+
+TEST_F(ModelStructure, MeshWithItself) {
+  expect_model_error({{R"(second = "g")", R"(second = "s1")"}},
+      R"~(gear.toml:34:10: error: a body cannot mesh with itself)~");
+}
+
+TEST_F(ModelStructure, DuplicateMeshName) {
+  expect_model_error({{R"(second = "g")", "second = \"g\"\nname = \"ps\""}},
+      R"~(gear.toml:33:9: error: duplicate name 'ps' (mesh); it is already used at line 25)~");
+}
+
+TEST_F(ModelStructure, KeepNotAList) {
+  expect_model_error({{R"(keep = ["c", "r"])", R"(keep = "c")"}},
+      R"~(gear.toml:3:8: error: keep must be a list of body names, e.g. keep = ["c", "r"])~");
+}
+
+TEST_F(ModelStructure, KeepNotABody) {
+  expect_model_error({{R"(keep = ["c", "r"])", R"(keep = ["c", "x"])"}},
+      R"~(gear.toml:3:14: error: keep names 'x', which is not a body)~");
+}
+
+// ---------------------------------------------------------------- model files: parameters
+
+class ModelParameters : public ErrorTest {};
+
+TEST_F(ModelParameters, NotATable) {
+  const std::string text = base_model().substr(0, base_model().find("[parameters]"));
+  expect_documented(model_error(edited(text, {{R"(keep = ["c", "r"])", "keep = [\"c\", \"r\"]\nparameters = 3"}})),
+                    R"~(gear.toml:4:14: error: [parameters] must be a table { ... })~");
+}
+
+TEST_F(ModelParameters, TooMany) {
+  std::string text = edited(base_model(), {});
+  for (int i = 0; i < 1025 - 21; ++i) text += "x" + std::to_string(i) + " = 1\n";
+  expect_documented(model_error(text), R"~(gear.toml:36:1: error: 1025 parameters; a model has at most 1024)~");
+}
+
+TEST_F(ModelParameters, BadName) {
+  expect_model_error({{R"(r_s1 = "10*cm")", R"("r s1" = "10*cm")"}},
+      R"~(gear.toml:37:1: error: 'r s1' is not a parameter name; use letters, digits and '_', starting with a letter)~");
+}
+
+TEST_F(ModelParameters, NameTooLong) {
+  expect_model_error({{R"(r_s1 = "10*cm")", "r_s1 = \"10*cm\"\n" + std::string(65, 'x') + " = 1"}},
+      R"~(gear.toml:38:1: error: a parameter name is 65 characters long; names have at most 64)~");
+}
+
+TEST_F(ModelParameters, NameOfAUnit) {
+  expect_model_error({{R"(r_s1 = "10*cm")", "r_s1 = \"10*cm\"\ncm = 2"}},
+      R"~(gear.toml:38:1: error: parameter 'cm' has the name of a unit; rename it)~");
+}
+
+TEST_F(ModelParameters, NotFinite) {
+  expect_model_error({{R"(r_s1 = "10*cm")", "r_s1 = nan"}},
+      R"~(gear.toml:37:8: error: parameter 'r_s1' is not finite)~");
+}
+
+TEST_F(ModelParameters, WrongType) {
+  expect_model_error({{R"(r_s1 = "10*cm")", "r_s1 = true"}},
+      R"~(gear.toml:37:8: error: parameter 'r_s1' must be a number (SI) or a string such as "4.8*cm")~");
+}
+
+TEST_F(ModelParameters, DefinedThroughItself) {
+  expect_model_error({{R"(b_c = "0.08*Nm/rpm")", R"(b_c = "b_p")"}},
+      R"~(gear.toml:47:7: error: parameter 'b_c' is defined through itself)~");
+}
+
+TEST_F(ModelParameters, Missing) {
+  expect_model_error({{"J_g = \"0.48197*kg*meters^2\"\n", ""}},
+      R"~(gear.toml:21:8: error: missing parameter 'J_g' (an inertia); add it under [parameters], e.g. J_g = "...")~");
+}
+
+TEST_F(ModelParameters, WrongUnit) {
+  expect_model_error({{R"(J_p = "0.009756*kg*meters^2")", R"(J_p = "0.009756*kg*meters")"}},
+      R"~(gear.toml:43:7: error: parameter 'J_p' is an inertia but has unit kg*m; it needs kg*m^2)~");
+}
+
+TEST_F(ModelParameters, NotPositive) {
+  expect_model_error({{R"(r_g = "16*cm")", R"(r_g = "0*cm")"}},
+      R"~(gear.toml:40:7: error: parameter 'r_g' is a radius and must be positive (it is 0))~");
+}
+
+TEST_F(ModelParameters, Negative) {
+  expect_model_error({{R"(b_c = "0.08*Nm/rpm")", R"(b_c = "-0.08*Nm/rpm")"}},
+      R"~(gear.toml:47:7: error: parameter 'b_c' is a bearing friction coefficient and must be zero or positive (it is -0.7639437268410977))~");
+}
+
+TEST_F(ModelParameters, OutOfRange) {
+  expect_model_error({{R"(J_c = "0.17648*kg*meters^2")", R"(J_c = "1e40*kg*meters^2")"}},
+      R"~(gear.toml:42:7: error: parameter 'J_c' is an inertia of 1e+40 (SI), outside the range pogear computes with, 1e-30 to 1e+30; check the value and its unit)~");
+}
+
+// ---------------------------------------------------------------- parameter expressions
+
+class Expressions : public ErrorTest {
+ protected:
+  // The model with r_p = "<text>".
+  void expect_expression_error(const std::string& text, const std::string& expected) {
+    expect_model_error({{R"(r_p = "4.8*cm")", "r_p = \"" + text + "\""}}, expected);
+  }
+};
+
+TEST_F(Expressions, Empty) { expect_expression_error(" ",
+    R"~(gear.toml:39:9: error: empty expression; write a number with its unit, e.g. 4.8*cm)~"); }
+TEST_F(Expressions, MissingOperator) { expect_expression_error("4.8 cm",
+    R"~(gear.toml:39:12: error: unexpected 'c'; join factors with '*', e.g. 4.8*cm)~"); }
+TEST_F(Expressions, DoubleStar) { expect_expression_error("4.8**cm",
+    R"~(gear.toml:39:12: error: '**' is not a power; write '^')~"); }
+TEST_F(Expressions, TooDeep) {
+  expect_expression_error(std::string(70, '(') + "4.8" + std::string(70, ')') + "*cm",
+      R"~(gear.toml:39:21: error: expression nested deeper than 64 levels; simplify it)~");
+}
+TEST_F(Expressions, AddsDifferentUnits) { expect_expression_error("4.8*cm + 1*kg",
+    R"~(gear.toml:39:15: error: adds kg to m; both sides of '+' need the same unit)~"); }
+TEST_F(Expressions, DivisionByZero) { expect_expression_error("4.8*cm/0",
+    R"~(gear.toml:39:14: error: division by zero)~"); }
+TEST_F(Expressions, ExponentWithUnit) { expect_expression_error("cm^(2*s)",
+    R"~(gear.toml:39:11: error: an exponent must be a plain number)~"); }
+TEST_F(Expressions, FractionalUnitPower) { expect_expression_error("cm^0.5",
+    R"~(gear.toml:39:11: error: a unit can only be raised to a whole power between -16 and 16)~"); }
+TEST_F(Expressions, EndsEarly) { expect_expression_error("4.8*",
+    R"~(gear.toml:39:12: error: the expression ends too early; a number, unit or name is missing)~"); }
+TEST_F(Expressions, UnclosedParenthesis) { expect_expression_error("(4.8*cm",
+    R"~(gear.toml:39:8: error: this '(' is never closed)~"); }
+TEST_F(Expressions, UnexpectedCharacter) { expect_expression_error("4.8*%",
+    R"~(gear.toml:39:12: error: unexpected '%'; expected a number, a unit or a parameter name)~"); }
+TEST_F(Expressions, NotANumber) { expect_expression_error("4.8.1*cm",
+    R"~(gear.toml:39:8: error: '4.8.1' is not a number)~"); }
+TEST_F(Expressions, UnknownName) { expect_expression_error("4.8*cn",
+    R"~(gear.toml:39:12: error: unknown unit or parameter 'cn'; units are m, meter, meters, metre, cm, mm, kg, gram, s, ms, minute, Hz, N, Newton, kN, Nm, rad, deg, rev, rpm, pi, J, or name a parameter of this model)~"); }
+TEST_F(Expressions, TooLong) {
+  std::string text = "4.8*cm";
+  while (text.size() <= max_expression_length) text += "+0";
+  expect_expression_error(text,
+      R"~(gear.toml:39:7: error: expression longer than 4096 characters; split it into parameters that name each other)~");
+}
+TEST_F(Expressions, Overflow) { expect_expression_error("1e300*1e300*cm",
+    R"~(gear.toml:39:13: error: the value here is not a finite number (an overflow, or a negative number to a fractional power); write numbers of a physical size)~"); }
+TEST_F(Expressions, NegativeToFractionalPower) { expect_expression_error("(-4.8)^0.5*cm",
+    R"~(gear.toml:39:14: error: the value here is not a finite number (an overflow, or a negative number to a fractional power); write numbers of a physical size)~"); }
+TEST_F(Expressions, UnitPowerTooHigh) { expect_expression_error("((cm^16)^16)^16",
+    R"~(gear.toml:39:16: error: the unit m^256 has a power above 64; no physical parameter has such a unit)~"); }
+
+// ---------------------------------------------------------------- geometry and the rigid model
+
+class Geometry : public ErrorTest {};
+
+TEST_F(Geometry, TwoInternalWheels) {
+  expect_model_error({{"axis = { fixed = \"below\" }\n", "axis = { fixed = \"below\" }\nwheels = [ { name = \"g\", radius = \"r_g\", internal = true } ]\n"},
+                      {"first = \"s2\"\nsecond = \"g\"", "first = \"r1\"\nsecond = \"g\""},
+                      {"[parameters]\n", "[parameters]\nK_rg = \"K_ps\"\nb_rg = 0\n"}},
+                     R"~(gear.toml:34:9: error: mesh rg (r1 of body r with g): two internal wheels cannot mesh; one of r1 and g must have external teeth)~");
+}
+
+TEST_F(Geometry, FixedAxesFirst) {
+  expect_model_error({{"axis = { fixed = \"below\" }\n", "axis = { fixed = \"below\" }\n\n[[body]]\nname = \"h\"\naxis = { fixed = \"below\" }\n"},
+                      {"[[mesh]]\nfirst = \"p\"\nsecond = \"s1\"", "[[mesh]]\nfirst = \"g\"\nsecond = \"h\"\n\n[[mesh]]\nfirst = \"p\"\nsecond = \"s1\""},
+                      {"[parameters]\n", "[parameters]\nr_h = \"5*cm\"\nJ_h = \"0.1*kg*m^2\"\nb_h = 0\nK_gh = \"K_ps\"\nb_gh = 0\n"}},
+                     R"~(gear.toml:29:9: error: mesh gh (g with h): neither axis height is known yet; mesh a fixed-axis gear with a central or carried wheel first)~");
+}
+
+TEST_F(Geometry, CannotTellWhichAxisIsHigher) {
+  // Planets p and q on carrier c, neither axis distance given: which one is drawn higher?
+  expect_model_error({{"axis = { fixed = \"below\" }\n", "axis = { fixed = \"below\" }\n\n[[body]]\nname = \"q\"\naxis = { carrier = \"c\", distance = \"d_q\" }\n"},
+                      {"[[mesh]]\nfirst = \"p\"\nsecond = \"s1\"", "[[mesh]]\nfirst = \"p\"\nsecond = \"q\"\n\n[[mesh]]\nfirst = \"p\"\nsecond = \"s1\""},
+                      {"r_c = \"14.8*cm\"\n", "r_q = \"2*cm\"\nJ_q = \"0.01*kg*m^2\"\nb_q = 0\nK_pq = \"K_ps\"\nb_pq = 0\n"}},
+                     R"~(gear.toml:29:9: error: mesh pq (p with q): cannot tell which axis is drawn higher; give the numeric values of the axis distances)~");
+}
+
+TEST_F(Geometry, SameAxis) {
+  expect_model_error({{"first = \"s2\"\nsecond = \"g\"", "first = \"s2\"\nsecond = \"r1\""},
+                      {"[parameters]\n", "[parameters]\nK_sr = \"K_ps\"\nb_sr = 0\n"}},
+                     R"~(gear.toml:33:9: error: mesh sr (s2 of body s with r1 of body r): s2 of body s and r1 of body r turn about the same axis, so they cannot mesh; put one on a carrier or a fixed axis)~");
+}
+
+TEST_F(Geometry, MissingRadius) {
+  expect_model_error({{"r_s2 = \"16*cm\"\n", ""}},
+      R"~(gear.toml:33:9: error: missing parameter 'r_s2' (the radius of s2 of body s); add it under [parameters], e.g. r_s2 = "10*cm")~");
+}
+
+TEST_F(Geometry, MissingAxisDistance) {
+  // A planet q that meshes nothing: no contact fixes its axis distance d_q.
+  expect_model_error({{"axis = { fixed = \"below\" }\n", "axis = { fixed = \"below\" }\n\n[[body]]\nname = \"q\"\naxis = { carrier = \"c\", distance = \"d_q\" }\n"},
+                      {"[parameters]\n", "[parameters]\nJ_q = \"0.01*kg*m^2\"\nb_q = 0\n"}},
+                     R"~(gear.toml:25:8: error: missing parameter 'd_q' (the axis distance of q); add it under [parameters])~");
+}
+
+TEST_F(Geometry, DerivedLengthNotPositive) {
+  // Planet p with inner teeth around the sun, without the ring: its axis distance would be
+  // r_p - r_s1 < 0.
+  expect_model_error({{"axis = { carrier = \"c\", distance = \"r_c\" }\n", "axis = { carrier = \"c\", distance = \"r_c\" }\nwheels = [ { name = \"p\", radius = \"r_p\", internal = true } ]\n"},
+                      {"[[mesh]]\nfirst = \"p\"\nsecond = \"r1\"\n", ""},
+                      {"r_c = \"14.8*cm\"\n", ""}},
+                     R"~(gear.toml:26:9: error: mesh ps (p with s1 of body s) makes 'r_c' = -0.052 m, which is not positive; check the layout)~");
+}
+
+TEST_F(Geometry, Contradiction) {
+  expect_model_error({{R"(r_c = "14.8*cm")", R"(r_c = "15*cm")"}},
+      R"~(gear.toml:41:7: error: 'r_c' = 15*cm (0.15 m) contradicts the geometry: mesh ps (p with s1 of body s) implies r_c = r_p+r_s1 = 0.148 m; correct the value, or the layout if the drawing differs)~");
+}
+
+class Reduction : public ErrorTest {};
+
+TEST_F(Reduction, KeepUnknownBody) {
+  expect_documented(model_error(base_model(), std::vector<std::string>{"c", "x"}),
+      R"~(gear.toml: error: cannot keep 'x': there is no such body)~");
+}
+
+TEST_F(Reduction, KeptTwice) {
+  expect_documented(model_error(base_model(), std::vector<std::string>{"c", "c"}),
+      R"~(gear.toml: error: 'c' is kept twice)~");
+}
+
+TEST_F(Reduction, WrongNumberKept) {
+  expect_documented(model_error(base_model(), std::vector<std::string>{"c", "r", "s"}),
+      R"~(gear.toml: error: 3 velocities kept, but this gear has 2 degrees of freedom (5 bodies, rank of R 3); keep 2, e.g. c,p)~");
+}
+
+TEST_F(Reduction, TiedVelocities) {
+  expect_documented(model_error(base_model(), std::vector<std::string>{"s", "g"}),
+      R"~(gear.toml: error: the kept velocities s,g do not parametrize the rigid motions: s and g are tied: omega_g == -r_s2*omega_s/r_g in every rigid motion; valid choices are c,p; c,s; c,r; c,g; p,s; p,r; p,g; s,r; r,g)~");
+}
+
+TEST_F(Reduction, TiedVelocitiesFromTheModelFile) {
+  expect_model_error({{R"(keep = ["c", "r"])", R"(keep = ["s", "g"])"}},
+      R"~(gear.toml:3:8: error: the kept velocities s,g do not parametrize the rigid motions: s and g are tied: omega_g == -r_s2*omega_s/r_g in every rigid motion; valid choices are c,p; c,s; c,r; c,g; p,s; p,r; p,g; s,r; r,g)~");
+}
+
+// ---------------------------------------------------------------- scene files
+
+class SceneFiles : public ErrorTest {};
+
+TEST_F(SceneFiles, CannotRead) {
+  try {
+    parse_scene("missing.toml");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    expect_documented(e.what(),
+        R"~(missing.toml: error: cannot read the scene file (No such file or directory); check the path)~");
+  }
+}
+
+TEST_F(SceneFiles, TooLarge) {
+  expect_documented(scene_error(base_scene() + std::string(1 << 20, '#')),
+      R"~(scene.toml: error: the scene file is larger than 1048576 bytes; a model or scene file is a few kilobytes)~");
+}
+
+TEST_F(SceneFiles, TomlSyntax) {
+  expect_scene_error({{"horizon = \"0.1*s\"", "horizon = 0.1*s"}},
+      R"~(scene.toml:15:14: error: Error while parsing floating-point: expected decimal digit, saw '*'; fix the TOML syntax)~");
+}
+
+TEST_F(SceneFiles, UnknownKey) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\nduration = 2"}},
+      R"~(scene.toml:7:1: error: unknown key 'duration' in the scene file; the keys are name, model, effects, keep, compare_rigid, tunable, outputs, inputs, initial, parameters, simulation)~");
+}
+
+TEST_F(SceneFiles, ModelError) {
+  // Errors of the model are located in the model file.
+  expect_documented(scene_error(base_scene(), edited(base_model(), {{R"(r_g = "16*cm")", R"(r_g = "0*cm")"}})),
+                    R"~(gear.toml:40:7: error: parameter 'r_g' is a radius and must be positive (it is 0))~");
+}
+
+class Scenes : public ErrorTest {};
+
+TEST_F(Scenes, NameNotAString) { expect_scene_error({{R"(name = "demo")", "name = 3"}},
+    R"~(scene.toml:2:8: error: name must be a string in quotes)~"); }
+TEST_F(Scenes, BadName) { expect_scene_error({{R"(name = "demo")", R"(name = "my demo")"}},
+    R"~(scene.toml:2:8: error: scene name 'my demo' must be letters, digits and '_' (it names C++ code and files))~"); }
+TEST_F(Scenes, NameTooLong) {
+  expect_scene_error({{R"(name = "demo")", "name = \"" + std::string(65, 'd') + "\""}},
+      R"~(scene.toml:2:8: error: the scene name is 65 characters long; names have at most 64)~");
+}
+TEST_F(Scenes, NameIsACppKeyword) {
+  expect_scene_error({{R"(name = "demo")", R"(name = "long")"}},
+      R"~(scene.toml:2:8: error: scene name 'long' is a C++ keyword or macro, which cannot name the generated code; choose another name)~");
+}
+TEST_F(Scenes, NoModel) { expect_scene_error({{"model = \"gear.toml\"\n", ""}},
+    R"~(scene.toml: error: the scene names no model; add model = "path/to/model.toml")~"); }
+TEST_F(Scenes, ModelPathWithLineBreak) {
+  expect_scene_error({{R"(model = "gear.toml")", R"(model = "gear.toml\n")"}},
+      R"~(scene.toml:3:9: error: the model path contains a line break; give the path of the model file)~");
+}
+TEST_F(Scenes, ModelDoesNotExist) {
+  expect_scene_error({{R"(model = "gear.toml")", R"(model = "gears.toml")"}},
+      R"~(scene.toml:3:9: error: model file 'gears.toml' does not exist; give its path relative to the scene file)~");
+}
+TEST_F(Scenes, EffectsNotAList) {
+  expect_scene_error({{R"(effects = ["mesh_compliance", "mesh_damping", "bearing_friction", "mesh_forces"])",
+                       R"(effects = "mesh_forces")"}},
+                     R"~(scene.toml:4:11: error: effects must be a list of strings, e.g. ["a", "b"])~");
+}
+TEST_F(Scenes, EffectNotAString) {
+  expect_scene_error({{R"("mesh_forces"])", R"("mesh_forces", 5])"}},
+      R"~(scene.toml:4:82: error: effects must be a string in quotes)~");
+}
+TEST_F(Scenes, UnknownEffect) {
+  expect_scene_error({{R"("mesh_forces"])", R"("mesh_forces", "backlash"])"}},
+      R"~(scene.toml:4:11: error: unknown effect 'backlash'; the effects are mesh_compliance, mesh_damping, bearing_friction, mesh_forces)~");
+}
+TEST_F(Scenes, DampingWithoutCompliance) {
+  expect_scene_error({{R"("mesh_compliance", )", ""}, {"compare_rigid = true\n", ""}},
+      R"~(scene.toml:4:11: error: mesh_damping needs mesh_compliance: a rigid mesh has no deflection to damp; add mesh_compliance or drop mesh_damping)~");
+}
+TEST_F(Scenes, KeepNotABody) { expect_scene_error({{R"(keep = ["c", "r"])", R"(keep = ["c", "x"])"}},
+    R"~(scene.toml:5:8: error: keep names 'x', which is not a body of the model)~"); }
+TEST_F(Scenes, KeepWrongNumber) {
+  // The reduction's own messages, located at the scene's keep.
+  expect_scene_error({{R"(keep = ["c", "r"])", R"(keep = ["c"])"}},
+      R"~(scene.toml:5:8: error: 1 velocity kept, but this gear has 2 degrees of freedom (5 bodies, rank of R 3); keep 2, e.g. c,p)~");
+}
+TEST_F(Scenes, CompareRigidNotBoolean) {
+  expect_scene_error({{"compare_rigid = true", R"(compare_rigid = "yes")"}},
+      R"~(scene.toml:6:17: error: compare_rigid must be true or false)~");
+}
+TEST_F(Scenes, CompareRigidOfARigidScene) {
+  expect_scene_error({{R"("mesh_compliance", "mesh_damping", )", ""}},
+      R"~(scene.toml:6:17: error: compare_rigid compares the elastic model with the rigid one, but this scene is already rigid (no mesh_compliance); drop compare_rigid or add mesh_compliance)~");
+}
+TEST_F(Scenes, ParametersNotATable) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\nparameters = 3"}},
+      R"~(scene.toml:7:14: error: [parameters] must be a table)~");
+}
+TEST_F(Scenes, OverrideOfNoParameter) {
+  expect_documented(scene_error(base_scene() + "\n[parameters]\nK_xy = \"2000*Newton/mm\"\n"),
+      R"~(scene.toml:22:1: error: 'K_xy' is not a parameter of the model gear)~");
+}
+TEST_F(Scenes, OverrideNotFinite) {
+  expect_documented(scene_error(base_scene() + "\n[parameters]\nK_ps = inf\n"),
+      R"~(scene.toml:22:8: error: parameter 'K_ps' is not finite)~");
+}
+TEST_F(Scenes, OverrideWrongType) {
+  expect_documented(scene_error(base_scene() + "\n[parameters]\nK_ps = true\n"),
+      R"~(scene.toml:22:8: error: a parameter override is a number (SI) or a string such as "2000*Newton/mm")~");
+}
+TEST_F(Scenes, OverrideExpression) {
+  expect_documented(scene_error(base_scene() + "\n[parameters]\nK_ps = \"2000*Newton/mn\"\n"),
+      R"~(scene.toml:22:21: error: unknown unit or parameter 'mn'; units are m, meter, meters, metre, cm, mm, kg, gram, s, ms, minute, Hz, N, Newton, kN, Nm, rad, deg, rev, rpm, pi, J, or name a parameter of this model)~");
+}
+TEST_F(Scenes, OverrideWrongUnit) {
+  expect_documented(scene_error(base_scene() + "\n[parameters]\nK_ps = \"2000*Newton\"\n"),
+      R"~(scene.toml:22:8: error: parameter 'K_ps' is a mesh stiffness but has unit kg*m/s^2; it needs kg/s^2)~");
+}
+TEST_F(Scenes, OverrideNotPositive) {
+  expect_documented(scene_error(base_scene() + "\n[parameters]\nJ_c = \"0*kg*m^2\"\n"),
+      R"~(scene.toml:22:7: error: parameter 'J_c' is an inertia and must be positive (it is 0))~");
+}
+TEST_F(Scenes, OverrideBreaksTheGeometry) {
+  expect_documented(scene_error(base_scene() + "\n[parameters]\nr_p = \"5*cm\"\n"),
+      R"~(gear.toml:41:7: error: 'r_c' = 14.8*cm (0.148 m) contradicts the geometry: mesh ps (p with s1 of body s) implies r_c = r_p+r_s1 = 0.15 m; correct the value, or the layout if the drawing differs)~");
+}
+TEST_F(Scenes, TunableNotAParameter) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\ntunable = [\"K_xy\"]"}},
+      R"~(scene.toml:7:11: error: tunable 'K_xy' is not a parameter of the model)~");
+}
+TEST_F(Scenes, TunableTwice) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\ntunable = [\"K_ps\", \"K_ps\"]"}},
+      R"~(scene.toml:7:11: error: tunable 'K_ps' is listed twice)~");
+}
+TEST_F(Scenes, TunableClashesWithGeneratedCode) {
+  const std::string model = edited(base_model(), {{"[parameters]\n", "[parameters]\ndouble = 2\n"}});
+  expect_documented(scene_error(edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"double\"]"}}), model),
+                    R"~(scene.toml:7:11: error: tunable 'double' cannot be a variable of the generated C++ (a keyword, a macro or a name the code uses itself); rename the parameter in the model)~");
+}
+TEST_F(Scenes, ParameterNamedLikeAMeshVelocity) {
+  const std::string model = edited(base_model(), {{"[parameters]\n", "[parameters]\nv_ps = 2\n"}});
+  expect_documented(scene_error(base_scene(), model),
+      R"~(gear.toml:37:8: error: the model has a parameter named 'v_ps', which pogear's generated code uses for a mesh velocity; rename the parameter)~");
+}
+TEST_F(Scenes, InputsNotATable) {
+  expect_scene_error({{"[inputs]\ntau_c = { constant = \"100*Nm\" }", "inputs = 3"}},
+      R"~(scene.toml:8:10: error: [inputs] must be a table of tau_<body> = signal)~");
+}
+TEST_F(Scenes, InputOfNoBody) { expect_scene_error({{"tau_c = {", "tau_x = {"}},
+    R"~(scene.toml:9:1: error: input 'tau_x' names no body; inputs are tau_<body>, e.g. tau_c)~"); }
+
+class Signals : public ErrorTest {
+ protected:
+  // The scene with tau_c = <signal>.
+  void expect_signal_error(const std::string& signal, const std::string& expected) {
+    expect_scene_error({{R"(tau_c = { constant = "100*Nm" })", "tau_c = " + signal}}, expected);
+  }
+};
+
+TEST_F(Signals, WrongType) { expect_signal_error("true",
+    R"~(scene.toml:9:9: error: an input torque must be a number (SI) or a string with a unit)~"); }
+TEST_F(Signals, WrongUnit) { expect_signal_error(R"({ constant = "100*N" })",
+    R"~(scene.toml:9:22: error: constant has unit kg*m/s^2; it needs kg*m^2/s^2)~"); }
+TEST_F(Signals, NotFinite) { expect_signal_error("inf", R"~(scene.toml:9:9: error: an input torque is not finite)~"); }
+TEST_F(Signals, UnknownKey) { expect_signal_error(R"({ constant = "100*Nm", at = "1*s" })",
+    R"~(scene.toml:9:32: error: unknown key 'at' in a constant signal; the keys are constant)~"); }
+TEST_F(Signals, StepWithoutTime) { expect_signal_error(R"({ step = "100*Nm" })",
+    R"~(scene.toml:9:9: error: a step needs at = "<time>", e.g. at = "0.5*s")~"); }
+TEST_F(Signals, RampSlopeUnit) { expect_signal_error(R"({ ramp = "50*Nm" })",
+    R"~(scene.toml:9:18: error: ramp (a slope, e.g. "50*Nm/s") has unit kg*m^2/s^2; it needs kg*m^2/s^3)~"); }
+TEST_F(Signals, SineWithoutFrequency) { expect_signal_error(R"({ sine = "10*Nm" })",
+    R"~(scene.toml:9:9: error: a sine needs frequency = "<f>*Hz")~"); }
+TEST_F(Signals, UnknownForm) { expect_signal_error(R"({ pulse = "10*Nm" })",
+    R"~(scene.toml:9:9: error: a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., frequency = ... } or { table = "file.csv" })~"); }
+
+class Tables : public ErrorTest {
+ protected:
+  // The scene with tau_c = { table = "torque.csv" } and torque.csv holding `csv`.
+  void expect_table_error(const std::string& csv, const std::string& expected) {
+    write_text("torque.csv", csv);
+    expect_table_file_error("torque.csv", expected);
+  }
+  void expect_table_file_error(const std::string& file, const std::string& expected) {
+    expect_scene_error({{R"(tau_c = { constant = "100*Nm" })", "tau_c = { table = \"" + file + "\" }"}}, expected);
+  }
+};
+
+TEST_F(Tables, CannotOpen) { expect_table_file_error("torques.csv",
+    R"~(scene.toml:9:19: error: table 'torques.csv': cannot open file; give its path relative to the scene file)~"); }
+TEST_F(Tables, ThreeColumns) { expect_table_error("t,tau\n0,0,1\n",
+    R"~(torque.csv:2: error: expected 2 columns 't,value', found more; the table needs two columns: time [s], torque [N m])~"); }
+TEST_F(Tables, OneColumn) { expect_table_error("t,tau\n0\n",
+    R"~(torque.csv:2: error: expected 2 columns 't,value', found 1; the table needs two columns: time [s], torque [N m])~"); }
+TEST_F(Tables, BadTime) { expect_table_error("t,tau\n0,0\nhalf,100\n",
+    R"~(torque.csv:3: error: bad number 'half' in column 1 (time); the table needs two columns: time [s], torque [N m])~"); }
+TEST_F(Tables, BadValue) { expect_table_error("t,tau\n0,0\n0.5,abc\n",
+    R"~(torque.csv:3: error: bad number 'abc' in column 2 (value); the table needs two columns: time [s], torque [N m])~"); }
+TEST_F(Tables, NotFinite) { expect_table_error("t,tau\n0,0\n0.5,inf\n",
+    R"~(torque.csv:3: error: non-finite number; the table needs two columns: time [s], torque [N m])~"); }
+TEST_F(Tables, TimeGoesBack) { expect_table_error("t,tau\n0,0\n0.5,100\n0.25,50\n",
+    R"~(torque.csv:4: error: time 0.25 is before the previous row's; the table needs two columns: time [s], torque [N m])~"); }
+TEST_F(Tables, NoRows) { expect_table_error("t,tau\n# nothing yet\n",
+    R"~(scene.toml:9:19: error: table 'torque.csv': no data rows; the table needs two columns: time [s], torque [N m])~"); }
+TEST_F(Tables, TooManyRows) {
+  std::string csv = "t,tau\n";
+  for (std::size_t i = 0; i <= rt::max_table_rows; ++i) csv += std::to_string(i) + ",1\n";
+  expect_table_error(csv,
+      R"~(torque.csv:100002: error: more than 100000 rows; resample the table more coarsely; the table needs two columns: time [s], torque [N m])~");
+}
+TEST_F(Tables, TooLarge) { expect_table_file_error("/dev/zero",
+    R"~(scene.toml:9:19: error: table '/dev/zero': larger than 16777216 bytes; a table has at most 100000 rows)~"); }
+TEST_F(Tables, ReadError) { expect_table_file_error("/proc/self/mem",
+    R"~(scene.toml:9:19: error: table '/proc/self/mem': read error)~"); }
+
+class Initial : public ErrorTest {};
+
+TEST_F(Initial, NotATable) {
+  expect_scene_error({{"[initial]\nomega_c = \"0*rpm\"\n", ""}, {"compare_rigid = true", "compare_rigid = true\ninitial = 0"}},
+                     R"~(scene.toml:7:11: error: [initial] must be a table of omega_<body> and F_<mesh> values)~");
+}
+TEST_F(Initial, UnknownName) { expect_scene_error({{"omega_c = \"0*rpm\"", "omega_x = \"0*rpm\""}},
+    R"~(scene.toml:12:1: error: 'omega_x' is neither omega_<body> nor F_<mesh> of the model)~"); }
+TEST_F(Initial, ForceOfARigidScene) {
+  expect_scene_error({{R"("mesh_compliance", "mesh_damping", )", ""}, {"compare_rigid = true\n", ""},
+                      {"omega_c = \"0*rpm\"", "F_ps = \"10*N\""}},
+                     R"~(scene.toml:11:1: error: initial force 'F_ps' needs mesh_compliance: the rigid model has no force states)~");
+}
+TEST_F(Initial, WrongUnit) { expect_scene_error({{"omega_c = \"0*rpm\"", "omega_c = \"10*rev\""}},
+    R"~(scene.toml:12:11: error: omega_c has no unit (rad, deg, rev and pi are plain numbers); it needs 1/s)~"); }
+
+class Outputs : public ErrorTest {};
+
+TEST_F(Outputs, NotAList) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\noutputs = \"omega_c\""}},
+      R"~(scene.toml:7:11: error: outputs must be a list of strings, e.g. ["a", "b"])~");
+}
+TEST_F(Outputs, Unknown) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\noutputs = [\"omega_x\"]"}},
+      R"~(scene.toml:7:11: error: output 'omega_x' is neither omega_<body> nor F_<mesh>)~");
+}
+TEST_F(Outputs, ForceWithoutMeshForces) {
+  expect_scene_error({{R"(, "mesh_forces"])", "]"}, {"compare_rigid = true", "compare_rigid = true\noutputs = [\"F_ps\"]"}},
+                     R"~(scene.toml:7:11: error: output 'F_ps' is a mesh force, but the scene does not ask for mesh_forces; add it to effects)~");
+}
+TEST_F(Outputs, ListedTwice) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\noutputs = [\"omega_c\", \"omega_c\"]"}},
+      R"~(scene.toml:7:11: error: output 'omega_c' is listed twice)~");
+}
+
+class Simulation : public ErrorTest {};
+
+TEST_F(Simulation, NotATable) {
+  const std::string text = base_scene().substr(0, base_scene().find("[simulation]"));
+  expect_documented(scene_error(edited(text, {{"compare_rigid = true", "compare_rigid = true\nsimulation = 1"}})),
+                    R"~(scene.toml:7:14: error: [simulation] must be a table)~");
+}
+TEST_F(Simulation, UnknownKey) { expect_scene_error({{"solver = \"exact\"", "method = \"exact\""}},
+    R"~(scene.toml:17:1: error: unknown key 'method' in [simulation]; the keys are horizon, sample, solver, tolerance, step, max_steps)~"); }
+TEST_F(Simulation, MaxSteps) { expect_scene_error({{"solver = \"exact\"", "solver = \"exact\"\nmax_steps = 0"}},
+    R"~(scene.toml:18:13: error: max_steps is a whole number of at least 1)~"); }
+TEST_F(Simulation, ToleranceNotANumber) { expect_scene_error({{"tolerance = 1e-9", "tolerance = \"1e-9\""}},
+    R"~(scene.toml:18:13: error: tolerance is a plain number, the relative tolerance, e.g. 1e-8)~"); }
+TEST_F(Simulation, ToleranceOutOfRange) { expect_scene_error({{"tolerance = 1e-9", "tolerance = 2"}},
+    R"~(scene.toml:18:13: error: tolerance must be between 0 and 1)~"); }
+TEST_F(Simulation, SolverNotAString) { expect_scene_error({{"solver = \"exact\"", "solver = 4"}},
+    R"~(scene.toml:17:10: error: solver must be a string in quotes)~"); }
+TEST_F(Simulation, UnknownSolver) { expect_scene_error({{"solver = \"exact\"", "solver = \"euler\""}},
+    R"~(scene.toml:17:10: error: unknown solver 'euler'; the solvers are exact, rk4, dopri5, implicit)~"); }
+TEST_F(Simulation, HorizonUnit) { expect_scene_error({{"horizon = \"0.1*s\"", "horizon = \"0.1*m\""}},
+    R"~(scene.toml:15:11: error: horizon has unit m; it needs s)~"); }
+TEST_F(Simulation, HorizonNotPositive) { expect_scene_error({{"horizon = \"0.1*s\"", "horizon = \"0*s\""}},
+    R"~(scene.toml:15:11: error: horizon must be positive)~"); }
+TEST_F(Simulation, SampleAboveHorizon) { expect_scene_error({{"sample = \"1*ms\"", "sample = \"1*s\""}},
+    R"~(scene.toml:16:10: error: sample must be positive and at most the horizon)~"); }
+TEST_F(Simulation, StepNotPositive) { expect_scene_error({{"step = \"0.05*ms\"", "step = \"-1*ms\""}},
+    R"~(scene.toml:19:8: error: step must be positive)~"); }
+TEST_F(Simulation, TooManySamples) { expect_scene_error({{"horizon = \"0.1*s\"", "horizon = \"1000*minute\""}},
+    R"~(scene.toml:14:1: error: 60000000 samples requested; at most 1e7 (raise sample or shorten the horizon))~"); }
+
+TEST_F(Simulation, RedundantMeshesWithTunables) {
+  // A third planet on the carrier: three meshes for two degrees of freedom between sun and ring.
+  const std::string model = edited(base_model(),
+      {{"axis = { fixed = \"below\" }\n", "axis = { fixed = \"below\" }\n\n[[body]]\nname = \"q\"\naxis = { carrier = \"c\", distance = \"r_c\", side = \"below\" }\ninertia = \"J_p\"\nfriction = \"b_p\"\nwheels = [ { name = \"q\", radius = \"r_p\" } ]\n"},
+       {"[parameters]\n", "[[mesh]]\nfirst = \"q\"\nsecond = \"s1\"\nstiffness = \"K_ps\"\ndamping = \"b_ps\"\n\n[[mesh]]\nfirst = \"q\"\nsecond = \"r1\"\nstiffness = \"K_ps\"\ndamping = \"b_ps\"\n\n[parameters]\n"}});
+  expect_documented(scene_error(edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"J_c\"]"}}), model),
+                    R"~(scene.toml: error: this model has redundant meshes, whose rigid load split depends on every stiffness and radius; it is computed at fixed values, so it cannot be combined with tunable parameters: drop 'tunable' or 'mesh_forces')~");
+}
+
+}  // namespace
+}  // namespace pogear::test
+
+namespace pogear::test {
+namespace {
+
+// docs/errors.md itself: it lists the example files as they are, and each entry names a test
+// that exists.
+TEST(ErrorDocs, ShowTheExampleFilesVerbatim) {
+  EXPECT_NE(docs().find("```toml\n" + base_model() + "```"), std::string::npos);
+  EXPECT_NE(docs().find("```toml\n" + base_scene() + "```"), std::string::npos);
+}
+
+TEST(ErrorDocs, EveryEntryNamesItsTest) {
+  std::size_t entries = 0;
+  for (auto at = docs().find("\n### "); at != std::string::npos; at = docs().find("\n### ", at + 1)) {
+    const auto next = docs().find("\n## ", at + 1) < docs().find("\n### ", at + 1) ? docs().find("\n## ", at + 1)
+                                                                                   : docs().find("\n### ", at + 1);
+    const std::string entry = docs().substr(at, next == std::string::npos ? std::string::npos : next - at);
+    EXPECT_NE(entry.find(" Test: `"), std::string::npos) << entry;
+    ++entries;
+  }
+  EXPECT_GT(entries, 150u);  // the page was found and has its entries
+}
+
+TEST(ErrorDocs, EveryNamedTestExists) {
+  std::string sources;
+  for (const auto& e : fs::directory_iterator(source_path("tests/errors")))
+    if (e.path().extension() == ".cpp") sources += read_text(e.path());
+  const std::regex named("`([A-Z][A-Za-z0-9]*)\\.([A-Z][A-Za-z0-9]*)`");
+  std::size_t checked = 0;
+  for (std::sregex_iterator it(docs().begin(), docs().end(), named), end; it != end; ++it, ++checked) {
+    const std::string suite = (*it)[1], name = (*it)[2];
+    EXPECT_TRUE(sources.find("TEST_F(" + suite + ", " + name + ")") != std::string::npos ||
+                sources.find("TEST(" + suite + ", " + name + ")") != std::string::npos)
+        << suite << "." << name << " is named in docs/errors.md but is no test";
+  }
+  EXPECT_GT(checked, 150u);
+}
+
+}  // namespace
+}  // namespace pogear::test
