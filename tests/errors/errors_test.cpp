@@ -1,6 +1,7 @@
 // Every error pogear reports, with the exact text and position users see: each test is an entry
 // of docs/errors.md, which shows the same text verbatim and names the test.
-#include <regex>
+#include <algorithm>
+#include <cctype>
 
 #include "pogear/signals.hpp"
 
@@ -779,13 +780,25 @@ TEST(ErrorDocs, EveryNamedTestExists) {
   std::string sources;
   for (const auto& e : fs::directory_iterator(source_path("tests/errors")))
     if (e.path().extension() == ".cpp") sources += read_text(e.path());
-  const std::regex named("`([A-Z][A-Za-z0-9]*)\\.([A-Z][A-Za-z0-9]*)`");
+  // Every `Suite.Name` in backquotes, both parts capitalized words (no std::regex: g++ 12 warns
+  // falsely inside it under -fsanitize=address, and the suite builds with -Werror).
+  auto word = [](const std::string& s) {
+    return !s.empty() && std::isupper(static_cast<unsigned char>(s[0])) &&
+           std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)); });
+  };
   std::size_t checked = 0;
-  for (std::sregex_iterator it(docs().begin(), docs().end(), named), end; it != end; ++it, ++checked) {
-    const std::string suite = (*it)[1], name = (*it)[2];
+  for (auto open = docs().find('`'); open != std::string::npos; open = docs().find('`', open + 1)) {
+    const auto close = docs().find('`', open + 1);
+    if (close == std::string::npos) break;
+    const std::string quoted = docs().substr(open + 1, close - open - 1);
+    const auto dot = quoted.find('.');
+    if (dot == std::string::npos || !word(quoted.substr(0, dot)) || !word(quoted.substr(dot + 1))) continue;
+    open = close;  // the closing quote opens nothing
+    const std::string suite = quoted.substr(0, dot), name = quoted.substr(dot + 1);
     EXPECT_TRUE(sources.find("TEST_F(" + suite + ", " + name + ")") != std::string::npos ||
                 sources.find("TEST(" + suite + ", " + name + ")") != std::string::npos)
         << suite << "." << name << " is named in docs/errors.md but is no test";
+    ++checked;
   }
   EXPECT_GT(checked, 150u);
 }
