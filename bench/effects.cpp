@@ -48,19 +48,28 @@ void bench_variant(const Problem<Sys>& pb, const std::string& name, const char* 
     for (int i = 0; i < Sys::nx; ++i) states[static_cast<std::size_t>(k)][i] = pb.ref.at(k, i);
   Input u;
   pb.inputs(0, u);
-  // Every component is summed, so that none of the generated arithmetic can be dropped as unused.
+  // The generated functions are called through pointers the compiler cannot see through: inlined
+  // into the loop, GCC vectorizes some variants across calls and not others, which measures its
+  // choices rather than the operation counts. Every component is summed, so none of the generated
+  // arithmetic can be dropped as unused.
+  using RhsFn = void (*)(const typename Sys::Params&, const State&, const Input&, State&);
+  using OutFn = void (*)(const typename Sys::Params&, const State&, const Input&, typename Sys::Output&);
+  volatile RhsFn rhs_fn = &Sys::rhs;
+  volatile OutFn out_fn = &Sys::outputs;
   double sink = 0;
   auto rhs_calls = [&] {
+    const RhsFn fn = rhs_fn;
     State dx;
     for (const State& x : states) {
-      Sys::rhs(pb.params, x, u, dx);
+      fn(pb.params, x, u, dx);
       sink += dx.sum();
     }
   };
   auto output_calls = [&] {
+    const OutFn fn = out_fn;
     typename Sys::Output y;
     for (const State& x : states) {
-      Sys::outputs(pb.params, x, u, y);
+      fn(pb.params, x, u, y);
       sink += y.sum();
     }
   };

@@ -65,9 +65,16 @@ EOF
   # Generator cost vs chain length.
   awk -F, 'NR > 1 && $2 == "chain" && $9 == "ok" { print $3, $4, $6 > ("plot/gen_" $1 ".dat") }' generator.csv
   if [ -f plot/gen_derive.dat ]; then
-    gnuplot <<'EOF'
+    # Where the generator refuses the model (a size limit), a line says so.
+    refused=$(awk -F, '$2 == "chain" && $9 ~ /^refused/ { print $3; exit }' generator.csv)
+    marker=""
+    [ -n "$refused" ] && marker="set arrow from first $refused, graph 0 to first $refused, graph 1 nohead dt 3 lc rgb '#cc0000'
+set label 'k >= $refused: refused by pogear' at first $refused, graph 0.08 right offset -0.5,0 tc rgb '#cc0000'
+set xrange [0:$((refused + 1))]"
+    gnuplot <<EOF
 set terminal svg size 800,500 font "Helvetica,12" background rgb "white"
 set output "generator_vs_k.svg"
+set xrange [0:*]
 set title "Generator cost: chains of k planetary stages (3k+1 bodies, 2k meshes, k+1 dof)"
 set logscale y
 set format y "10^{%L}"
@@ -77,8 +84,9 @@ set key left top
 set grid
 set arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2 lc rgb "#999999"
 set label "1 s" at graph 0.02, first 1.3 tc rgb "#666666"
+$marker
 plot 'plot/gen_derive.dat' using 1:3 with linespoints pt 7 lw 2 title "pogear derive --format json", \
-     'plot/gen_generate.dat' using 1:3 with linespoints pt 5 lw 2 title "pogear generate (scene with compare\\_rigid)"
+     'plot/gen_generate.dat' using 1:3 with linespoints pt 5 lw 2 title 'pogear generate (scene with compare\_rigid)'
 EOF
   fi
 else

@@ -133,7 +133,8 @@ for k in $ks; do
       ok) ;;
       timeout) stop="$what of k = $k took more than $timeout s" ;;
       "failed (exit 2)")  # an input error: the generator refuses the model (e.g. a size limit)
-        msg=$("$pogear" derive "$model" --format json 2>&1 > /dev/null | head -1 | sed 's/.*error: //; s/,/ /g; s/;/:/g')
+        msg=$({ "$pogear" derive "$model" --format json 2>&1 > /dev/null || true; } | head -1 |
+          sed 's/.*error: //; s/,/ /g; s/;/:/g')
         sed -i '$ s/failed (exit 2)$/refused: '"${msg//\//\/}"'/' "$gen"
         stop="k = $k refused" ;;
       *) failed+=("$what chain_$k: $status"); stop="$what of k = $k failed" ;;

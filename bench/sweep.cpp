@@ -19,8 +19,8 @@ const char* mode_name(Mode m) {
   switch (m) {
     case Mode::per_run: return "discretization per run";
     case Mode::reused: return "discretization reused";
-    case Mode::reused_states_only: return "reused, states only";
-    default: return "lockstep x8, states only (bench kernel)";
+    case Mode::reused_states_only: return "reused - states only";
+    default: return "lockstep x8 - states only (bench kernel)";
   }
 }
 
