@@ -12,37 +12,15 @@
 #include <toml++/toml.h>
 
 #include "pogear/signals.hpp"
+#include "toml_reader.hpp"
 
 namespace pogear {
 namespace {
 
 namespace fs = std::filesystem;
 
-SourceLocation at(const std::string& file, const toml::source_region& r) {
-  return SourceLocation{file, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
-}
-
-struct Reader {
-  std::string file;
+struct Reader : TomlReader {
   const Topology* model = nullptr;
-
-  SourceLocation loc(const toml::node& n) const { return at(file, n.source()); }
-  [[noreturn]] void fail(const toml::node& n, const std::string& m) const { throw InputError(loc(n), m); }
-
-  void only_keys(const toml::table& t, std::initializer_list<std::string_view> allowed, std::string_view what) const {
-    for (const auto& [key, value] : t) {
-      if (std::find(allowed.begin(), allowed.end(), key.str()) != allowed.end()) continue;
-      std::string list;
-      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      throw InputError(at(file, key.source()),
-                       fmt::format("unknown key '{}' in {}; the keys are {}", key.str(), what, list));
-    }
-  }
-
-  std::string string(const toml::node& n, std::string_view what) const {
-    if (!n.is_string()) fail(n, fmt::format("{} must be a string in quotes", what));
-    return *n.value<std::string>();
-  }
 
   std::vector<std::string> strings(const toml::node& n, std::string_view what) const {
     if (!n.is_array()) fail(n, fmt::format("{} must be a list of strings, e.g. [\"a\", \"b\"]", what));
@@ -230,16 +208,11 @@ const char* solver_name(Solver s) {
 }
 
 Scene parse_scene_text(const std::string& text, const std::string& path) {
-  Reader r{path};
-  if (text.size() > max_model_file_bytes)
-    throw InputError(SourceLocation{path, 0, 0}, fmt::format("the scene file is larger than {} bytes; a model or scene "
-                                                             "file is a few kilobytes", max_model_file_bytes));
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(at(path, e.source()), std::string(e.description()) + "; fix the TOML syntax");
-  }
+  Reader r{{path}};
+  const toml::table root = parse_toml_document(
+      text, path, max_model_file_bytes,
+      fmt::format("the scene file is larger than {} bytes; a model or scene file is a few kilobytes",
+                  max_model_file_bytes));
   r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
                      "parameters", "simulation"},
               "the scene file");
@@ -301,7 +274,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     for (const auto& [key, value] : *n->as_table()) {
       const std::string name(key.str());
       if (!parameter_names.count(name))
-        throw InputError(at(path, key.source()), fmt::format("'{}' is not a parameter of the model {}", name, topology.name));
+        throw InputError(toml_location(path, key.source()), fmt::format("'{}' is not a parameter of the model {}", name, topology.name));
       Parameter p;
       p.name = name;
       p.where = r.loc(value);
@@ -336,7 +309,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       const std::string name(key.str());
       const std::string body = name.rfind("tau_", 0) == 0 ? name.substr(4) : "";
       if (body.empty() || find_body(topology, body) < 0)
-        throw InputError(at(path, key.source()),
+        throw InputError(toml_location(path, key.source()),
                          fmt::format("input '{}' names no body; inputs are tau_<body>, e.g. tau_{}", name,
                                      topology.bodies.front().name));
       s.inputs.push_back(InputSpec{body, read_signal(r, value, scene_dir)});
@@ -357,11 +330,11 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                  std::any_of(topology.meshes.begin(), topology.meshes.end(),
                              [&](const Mesh& m) { return m.name == name.substr(2); })) {
         if (!s.effects.mesh_compliance)
-          throw InputError(at(path, key.source()), fmt::format("initial force '{}' needs mesh_compliance: the rigid "
+          throw InputError(toml_location(path, key.source()), fmt::format("initial force '{}' needs mesh_compliance: the rigid "
                                                                "model has no force states", name));
         s.initial[name] = r.quantity(value, force_dimension(), name);
       } else {
-        throw InputError(at(path, key.source()),
+        throw InputError(toml_location(path, key.source()),
                          fmt::format("'{}' is neither omega_<body> nor F_<mesh> of the model", name));
       }
     }

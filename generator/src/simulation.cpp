@@ -1,12 +1,16 @@
-// The compiled simulator is cached by a hash of its sources and the compiler, so that running a
-// scene a second time starts at once; a stale binary can never be picked up for new sources.
+// The compiled simulator is cached by a hash of everything that goes into it (its sources, the
+// runtime headers, the compiler and its flags), so that running a scene a second time starts at
+// once; a stale binary can never be picked up for new sources or an edited runtime.
 #include "simulation.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
+#include <Eigen/SparseCore>
 #include <fmt/format.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -25,6 +29,35 @@ std::uint64_t fnv1a(const std::string& s, std::uint64_t h = 1469598103934665603u
     h *= 1099511628211ull;
   }
   return h;
+}
+
+// The runtime's headers by name and content, in a fixed order, so that editing the runtime (or
+// installing another version of it) gives new cache entries.
+std::uint64_t hash_runtime_headers(const fs::path& include_dir, std::uint64_t h) {
+  std::vector<fs::path> headers;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(include_dir / "pogear", ec))
+    if (entry.is_regular_file(ec)) headers.push_back(entry.path());
+  std::sort(headers.begin(), headers.end());
+  for (const fs::path& header : headers) {
+    std::ifstream in(header, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    h = fnv1a(header.filename().string(), h);
+    h = fnv1a(text.str(), h);
+  }
+  return h;
+}
+
+// The compiler binary itself (behind its symlinks) by size and modification time: an upgraded
+// compiler, or another one at the same path, must not reuse binaries built by the old one.
+std::uint64_t hash_compiler(const fs::path& compiler, std::uint64_t h) {
+  std::error_code ec;
+  const fs::path real = fs::canonical(compiler, ec);
+  if (ec) return fnv1a(compiler.string(), h);
+  const auto size = fs::file_size(real, ec);
+  const auto mtime = fs::last_write_time(real, ec).time_since_epoch().count();
+  return fnv1a(fmt::format("{}|{}|{}", real.string(), size, mtime), h);
 }
 
 fs::path cache_root() {
@@ -54,7 +87,13 @@ rt::Signal to_signal(const SignalSpec& g) {
 }
 
 // A system with the generated structs' members, on dynamic matrices, from the numeric model.
+// The output maps are sparse, as the generated expressions are: a structural zero must not turn
+// an overflowed (infinite) rate into NaN through 0 * inf, where the compiled path writes inf.
 struct InterpretedSystem {
+  InterpretedSystem(NumericSystem numeric, std::vector<std::string> names, std::vector<std::string> units)
+      : ns(std::move(numeric)), output_names(std::move(names)), output_units(std::move(units)),
+        C(ns.C.sparseView()), D(ns.D.sparseView()), E(ns.E.sparseView()) {}
+
   using State = Eigen::VectorXd;
   using Input = Eigen::VectorXd;
   using Output = Eigen::VectorXd;
@@ -63,6 +102,7 @@ struct InterpretedSystem {
   struct Params {};
   NumericSystem ns;
   std::vector<std::string> output_names, output_units;
+  Eigen::SparseMatrix<double> C, D, E;
 
   void rhs(const Params&, const State& x, const Input& u, State& dx) const {
     dx.noalias() = ns.M * x;
@@ -71,8 +111,9 @@ struct InterpretedSystem {
   void outputs(const Params&, const State& x, const Input& u, Output& y) const {
     State dx(x.size());
     rhs({}, x, u, dx);
-    y.noalias() = ns.C * x + ns.E * dx;
-    if (u.size()) y.noalias() += ns.D * u;
+    y.noalias() = C * x;
+    y.noalias() += E * dx;
+    if (u.size()) y.noalias() += D * u;
   }
   void matrices(const Params&, StateMatrix& M, InputMatrix& N) const {
     M = ns.M;
@@ -107,11 +148,19 @@ void write_sources(const GeneratedSources& g, const std::string& dir) {
   write_file_atomically((fs::path(dir) / g.main_name).string(), g.main);
 }
 
-std::string build_simulator(const GeneratedSources& g) {
-  const std::string flags = "-std=c++20 -O2 -DNDEBUG -Wall -Wextra";
+constexpr const char* simulator_flags = "-std=c++20 -O2 -DNDEBUG -Wall -Wextra";
+
+std::uint64_t simulator_cache_key(const GeneratedSources& g, const std::string& runtime_include) {
   std::uint64_t h = fnv1a(g.header);
   h = fnv1a(g.main, h);
-  h = fnv1a(std::string(build_config::cxx_compiler) + flags + build_config::runtime_include + build_config::version, h);
+  h = fnv1a(std::string(build_config::cxx_compiler) + simulator_flags + runtime_include + build_config::version, h);
+  h = hash_runtime_headers(runtime_include, h);
+  return hash_compiler(build_config::cxx_compiler, h);
+}
+
+std::string build_simulator(const GeneratedSources& g) {
+  const std::string flags = simulator_flags;
+  const std::uint64_t h = simulator_cache_key(g, build_config::runtime_include);
   const fs::path dir = cache_root() / fmt::format("{:016x}", h);
   const fs::path exe = dir / "simulator";
   if (fs::exists(exe)) return exe.string();

@@ -2,6 +2,7 @@
 // interpreted path (the same runtime on Eigen dynamic matrices), plus gnuplot figures.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "codegen.hpp"
@@ -11,6 +12,10 @@ namespace pogear {
 
 // Writes the generated sources into `dir` (atomically, file by file).
 void write_sources(const GeneratedSources& sources, const std::string& dir);
+
+// The cache key of a simulator: a hash of its sources, the runtime headers under
+// `runtime_include`/pogear, the compiler (path, size, modification time), flags and version.
+std::uint64_t simulator_cache_key(const GeneratedSources& sources, const std::string& runtime_include);
 
 // Compiles the scene's simulator unless a binary for the same sources is cached; returns its path.
 // The cache is $POGEAR_CACHE_DIR, else $XDG_CACHE_HOME/pogear, else ~/.cache/pogear.

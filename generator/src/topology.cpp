@@ -14,38 +14,12 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "toml_reader.hpp"
+
 namespace pogear {
 namespace {
 
-SourceLocation at(const std::string& file, const toml::source_region& r) {
-  return SourceLocation{file, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
-}
-
-struct Reader {
-  std::string file;
-
-  SourceLocation loc(const toml::node& n) const { return at(file, n.source()); }
-
-  [[noreturn]] void fail(const toml::node& n, const std::string& message) const {
-    throw InputError(loc(n), message);
-  }
-
-  void only_keys(const toml::table& t, std::initializer_list<std::string_view> allowed,
-                 std::string_view what) const {
-    for (const auto& [key, value] : t) {
-      if (std::find(allowed.begin(), allowed.end(), key.str()) != allowed.end()) continue;
-      std::string list;
-      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      throw InputError(at(file, key.source()),
-                       fmt::format("unknown key '{}' in {}; the keys are {}", key.str(), what, list));
-    }
-  }
-
-  std::string string(const toml::node& n, std::string_view what) const {
-    if (auto s = n.value<std::string>(); s && n.is_string()) return *s;
-    fail(n, fmt::format("{} must be a string in quotes", what));
-  }
-
+struct Reader : TomlReader {
   std::optional<std::string> optional_string(const toml::table& t, std::string_view key,
                                              std::string_view what) const {
     const toml::node* n = t.get(key);
@@ -232,14 +206,14 @@ void read_parameters(const Reader& r, const toml::table& params, Topology& t) {
                       return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
                     });
     if (!ok)
-      throw InputError(at(r.file, key.source()),
+      throw InputError(toml_location(r.file, key.source()),
                        fmt::format("'{}' is not a parameter name; use letters, digits and '_', starting with a letter",
                                    name));
     if (name.size() > max_name_length)
-      throw InputError(at(r.file, key.source()), fmt::format("a parameter name is {} characters long; names have at "
+      throw InputError(toml_location(r.file, key.source()), fmt::format("a parameter name is {} characters long; names have at "
                                                              "most {}", name.size(), max_name_length));
     if (is_unit_name(name))
-      throw InputError(at(r.file, key.source()), fmt::format("parameter '{}' has the name of a unit; rename it", name));
+      throw InputError(toml_location(r.file, key.source()), fmt::format("parameter '{}' has the name of a unit; rename it", name));
     Parameter p;
     p.name = name;
     p.where = r.loc(node);
@@ -315,17 +289,10 @@ void check_parameter_roles(const Topology& t) {
 }
 
 Topology parse_topology_text(const std::string& text, const std::string& path) {
-  Reader r{path};
-  if (text.size() > max_model_file_bytes)
-    throw InputError(SourceLocation{path, 0, 0},
-                     fmt::format("the file is larger than {} bytes; a model or scene file is a few kilobytes",
-                                 max_model_file_bytes));
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(at(path, e.source()), std::string(e.description()) + "; fix the TOML syntax");
-  }
+  Reader r{{path}};
+  const toml::table root = parse_toml_document(
+      text, path, max_model_file_bytes,
+      fmt::format("the file is larger than {} bytes; a model or scene file is a few kilobytes", max_model_file_bytes));
   r.only_keys(root, {"name", "title", "keep", "body", "mesh", "parameters"}, "the model file");
 
   Topology t;

@@ -1,6 +1,8 @@
 // The compiled path against independent references: the interpreted path (numeric L, A, B of
 // the derivation), and one matrix exponential over the whole horizon built from the numbers
 // that `pogear derive --format json` reports. Also: generated/ is what the generator writes.
+#include <fstream>
+
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "sim_support.hpp"
@@ -57,6 +59,24 @@ INSTANTIATE_TEST_SUITE_P(Paper, PaperScenes,
                          ::testing::Values(PaperScene{"paper_one_stage", POGEAR_SIM_ONE_STAGE},
                                            PaperScene{"paper_two_stage", POGEAR_SIM_TWO_STAGE}),
                          [](const auto& info) { return info.param.name; });
+
+// A cached simulator must never outlive a change to anything compiled into it: an edit of one
+// runtime header (here a copy of runtime/, so the real one stays untouched) gives a new key.
+TEST(SimulatorCache, KeyFollowsSourcesAndRuntimeHeaders) {
+  namespace fs = std::filesystem;
+  const GeneratedSources sources = generate_sources(scene_model(scene_text("paper_one_stage")));
+  const fs::path runtime = temp_dir("cache_key_runtime");
+  fs::copy(source_path("runtime"), runtime, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  const std::uint64_t key = simulator_cache_key(sources, runtime.string());
+  EXPECT_EQ(simulator_cache_key(sources, runtime.string()), key);
+
+  GeneratedSources edited = sources;
+  edited.header += "\n";
+  EXPECT_NE(simulator_cache_key(edited, runtime.string()), key);
+
+  { std::ofstream(runtime / "pogear" / "exact.hpp", std::ios::app) << "// edited\n"; }
+  EXPECT_NE(simulator_cache_key(sources, runtime.string()), key);
+}
 
 // Done-when of the simulate issue: `pogear simulate --solver exact` end to end, against
 // x(T) = exp(M T) x0 + (integral of exp(M s) ds) N u from the derive report's numbers.

@@ -1,0 +1,31 @@
+// What the model and scene readers share: parsing a TOML file with located syntax errors, and the
+// checks every table needs (known keys, strings), each complaint placed at the value it concerns.
+#pragma once
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+#include <toml++/toml.h>
+
+#include "input_error.hpp"
+
+namespace pogear {
+
+SourceLocation toml_location(const std::string& file, const toml::source_region& region);
+
+// Parses `text` (read from `path`); a file larger than `max_bytes` is refused with `too_large`.
+toml::table parse_toml_document(const std::string& text, const std::string& path, std::size_t max_bytes,
+                                const std::string& too_large);
+
+struct TomlReader {
+  std::string file;
+
+  SourceLocation loc(const toml::node& n) const { return toml_location(file, n.source()); }
+  [[noreturn]] void fail(const toml::node& n, const std::string& message) const;
+  // Refuses keys of `t` outside `allowed`, listing the allowed ones; `what` names the table.
+  void only_keys(const toml::table& t, std::initializer_list<std::string_view> allowed, std::string_view what) const;
+  std::string string(const toml::node& n, std::string_view what) const;
+};
+
+}  // namespace pogear
