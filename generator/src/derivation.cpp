@@ -27,7 +27,8 @@ Derivation derive_topology(Topology topology, const std::optional<std::vector<st
   const GiNaC::exmap at = numeric_substitutions(d.symbols, d.radius.values);
   const Eigen::MatrixXd L = evaluate_matrix(d.elastic.L, at);
   const Eigen::MatrixXd M = L.diagonal().cwiseInverse().asDiagonal() * evaluate_matrix(d.elastic.A, at);
-  d.diagnostics = diagnose(M, evaluate_matrix(d.rigid.L1, at), evaluate_matrix(d.elastic.R, at));
+  d.rigid_values = exact_rigid_values(d.rigid, d.elastic, at);
+  d.diagnostics = diagnose(M, evaluate_matrix(d.rigid_values.L1, {}), evaluate_matrix(d.elastic.R, at));
   return d;
 }
 

@@ -17,6 +17,7 @@ struct Derivation {
   ElasticModel elastic;
   RigidModel rigid;
   std::vector<std::string> keep;
+  RigidValues rigid_values;  // Q1, L1, A1 at the model's values, exact
   Diagnostics diagnostics;  // of the elastic model with every effect, at the model's values
 };
 

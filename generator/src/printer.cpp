@@ -7,6 +7,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 #include <vector>
 
 #include <fmt/format.h>
@@ -19,6 +20,8 @@ using GiNaC::numeric;
 
 // Integers print the same way every run; only sums and products need our ordering.
 std::string digits(const numeric& v) {
+  static const numeric small(1000000000000000000L);  // fits a long: no stream needed
+  if (v.is_integer() && GiNaC::abs(v) < small) return fmt::format("{}", v.to_long());
   std::ostringstream os;
   os << v;
   return os.str();
@@ -47,6 +50,7 @@ Term split_term(const ex& e) {
     }
   };
   if (GiNaC::is_a<GiNaC::mul>(e)) {
+    t.factors.reserve(e.nops());
     for (const ex& f : e) add_factor(f);
   } else {
     add_factor(e);
@@ -54,32 +58,48 @@ Term split_term(const ex& e) {
   return t;
 }
 
-void count_symbols(const ex& e, std::set<std::string>& names) {
-  if (GiNaC::is_a<GiNaC::symbol>(e)) {
-    names.insert(GiNaC::ex_to<GiNaC::symbol>(e).get_name());
-    return;
-  }
-  for (const ex& op : e) count_symbols(op, names);
+// How many different symbols e holds. Symbols are told apart by identity (GiNaC's order), which
+// is much cheaper than by name and the same: pogear has one symbol per name (symbols.hpp).
+std::size_t count_symbols(const ex& e) {
+  if (GiNaC::is_a<GiNaC::symbol>(e)) return 1;
+  GiNaC::exvector found;
+  for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (GiNaC::is_a<GiNaC::symbol>(*it)) found.push_back(*it);
+  std::sort(found.begin(), found.end(), GiNaC::ex_is_less());
+  return static_cast<std::size_t>(std::unique(found.begin(), found.end(), GiNaC::ex_is_equal()) - found.begin());
 }
 
+// One printer per expression. It remembers what it printed: the ordering keys print every
+// factor, and a sum that is a factor is printed again, so without the memory the work grows
+// with the nesting depth times the size.
 class Printer {
  public:
   explicit Printer(Notation n) : n_(n) {}
 
-  std::string print(const ex& e) const {
-    if (GiNaC::is_a<GiNaC::relational>(e)) {
+  std::string print(const ex& e) {
+    if (GiNaC::is_a<GiNaC::symbol>(e) && n_ != Notation::latex) return GiNaC::ex_to<GiNaC::symbol>(e).get_name();
+    const auto known = printed_.find(e);
+    if (known != printed_.end()) return known->second;
+    std::string s;
+    if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      s = latex_symbol(GiNaC::ex_to<GiNaC::symbol>(e).get_name());
+    } else if (GiNaC::is_a<GiNaC::relational>(e)) {
       const char* op = n_ == Notation::latex ? " = " : (n_ == Notation::ginac ? "==" : " == ");
-      return print(e.op(0)) + op + print(e.op(1));
+      s = print(e.op(0)) + op + print(e.op(1));
+    } else if (GiNaC::is_a<GiNaC::add>(e)) {
+      s = sum(e);
+    } else {
+      s = term(canonical(split_term(e)));
     }
-    if (GiNaC::is_a<GiNaC::add>(e)) return sum(e);
-    return term(canonical(split_term(e)));
+    printed_.emplace(e, s);
+    return s;
   }
 
  private:
-  std::string symbol_name(const ex& e) const {
-    const std::string name = GiNaC::ex_to<GiNaC::symbol>(e).get_name();
-    return n_ == Notation::latex ? latex_symbol(name) : name;
-  }
+  // A term's factors printed and in order, numerator and denominator, without the coefficient.
+  struct Parts {
+    std::vector<std::string> up, down;
+  };
 
   std::string number(const numeric& v) const {
     if (n_ == Notation::cpp) return cpp_double(v.to_double());
@@ -91,33 +111,34 @@ class Printer {
     return fmt::format("{}", v.to_double());
   }
 
-  // A factor that must stand alone in a product: parenthesize sums.
-  std::string atom(const ex& e) const {
-    if (GiNaC::is_a<GiNaC::symbol>(e)) return symbol_name(e);
+  // A factor that must stand alone in a product: parenthesize sums. `printed` is print(e); a
+  // symbol, a function and Pi print as themselves.
+  std::string atom(const ex& e, const std::string& printed) {
     if (GiNaC::is_a<numeric>(e)) {
       const numeric& v = GiNaC::ex_to<numeric>(e);
       const std::string s = number(v);
       return (v.is_negative() || (!v.is_integer() && n_ != Notation::cpp)) ? paren(s) : s;
     }
+    if (GiNaC::is_a<GiNaC::symbol>(e)) return printed;
     if (GiNaC::is_a<GiNaC::function>(e)) return function(e);
     if (e.is_equal(GiNaC::Pi)) return n_ == Notation::latex ? "\\pi" : (n_ == Notation::cpp ? "3.141592653589793" : "Pi");
-    return paren(print(e));
+    return paren(printed);
   }
 
   std::string paren(const std::string& s) const {
     return n_ == Notation::latex ? "\\left(" + s + "\\right)" : "(" + s + ")";
   }
 
-  std::string function(const ex& e) const {
+  std::string function(const ex& e) {
     std::string s = GiNaC::ex_to<GiNaC::function>(e).get_name();
     s += "(";
     for (std::size_t i = 0; i < e.nops(); ++i) s += (i ? ", " : "") + print(e.op(i));
     return s + ")";
   }
 
-  std::string raised(const Factor& f) const {
+  std::string raised(const Factor& f, const std::string& printed_base) {
     const numeric p = GiNaC::abs(f.exponent);
-    const std::string base = atom(f.base);
+    const std::string base = atom(f.base, printed_base);
     if (p == 1) return base;
     if (n_ == Notation::cpp) {
       if (p.is_integer() && p <= 4) {
@@ -131,30 +152,28 @@ class Printer {
     return base + "^" + (p.is_integer() ? digits(p) : "(" + number(p) + ")");
   }
 
-  std::string product(const std::vector<std::string>& parts) const {
-    std::string s;
+  void append_product(std::string& s, const std::vector<std::string>& parts) const {
     const char* sep = n_ == Notation::latex ? " " : "*";
-    for (const auto& p : parts) s += (s.empty() ? "" : sep) + p;
-    return s;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      if (i) s += sep;
+      s += parts[i];
+    }
   }
 
   // GiNaC's normal() may return -(a - b) in one run and (b - a) in the next. Fix the sign of
   // every sum factor so that its first term in our order is positive.
-  Term canonical(Term t) const {
+  Term canonical(Term t) {
     for (auto& f : t.factors) {
       if (!GiNaC::is_a<GiNaC::add>(f.base)) continue;
       std::optional<ex> first;  // by value: GiNaC's iterators hand out temporaries
       std::pair<std::size_t, std::string> best;
       for (const ex& op : f.base) {
-        Term u = split_term(op);
-        std::set<std::string> names;
-        count_symbols(op, names);
-        u.coefficient = 1;
-        std::pair<std::size_t, std::string> key{names.size(), magnitude(u)};
+        const Term u = split_term(op);
+        std::pair<std::size_t, std::string> key{count_symbols(op), compose(numeric(1), parts(u))};
         if (u.factors.empty()) key.first = std::numeric_limits<std::size_t>::max();  // numbers last
         if (!first || key < best) {
           first = op;
-          best = key;
+          best = std::move(key);
         }
       }
       if (!first || !split_term(*first).coefficient.is_negative()) continue;
@@ -165,66 +184,84 @@ class Printer {
     return t;
   }
 
-  // Prints |term| (the sign is the caller's).
-  std::string magnitude(const Term& t) const {
-    std::vector<const Factor*> up, down;
-    for (const auto& f : t.factors) (f.exponent.is_negative() ? down : up).push_back(&f);
+  Parts parts(const Term& t) {
     // Parameters first, then compound factors, then the variables (tau, omega, d omega/dt):
     // J_p r_r1 domega_r and (J_c r_p^2 + J_p r_c^2) domega_c, as the paper writes them.
-    auto rank = [](const Factor* f) {
-      if (!GiNaC::is_a<GiNaC::symbol>(f->base)) return 1;
-      const std::string& n = GiNaC::ex_to<GiNaC::symbol>(f->base).get_name();
+    struct Keyed {
+      int rank;
+      std::string base;  // printed
+      const Factor* factor;
+    };
+    auto rank = [](const ex& base) {
+      if (!GiNaC::is_a<GiNaC::symbol>(base)) return 1;
+      const std::string n = GiNaC::ex_to<GiNaC::symbol>(base).get_name();
       const bool variable = n.rfind("tau_", 0) == 0 || n.rfind("omega_", 0) == 0 || n.rfind("domega_", 0) == 0;
       return variable ? 2 : 0;
     };
-    auto order = [&](const Factor* a, const Factor* b) {
-      if (rank(a) != rank(b)) return rank(a) < rank(b);
-      return print(a->base) < print(b->base);
+    std::vector<Keyed> up, down;
+    for (const auto& f : t.factors)
+      (f.exponent.is_negative() ? down : up).push_back({rank(f.base), print(f.base), &f});
+    auto order = [](const Keyed& a, const Keyed& b) {
+      if (a.rank != b.rank) return a.rank < b.rank;
+      return a.base < b.base;
     };
     std::sort(up.begin(), up.end(), order);
     std::sort(down.begin(), down.end(), order);
+    Parts p;
+    p.up.reserve(up.size());
+    p.down.reserve(down.size());
+    for (const auto& k : up) p.up.push_back(raised(*k.factor, k.base));
+    for (const auto& k : down) p.down.push_back(raised(*k.factor, k.base));
+    return p;
+  }
 
-    const numeric c = GiNaC::abs(t.coefficient);
+  // Prints c times the factors, c > 0.
+  std::string compose(const numeric& c, const Parts& p) const {
     std::vector<std::string> num, den;
     if (n_ == Notation::cpp) {
       // One correctly rounded double, not numerator/denominator (exact rationals are long).
-      if (c != 1 || up.empty()) num.push_back(number(c));
+      if (c != 1 || p.up.empty()) num.push_back(number(c));
     } else if (c.is_rational()) {
-      if (c.numer() != 1 || up.empty()) num.push_back(number(c.numer()));
+      if (c.numer() != 1 || p.up.empty()) num.push_back(number(c.numer()));
       if (c.denom() != 1) den.push_back(number(c.denom()));
     } else {
       num.push_back(number(c));
     }
-    for (const Factor* f : up) num.push_back(raised(*f));
-    for (const Factor* f : down) den.push_back(raised(*f));
-    // A lone coefficient 1 in front of factors is dropped above; restore it for "1/x".
-    if (num.empty()) num.push_back(n_ == Notation::cpp ? "1.0" : "1");
-    const std::string top = product(num);
-    if (den.empty()) return top;
-    const std::string bottom = product(den);
+    // A lone coefficient 1 in front of factors is dropped above; it is restored for "1/x".
+    std::string top;
+    append_product(top, num);
+    if (!num.empty() && !p.up.empty()) top += n_ == Notation::latex ? " " : "*";
+    append_product(top, p.up);
+    if (top.empty()) top = n_ == Notation::cpp ? "1.0" : "1";
+    if (den.empty() && p.down.empty()) return top;
+    std::string bottom;
+    append_product(bottom, den);
+    if (!den.empty() && !p.down.empty()) bottom += n_ == Notation::latex ? " " : "*";
+    append_product(bottom, p.down);
     if (n_ == Notation::latex) return fmt::format("\\frac{{{}}}{{{}}}", top, bottom);
-    return top + "/" + (bottom.find_first_of("*/") != std::string::npos ? "(" + bottom + ")" : bottom);
+    if (bottom.find_first_of("*/") != std::string::npos) return top + "/(" + bottom + ")";
+    return top + "/" + bottom;
   }
 
-  std::string term(const Term& t) const {
-    const std::string m = magnitude(t);
+  std::string term(const Term& t) {
+    const std::string m = compose(GiNaC::abs(t.coefficient), parts(t));
     return t.coefficient.is_negative() ? "-" + m : m;
   }
 
-  std::string sum(const ex& e) const {
+  std::string sum(const ex& e) {
     struct Keyed {
       std::size_t symbols;
       std::string body;
       Term term;
+      Parts parts;
     };
     std::vector<Keyed> terms;
+    terms.reserve(e.nops());
     for (const ex& op : e) {
       Term t = canonical(split_term(op));
-      std::set<std::string> names;
-      count_symbols(op, names);
-      Term unit = t;
-      unit.coefficient = 1;
-      terms.push_back({names.size(), magnitude(unit), std::move(t)});
+      Parts p = parts(t);
+      std::string body = compose(numeric(1), p);
+      terms.push_back({count_symbols(op), std::move(body), std::move(t), std::move(p)});
     }
     std::sort(terms.begin(), terms.end(), [](const Keyed& a, const Keyed& b) {
       // A bare number goes last, as people write it.
@@ -241,15 +278,19 @@ class Printer {
     const bool spaced = n_ != Notation::ginac;
     std::string s;
     for (std::size_t i = 0; i < terms.size(); ++i) {
-      const std::string m = magnitude(terms[i].term);
-      const bool negative = terms[i].term.coefficient.is_negative();
-      if (i == 0) s = negative ? "-" + m : m;
-      else s += spaced ? (negative ? " - " : " + ") + m : (negative ? "-" : "+") + m;
+      const numeric& c = terms[i].term.coefficient;
+      const bool negative = c.is_negative();
+      if (i == 0) s += negative ? "-" : "";
+      else s += spaced ? (negative ? " - " : " + ") : (negative ? "-" : "+");
+      // |c| = 1 prints the same as the key already made.
+      if (GiNaC::abs(c) == 1) s += terms[i].body;
+      else s += compose(GiNaC::abs(c), terms[i].parts);
     }
     return s;
   }
 
   Notation n_;
+  std::unordered_map<ex, std::string, std::hash<ex>, GiNaC::ex_is_equal> printed_;
 };
 
 }  // namespace

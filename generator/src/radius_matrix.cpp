@@ -22,8 +22,10 @@ struct Heights {
   std::vector<std::optional<double>> value;  // per body, numeric when known
 };
 
-std::optional<double> value_of(const ex& e, Symbols& s, const std::map<std::string, double>& values) {
-  const ex v = e.subs(numeric_substitutions(s, values)).evalf();
+// `values`: numeric_substitutions of the parameters known so far, built once (a chain of 40
+// stages has 500 of them, and every axis and mesh asks).
+std::optional<double> value_of(const ex& e, const GiNaC::exmap& values) {
+  const ex v = exact_value(e, values).evalf();
   if (!GiNaC::is_a<GiNaC::numeric>(v)) return std::nullopt;
   return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
 }
@@ -34,7 +36,7 @@ std::map<std::string, double> given_values(const Topology& t) {
   return v;
 }
 
-Heights axis_heights(const Topology& t, Symbols& s, const std::map<std::string, double>& values) {
+Heights axis_heights(const Topology& t, Symbols& s, const GiNaC::exmap& values) {
   const std::size_t n = t.bodies.size();
   Heights h{std::vector<ex>(n), std::vector<std::optional<double>>(n)};
   std::vector<bool> placed(n, false);
@@ -57,16 +59,16 @@ Heights axis_heights(const Topology& t, Symbols& s, const std::map<std::string, 
         break;
       }
     }
-    h.value[k] = value_of(h.symbolic[k], s, values);
+    h.value[k] = value_of(h.symbolic[k], values);
   };
   for (std::size_t k = 0; k < n; ++k) place(static_cast<int>(k));
   return h;
 }
 
 // The sign of a height difference, when the numbers are missing, from lengths being positive.
-std::optional<int> sign_of(const ex& diff, Symbols& s, const std::map<std::string, double>& values) {
-  if (auto v = value_of(diff, s, values)) return *v > 0 ? 1 : (*v < 0 ? -1 : 0);
-  const ex e = diff.subs(numeric_substitutions(s, values)).expand();
+std::optional<int> sign_of(const ex& diff, const GiNaC::exmap& values) {
+  if (auto v = value_of(diff, values)) return *v > 0 ? 1 : (*v < 0 ? -1 : 0);
+  const ex e = diff.subs(values).expand();
   int sign = 0;
   const auto terms = GiNaC::is_a<GiNaC::add>(e) ? GiNaC::exvector(e.begin(), e.end()) : GiNaC::exvector{e};
   for (const ex& term : terms) {
@@ -85,8 +87,7 @@ std::optional<int> sign_of(const ex& diff, Symbols& s, const std::map<std::strin
   return sign;
 }
 
-ContactSides contact_sides(const Topology& t, int mi, Heights& h, Symbols& s,
-                           const std::map<std::string, double>& values) {
+ContactSides contact_sides(const Topology& t, int mi, Heights& h, Symbols& s, const GiNaC::exmap& values) {
   const Mesh& m = t.meshes[mi];
   const int bi = m.first.body;
   const int bj = m.second.body;
@@ -105,7 +106,7 @@ ContactSides contact_sides(const Topology& t, int mi, Heights& h, Symbols& s,
     throw InputError(m.where, fmt::format("{}: neither axis height is known yet; mesh a fixed-axis gear with a "
                                           "central or carried wheel first", describe_mesh(t, mi)));
   else
-    j_above = sign_of(h.symbolic[bj] - h.symbolic[bi], s, values);
+    j_above = sign_of(h.symbolic[bj] - h.symbolic[bi], values);
   if (!j_above)
     throw InputError(m.where, fmt::format("{}: cannot tell which axis is drawn higher; give the numeric values "
                                           "of the axis distances", describe_mesh(t, mi)));
@@ -125,7 +126,7 @@ ContactSides contact_sides(const Topology& t, int mi, Heights& h, Symbols& s,
   // A fixed axis is placed by its first mesh: contact heights must agree.
   auto place = [&](int fixed_body, int other_body, int side_fixed, int side_other, const Wheel& wf, const Wheel& wo) {
     h.symbolic[fixed_body] = h.symbolic[other_body] + side_other * symbol(s, wo.radius) - side_fixed * symbol(s, wf.radius);
-    h.value[fixed_body] = value_of(h.symbolic[fixed_body], s, values);
+    h.value[fixed_body] = value_of(h.symbolic[fixed_body], values);
   };
   if (fi) place(bi, bj, c.first, c.second, wi, wj);
   if (fj) place(bj, bi, c.second, c.first, wj, wi);
@@ -168,13 +169,14 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
   const auto m = t.meshes.size();
   RadiusMatrix rm;
   rm.values = given_values(t);
-  Heights h = axis_heights(t, s, rm.values);
+  GiNaC::exmap known = numeric_substitutions(s, rm.values);
+  Heights h = axis_heights(t, s, known);
 
   rm.R = GiNaC::matrix(m, n);
   std::vector<ex> contact_equations;  // a_i + side_i r_i - (a_j + side_j r_j) == 0, per mesh
   for (std::size_t mi = 0; mi < m; ++mi) {
     const Mesh& mesh = t.meshes[mi];
-    const ContactSides c = contact_sides(t, static_cast<int>(mi), h, s, rm.values);
+    const ContactSides c = contact_sides(t, static_cast<int>(mi), h, s, known);
     rm.sides.push_back(c);
     const ex ri = symbol(s, wheel(t, mesh.first).radius);
     const ex rj = symbol(s, wheel(t, mesh.second).radius);
@@ -195,8 +197,14 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
     std::optional<GiNaC::realsymbol> best;
     int best_rank = -2;
     int best_order = -2;
-    for (const auto& [name, sym] : s.by_name) {
-      if (!e.has(sym)) continue;
+    // The symbols of e, in the order of their names (as a walk over every symbol would meet them).
+    std::map<std::string, GiNaC::realsymbol> in_e;
+    for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
+      if (GiNaC::is_a<GiNaC::symbol>(*it)) {
+        const std::string& name = GiNaC::ex_to<GiNaC::symbol>(*it).get_name();
+        in_e.emplace(name, symbol(s, name));
+      }
+    for (const auto& [name, sym] : in_e) {
       int order = -1;
       const int r = name.rfind("__height_", 0) == 0 ? 3 : unknown_rank(t, name, order);
       if (std::tie(r, order) > std::tie(best_rank, best_order)) {
@@ -209,7 +217,8 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
       throw InputError(t.meshes[mi].where, fmt::format("{}: its contact geometry cannot be satisfied",
                                                        describe_mesh(t, static_cast<int>(mi))));
     const ex value = (-e.coeff(*best, 0) / e.coeff(*best, 1)).expand();
-    for (auto& [sym, v] : solved) v = v.subs(*best == value).expand();
+    for (auto& [sym, v] : solved)
+      if (v.has(*best)) v = v.subs(*best == value).expand();
     solved[*best] = value;
     solved_by[GiNaC::ex_to<GiNaC::symbol>(*best).get_name()] = static_cast<int>(mi);
   }
@@ -242,7 +251,7 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
                                             "[parameters]", b.distance, b.name));
 
   for (const auto& g : rm.relations) {
-    const auto implied = value_of(g.rhs, s, rm.values);
+    const auto implied = value_of(g.rhs, known);
     if (!implied) continue;  // depends on a missing free radius: reported above
     const Parameter* p = find_parameter(t, g.parameter);
     if (!p) {
@@ -251,6 +260,7 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
                          fmt::format("{} makes '{}' = {:.6g} m, which is not positive; check the layout",
                                      describe_mesh(t, g.mesh), g.parameter, *implied));
       rm.values[g.parameter] = *implied;
+      known[symbol(s, g.parameter)] = exact_number(*implied);
       rm.derived.push_back(g.parameter);
       continue;
     }

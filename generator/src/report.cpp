@@ -312,9 +312,10 @@ std::string report_json(const Derivation& d) {
   j += "    \"K\": " + json_numbers(diag(d.elastic.K)) + ",\n";
   j += "    \"b_K\": " + json_numbers(diag(d.elastic.B_K)) + ",\n";
   j += "    \"R\": " + json_number_matrix(evaluate_matrix(d.elastic.R, values)) + ",\n";
-  j += "    \"Q1\": " + json_number_matrix(evaluate_matrix(d.rigid.Q1, values)) + ",\n";
-  j += "    \"L1\": " + json_number_matrix(evaluate_matrix(d.rigid.L1, values)) + ",\n";
-  j += "    \"A1\": " + json_number_matrix(evaluate_matrix(d.rigid.A1, values)) + "\n";
+  const RigidValues& rigid = d.rigid_values;
+  j += "    \"Q1\": " + json_number_matrix(evaluate_matrix(rigid.Q1, {})) + ",\n";
+  j += "    \"L1\": " + json_number_matrix(evaluate_matrix(rigid.L1, {})) + ",\n";
+  j += "    \"A1\": " + json_number_matrix(evaluate_matrix(rigid.A1, {})) + "\n";
   j += "  },\n";
   j += "  \"diagnostics\": " + diagnostics_json(d.diagnostics, "  ") + "\n}\n";
   return j;

@@ -69,6 +69,27 @@ GiNaC::matrix kernel_basis(const GiNaC::matrix& R, const Eigen::MatrixXd& Rn, co
   return Q;
 }
 
+// No sum anywhere in e: a product of powers of symbols, whose products GiNaC keeps in lowest
+// terms by itself.
+bool is_monomial(const ex& e) {
+  if (GiNaC::is_a<GiNaC::numeric>(e) || GiNaC::is_a<GiNaC::symbol>(e)) return true;
+  if (GiNaC::is_exactly_a<GiNaC::power>(e))
+    return GiNaC::is_a<GiNaC::symbol>(e.op(0)) && GiNaC::is_a<GiNaC::numeric>(e.op(1)) &&
+           GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer();
+  if (!GiNaC::is_exactly_a<GiNaC::mul>(e)) return false;
+  for (const ex& f : e)
+    if (!is_monomial(f)) return false;
+  return true;
+}
+
+// normal(a b), without normal's polynomial gcds when both are monomials (every entry of Q1 for
+// a chain of stages is one): their product is already in lowest terms.
+ex normal_product(const ex& a, const ex& b) {
+  if (a.is_zero() || b.is_zero()) return 0;
+  if (is_monomial(a) && is_monomial(b)) return a * b;
+  return (a * b).normal();
+}
+
 std::string names_of(const Topology& t, const std::vector<int>& bodies, const char* sep = ",") {
   std::string s;
   for (int b : bodies) s += (s.empty() ? "" : sep) + t.bodies[b].name;
@@ -198,16 +219,18 @@ RigidModel reduce_to_rigid(const Topology& t, const RadiusMatrix& rm, const Elas
   const unsigned k = r.kept.size();
   r.L1 = GiNaC::matrix(k, k);
   r.A1 = GiNaC::matrix(k, k);
+  // L1 and A1 are symmetric; each sum is built at once (adding term by term re-sorts it each time).
   for (unsigned i = 0; i < k; ++i)
-    for (unsigned j = 0; j < k; ++j) {
-      ex l = 0, a = 0;
+    for (unsigned j = i; j < k; ++j) {
+      GiNaC::exvector l, a;
       for (int b = 0; b < n; ++b) {
-        const ex q = (r.Q1(b, i) * r.Q1(b, j)).normal();
-        l += e.J(b, b) * q;
-        a -= e.B_J(b, b) * q;
+        const ex q = normal_product(r.Q1(b, i), r.Q1(b, j));
+        if (q.is_zero()) continue;
+        l.push_back(e.J(b, b) * q);
+        a.push_back(-e.B_J(b, b) * q);
       }
-      r.L1(i, j) = l;
-      r.A1(i, j) = a;
+      r.L1(i, j) = r.L1(j, i) = GiNaC::add(l);
+      r.A1(i, j) = r.A1(j, i) = GiNaC::add(a);
     }
   r.B1 = r.Q1.transpose();
 
@@ -219,9 +242,9 @@ RigidModel reduce_to_rigid(const Topology& t, const RadiusMatrix& rm, const Elas
     // rigid model g is orthogonal to ker R = span Q1, and on that subspace (R^T K R)^+ equals
     // (R^T K R + Q1 Q1^T)^-1, an ordinary inverse. The split depends on stiffness ratios, so
     // its weights are numbers at the model's values, computed exactly and then rounded.
-    const GiNaC::matrix Kx = GiNaC::ex_to<GiNaC::matrix>(e.K.subs(values).evalm());
-    const GiNaC::matrix Rx = GiNaC::ex_to<GiNaC::matrix>(e.R.subs(values).evalm());
-    const GiNaC::matrix Qx = GiNaC::ex_to<GiNaC::matrix>(r.Q1.subs(values).evalm());
+    const GiNaC::matrix Kx = exact_matrix(e.K, values);
+    const GiNaC::matrix Rx = exact_matrix(e.R, values);
+    const GiNaC::matrix Qx = exact_matrix(r.Q1, values);
     const GiNaC::matrix S = Rx.transpose().mul(Kx).mul(Rx).add(Qx.mul(Qx.transpose()));
     const GiNaC::matrix W = Kx.mul(Rx).mul(S.inverse());  // m x n
     for (int i = 0; i < m; ++i) {
@@ -273,6 +296,32 @@ RigidModel reduce_to_rigid(const Topology& t, const RadiusMatrix& rm, const Elas
     }
   }
   return r;
+}
+
+RigidValues exact_rigid_values(const RigidModel& r, const ElasticModel& e, const GiNaC::exmap& values) {
+  RigidValues v;
+  v.Q1 = exact_matrix(r.Q1, values);
+  const unsigned n = v.Q1.rows(), k = v.Q1.cols();
+  v.L1 = GiNaC::matrix(k, k);
+  v.A1 = GiNaC::matrix(k, k);
+  std::vector<GiNaC::numeric> J(n), BJ(n);
+  for (unsigned b = 0; b < n; ++b) {
+    J[b] = as_number(exact_value(e.J(b, b), values));
+    BJ[b] = as_number(exact_value(e.B_J(b, b), values));
+  }
+  for (unsigned i = 0; i < k; ++i)
+    for (unsigned j = i; j < k; ++j) {
+      GiNaC::numeric l = 0, a = 0;
+      for (unsigned b = 0; b < n; ++b) {
+        if (v.Q1(b, i).is_zero() || v.Q1(b, j).is_zero()) continue;
+        const GiNaC::numeric q = as_number(v.Q1(b, i)).mul(as_number(v.Q1(b, j)));
+        l = l.add(J[b].mul(q));
+        a = a.sub(BJ[b].mul(q));
+      }
+      v.L1(i, j) = v.L1(j, i) = l;
+      v.A1(i, j) = v.A1(j, i) = a;
+    }
+  return v;
 }
 
 }  // namespace pogear

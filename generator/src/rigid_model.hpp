@@ -32,6 +32,14 @@ RigidModel reduce_to_rigid(const Topology& topology, const RadiusMatrix& radius,
                            const std::vector<std::string>& keep, const SourceLocation& keep_where,
                            Symbols& symbols);
 
+// Q1, L1 and A1 with `values` (symbol -> exact number, every parameter they hold) put in: the
+// numbers the closed forms give, computed from Q1's entries instead of the closed forms, which
+// grow like k^4 for a chain of k stages. Throws std::domain_error if a value is missing.
+struct RigidValues {
+  GiNaC::matrix Q1, L1, A1;  // exact numbers
+};
+RigidValues exact_rigid_values(const RigidModel& rigid, const ElasticModel& elastic, const GiNaC::exmap& values);
+
 // m bodies whose columns of R are independent, preferring sparse columns (short expressions).
 std::vector<int> force_recovery_bodies(const Eigen::MatrixXd& R_numeric);
 

@@ -61,11 +61,11 @@ ex input_or_zero(Symbols& s, const SimSystem& sys, const std::string& torque) {
 // dx/dt = M x + N u, read off the (linear) right-hand side with the temporaries substituted.
 void linear_form(Symbols& s, SimSystem& sys) {
   GiNaC::exmap temps;
-  for (const auto& a : sys.rhs_temporaries) temps[symbol(s, a.name)] = a.value.subs(temps);
+  for (const auto& a : sys.rhs_temporaries) temps[symbol(s, a.name)] = a.value.subs(temps, GiNaC::subs_options::no_pattern);
   sys.M = GiNaC::matrix(sys.states.size(), sys.states.size());
   sys.N = GiNaC::matrix(sys.states.size(), sys.inputs.size());
   for (std::size_t i = 0; i < sys.states.size(); ++i) {
-    const ex f = sys.rhs[i].subs(temps).expand();
+    const ex f = sys.rhs[i].subs(temps, GiNaC::subs_options::no_pattern).expand();
     for (std::size_t j = 0; j < sys.states.size(); ++j) sys.M(i, j) = f.diff(symbol(s, sys.states[j]));
     for (std::size_t j = 0; j < sys.inputs.size(); ++j) sys.N(i, j) = f.diff(symbol(s, sys.inputs[j]));
   }
@@ -116,7 +116,7 @@ SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
   const std::size_t n = t.bodies.size();
   const std::size_t m = t.meshes.size();
   const GiNaC::exmap fold = folding(sc, d, true);
-  auto folded = [&](const ex& e) { return e.subs(fold).expand(); };
+  auto folded = [&](const ex& e) { return e.subs(fold, GiNaC::subs_options::no_pattern).expand(); };
   SimSystem sys;
   sys.kind = elastic ? "elastic" : "rigid";
   for (const auto& name : sc.tunable) {
@@ -168,21 +168,42 @@ SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
                     "F from eq. (8)";
     for (int k : d.rigid.kept) sys.states.push_back(d.elastic.velocities[k]);
     const std::size_t k1 = sys.states.size();
-    GiNaC::matrix L1 = GiNaC::ex_to<GiNaC::matrix>(d.rigid.L1.subs(fold));
-    GiNaC::matrix A1 = GiNaC::ex_to<GiNaC::matrix>(d.rigid.A1.subs(fold));
-    const GiNaC::matrix L1inv = L1.inverse();
-    const GiNaC::matrix M1 = L1inv.mul(A1);
-    for (std::size_t j = 0; j < k1; ++j) {
-      ex f = 0;
-      for (std::size_t i = 0; i < k1; ++i) f += M1(j, i) * symbol(s, sys.states[i]);
-      for (std::size_t b = 0; b < n; ++b) {
-        const ex u = input_or_zero(s, sys, d.elastic.torques[b]);
-        if (u.is_zero()) continue;
-        ex coeff = 0;
-        for (std::size_t i = 0; i < k1; ++i) coeff += L1inv(j, i) * d.rigid.B1(i, b);
-        f += coeff * u;
+    if (sc.tunable.empty()) {
+      // Every parameter is a number: L1 x1' = A1 x1 + B1 tau solved exactly, with L1, A1 and B1 =
+      // Q1^T from Q1's entries (the closed forms of a long chain are megabytes to substitute into).
+      const RigidValues v = exact_rigid_values(d.rigid, d.elastic, fold);
+      std::vector<std::size_t> driven;  // bodies with an input torque
+      for (std::size_t b = 0; b < n; ++b)
+        if (!input_or_zero(s, sys, d.elastic.torques[b]).is_zero()) driven.push_back(b);
+      GiNaC::matrix rhs(k1, k1 + driven.size());
+      for (std::size_t i = 0; i < k1; ++i) {
+        for (std::size_t j = 0; j < k1; ++j) rhs(i, j) = v.A1(i, j);
+        for (std::size_t c = 0; c < driven.size(); ++c) rhs(i, k1 + c) = v.Q1(driven[c], i);
       }
-      sys.rhs.push_back(folded(f.normal()));
+      const GiNaC::matrix X = exact_solve(v.L1, rhs);
+      for (std::size_t j = 0; j < k1; ++j) {
+        GiNaC::exvector f;
+        for (std::size_t i = 0; i < k1; ++i) f.push_back(X(j, i) * symbol(s, sys.states[i]));
+        for (std::size_t c = 0; c < driven.size(); ++c) f.push_back(X(j, k1 + c) * symbol(s, d.elastic.torques[driven[c]]));
+        sys.rhs.push_back(folded(GiNaC::add(f)));
+      }
+    } else {
+      GiNaC::matrix L1 = GiNaC::ex_to<GiNaC::matrix>(d.rigid.L1.subs(fold, GiNaC::subs_options::no_pattern));
+      GiNaC::matrix A1 = GiNaC::ex_to<GiNaC::matrix>(d.rigid.A1.subs(fold, GiNaC::subs_options::no_pattern));
+      const GiNaC::matrix L1inv = L1.inverse();
+      const GiNaC::matrix M1 = L1inv.mul(A1);
+      for (std::size_t j = 0; j < k1; ++j) {
+        ex f = 0;
+        for (std::size_t i = 0; i < k1; ++i) f += M1(j, i) * symbol(s, sys.states[i]);
+        for (std::size_t b = 0; b < n; ++b) {
+          const ex u = input_or_zero(s, sys, d.elastic.torques[b]);
+          if (u.is_zero()) continue;
+          ex coeff = 0;
+          for (std::size_t i = 0; i < k1; ++i) coeff += L1inv(j, i) * d.rigid.B1(i, b);
+          f += coeff * u;
+        }
+        sys.rhs.push_back(folded(f.normal()));
+      }
     }
   }
   for (std::size_t i = 0; i < sys.states.size(); ++i) {
@@ -249,7 +270,7 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
   const ElasticModel& e = d.elastic;
   // Exact rational arithmetic on the assembled matrices, rounded once at the end: the same
   // numbers the specialized expressions give, by another formula.
-  auto exact = [&](const GiNaC::matrix& m) { return GiNaC::ex_to<GiNaC::matrix>(m.subs(values).evalm()); };
+  auto exact = [&](const GiNaC::matrix& m) { return exact_matrix(m, values); };
   auto doubles = [](const GiNaC::matrix& m) { return evaluate_matrix(m, {}); };
   NumericSystem out;
   std::vector<int> input_bodies;
@@ -270,28 +291,39 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
     return static_cast<Eigen::Index>(std::find(sys.states.begin(), sys.states.end(), name) - sys.states.begin());
   };
   if (sys.kind == "elastic") {
-    const GiNaC::matrix Linv = exact(e.L).inverse();
-    out.M = doubles(Linv.mul(exact(e.A)));
-    out.N = doubles(Linv.mul(input_columns(exact(e.B))));
+    const GiNaC::matrix L = exact(e.L);
+    out.M = doubles(exact_solve(L, exact(e.A)));
+    out.N = doubles(exact_solve(L, input_columns(exact(e.B))));
     for (std::size_t i = 0; i < ny; ++i) out.C(i, state_index(sys.outputs[i])) = 1;
   } else {
-    const GiNaC::matrix L1inv = exact(d.rigid.L1).inverse();
-    const GiNaC::matrix Q1 = exact(d.rigid.Q1), R = exact(e.R), J = exact(e.J), BJ = exact(e.B_J);
-    out.M = doubles(L1inv.mul(exact(d.rigid.A1)));
-    out.N = doubles(L1inv.mul(input_columns(exact(d.rigid.B1))));
+    // L1, A1 and Q1 from Q1's entries, not by substituting into the closed forms (the same numbers).
+    const RigidValues v = exact_rigid_values(d.rigid, e, values);
+    const GiNaC::matrix& Q1 = v.Q1;
+    const GiNaC::matrix R = exact(e.R), J = exact(e.J), BJ = exact(e.B_J);
+    out.M = doubles(exact_solve(v.L1, v.A1));
+    out.N = doubles(exact_solve(v.L1, input_columns(Q1.transpose())));
     // Eq. (8) literally, F = (R R^T)^-1 R g with g = tau - J Q1 x1' - B_J Q1 x1; with redundant
     // meshes the stiffness-weighted split F = K R (R^T K R)^+ g, which equals
-    // K R (R^T K R + Q1 Q1^T)^-1 g because g is orthogonal to ker R = span Q1.
-    GiNaC::matrix P;
+    // K R (R^T K R + Q1 Q1^T)^-1 g because g is orthogonal to ker R = span Q1. The inverse is
+    // applied to the columns needed, [B_J Q1, J Q1, the inputs' unit vectors], not formed.
+    const unsigned n = Q1.rows(), k = Q1.cols();
+    GiNaC::matrix G(n, 2 * k + nu);
+    for (unsigned b = 0; b < n; ++b)
+      for (unsigned j = 0; j < k; ++j) {
+        G(b, j) = BJ(b, b) * Q1(b, j);
+        G(b, k + j) = J(b, b) * Q1(b, j);
+      }
+    for (std::size_t j = 0; j < nu; ++j) G(input_bodies[j], 2 * k + j) = 1;
+    GiNaC::matrix PG;  // P G
     if (!d.rigid.redundant_meshes) {
-      P = R.mul(R.transpose()).inverse().mul(R);
+      PG = exact_solve(exact_product(R, R.transpose()), exact_product(R, G));
     } else {
       const GiNaC::matrix K = exact(e.K);
-      const GiNaC::matrix S = R.transpose().mul(K).mul(R).add(Q1.mul(Q1.transpose()));
-      P = K.mul(R).mul(S.inverse());
+      const GiNaC::matrix S = exact_product(exact_product(R.transpose(), K), R).add(exact_product(Q1, Q1.transpose()));
+      PG = exact_product(exact_product(K, R), exact_solve(S, G));
     }
-    const Eigen::MatrixXd C_F = -doubles(P.mul(BJ).mul(Q1)), E_F = -doubles(P.mul(J).mul(Q1)), Pn = doubles(P),
-                          Q1n = doubles(Q1);
+    const Eigen::MatrixXd PGn = doubles(PG), Q1n = doubles(Q1);
+    const Eigen::MatrixXd C_F = -PGn.leftCols(k), E_F = -PGn.middleCols(k, k);
     for (std::size_t i = 0; i < ny; ++i) {
       const std::string& name = sys.outputs[i];
       if (name.rfind("omega_", 0) == 0) {
@@ -300,7 +332,7 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
         const auto f = std::find(e.forces.begin(), e.forces.end(), name) - e.forces.begin();
         out.C.row(i) = C_F.row(f);
         out.E.row(i) = E_F.row(f);
-        for (std::size_t j = 0; j < nu; ++j) out.D(i, j) = Pn(f, input_bodies[j]);
+        for (std::size_t j = 0; j < nu; ++j) out.D(i, j) = PGn(f, 2 * k + j);
       }
     }
   }
@@ -310,7 +342,8 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
 Diagnostics system_diagnostics(const SimModel& model, const SimSystem& sys) {
   Derivation d = model.derivation;
   const GiNaC::exmap values = folding(model.scene, d, false);
-  return diagnose(numeric_system(model, sys).M, evaluate_matrix(d.rigid.L1, values), evaluate_matrix(d.elastic.R, values));
+  // L1 holds inertias and radii only, which the folding leaves at the model's values.
+  return diagnose(numeric_system(model, sys).M, evaluate_matrix(d.rigid_values.L1, {}), evaluate_matrix(d.elastic.R, values));
 }
 
 }  // namespace pogear

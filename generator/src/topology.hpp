@@ -72,15 +72,16 @@ struct Topology {
 
 // Limits that keep hostile input bounded.
 inline constexpr std::size_t max_model_file_bytes = 1 << 20;
-// The symbolic derivation grows like n^4 in the number of bodies. `pogear derive`, Release build,
-// one core: a chain of fixed-axis gears takes 0.8 s at 35 bodies, 1.6 s at 40, 3.0 s at 48 and
-// 7.2 s at 64; scripts/make_chain.sh's planetary chain 1.5 s at 46 bodies, 4.4 s at 61 and 78 s
-// at 121. 48 keeps any model within seconds; the paper's gears have 6 and 7 bodies.
-inline constexpr std::size_t max_bodies = 48;
-// Two meshes per body, as for planets between a sun and a ring (45 planets: 90 meshes, 0.8 s).
-inline constexpr std::size_t max_meshes = 96;
-// Well above what 48 bodies and 96 meshes name (a radius, inertia, friction or stiffness each),
-// and a bound on how deep parameters may refer to one another.
+// The closed forms grow like n^4 in size for a chain of stages (L1 of a chain of k stages is
+// (k+1)^2 sums of O(k) terms of O(k) factors). scripts/make_chain.sh's planetary chain, Release,
+// whole process, machine shared (load ~4.5 on 2 cores): `pogear derive --format json` 0.29 s at
+// 46 bodies, 1.2 s at 76, 2.5 s at 91 and 7.2 s at 121 (27 MB of JSON); `pogear generate` 1.9 s,
+// 14 s, 30 s and 95 s. 128 admits that 40-stage chain; the paper's gears have 6 and 7 bodies.
+inline constexpr std::size_t max_bodies = 128;
+// Two meshes per body, as for planets between a sun and a ring (the 40-stage chain has 80).
+inline constexpr std::size_t max_meshes = 256;
+// Well above what real gears name (the 40-stage chain: 562; a radius, inertia, friction or
+// stiffness each), and a bound on how deep parameters may refer to one another.
 inline constexpr std::size_t max_parameters = 1024;
 // Names become C++ identifiers and column headers; 64 characters is generous for `J_planet_3`.
 inline constexpr std::size_t max_name_length = 64;
