@@ -80,9 +80,10 @@ inline constexpr std::size_t max_model_file_bytes = 1 << 20;
 inline constexpr std::size_t max_bodies = 128;
 // Two meshes per body, as for planets between a sun and a ring (the 40-stage chain has 80).
 inline constexpr std::size_t max_meshes = 256;
-// Well above what real gears name (the 40-stage chain: 562; a radius, inertia, friction or
-// stiffness each), and a bound on how deep parameters may refer to one another.
-inline constexpr std::size_t max_parameters = 1024;
+// Above what a gear at the body and mesh limits can name (an inertia and a friction per body, a
+// stiffness and a damping per mesh, a radius per wheel, an axis distance per planet: at most
+// 1408; the 40-stage chain names 562), and a bound on how deep parameters may refer to one another.
+inline constexpr std::size_t max_parameters = 2048;
 // Names become C++ identifiers and column headers; 64 characters is generous for `J_planet_3`.
 inline constexpr std::size_t max_name_length = 64;
 

@@ -271,8 +271,8 @@ TEST_F(ModelParameters, NotATable) {
 
 TEST_F(ModelParameters, TooMany) {
   std::string text = edited(base_model(), {});
-  for (int i = 0; i < 1025 - 21; ++i) text += "x" + std::to_string(i) + " = 1\n";
-  expect_documented(model_error(text), R"~(gear.toml:36:1: error: 1025 parameters; a model has at most 1024)~");
+  for (int i = 0; i < 2049 - 21; ++i) text += "x" + std::to_string(i) + " = 1\n";
+  expect_documented(model_error(text), R"~(gear.toml:36:1: error: 2049 parameters; a model has at most 2048)~");
 }
 
 TEST_F(ModelParameters, BadName) {
