@@ -155,6 +155,17 @@ fi
     END { for (x in k) { split(x, a, "|"); e = t[x "|exact"]; c = t[x "|exact_csv"]
       printf "| %s | %s | %.3g | %.3g | %.3g | %.0f |\n", a[1], a[2], e, t[x "|exact_outputs"], c, c / e } }' wp.csv | sort
   echo
+  if [ -f csv_cost.csv ]; then
+    echo "## Writing the CSV, apart: one file of every sample's outputs (CsvWriter, as the generated main)"
+    echo
+    echo "memory: /dev/shm, so formatting and copying only; disk: the results directory's file system."
+    echo
+    echo "| scene | model | where | rows | numbers | bytes | s per file (median) | min | max | ns per number |"
+    echo "|---|---|---|---|---|---|---|---|---|---|"
+    awk -F, 'NR > 1 { printf "| %s | %s | %s | %s | %s | %s | %.3g | %.3g | %.3g | %.3g |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9, $10 }' \
+      csv_cost.csv
+    echo
+  fi
   echo "## Rigid vs elastic"
   echo
   echo "| scene | method | elastic s/s | rigid s/s | speedup | elastic error | rigid error (own reference) |"

@@ -31,13 +31,16 @@ std::string effects_list(const Effects& e) {
   return s.empty() ? "none (rigid, frictionless)" : s;
 }
 
-std::set<std::string> symbols_in(const std::vector<ex>& exprs) {
+void collect_symbols(const ex& e, std::set<std::string>& names) {
+  if (GiNaC::is_a<GiNaC::symbol>(e)) names.insert(GiNaC::ex_to<GiNaC::symbol>(e).get_name());
+  for (const ex& op : e) collect_symbols(op, names);
+}
+
+// The names a function body reads: its values' and its temporaries' symbols.
+std::set<std::string> symbols_in(const std::vector<ex>& values, const std::vector<Assignment>& temporaries = {}) {
   std::set<std::string> names;
-  std::function<void(const ex&)> walk = [&](const ex& e) {
-    if (GiNaC::is_a<GiNaC::symbol>(e)) names.insert(GiNaC::ex_to<GiNaC::symbol>(e).get_name());
-    for (const ex& op : e) walk(op);
-  };
-  for (const auto& e : exprs) walk(e);
+  for (const auto& e : values) collect_symbols(e, names);
+  for (const auto& a : temporaries) collect_symbols(a.value, names);
   return names;
 }
 
@@ -96,9 +99,7 @@ std::string system_struct(const SimSystem& sys, const std::string& struct_name) 
 
   // rhs
   {
-    std::vector<ex> all = sys.rhs;
-    for (const auto& a : sys.rhs_temporaries) all.push_back(a.value);
-    const auto used = symbols_in(all);
+    const auto used = symbols_in(sys.rhs, sys.rhs_temporaries);
     s += fmt::format("  // dx/dt: {}.\n", ops(sys.rhs_ops));
     s += "  static void rhs([[maybe_unused]] const Params& p, [[maybe_unused]] const State& x,\n"
          "                  [[maybe_unused]] const Input& u, State& dx) {\n";
@@ -109,13 +110,8 @@ std::string system_struct(const SimSystem& sys, const std::string& struct_name) 
   }
   // outputs
   {
-    std::vector<ex> all = sys.output_values;
-    for (const auto& a : sys.output_temporaries) all.push_back(a.value);
-    std::set<std::string> used = symbols_in(all);
-    for (const auto& a : sys.output_temporaries) {  // derivatives reuse the rhs's inputs and states
-      const auto more = symbols_in({a.value});
-      used.insert(more.begin(), more.end());
-    }
+    // The derivatives among the temporaries reuse the rhs's inputs and states.
+    const auto used = symbols_in(sys.output_values, sys.output_temporaries);
     s += fmt::format("  // Outputs: {}.\n", ops(sys.output_ops));
     s += "  static void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] const State& x,\n"
          "                      [[maybe_unused]] const Input& u, Output& y) {\n";

@@ -6,7 +6,7 @@
 namespace pogear {
 
 Derivation derive_topology(Topology topology, const std::optional<std::vector<std::string>>& keep,
-                           const SourceLocation& keep_where) {
+                           const SourceLocation& keep_where, bool closed_forms) {
   Derivation d;
   d.topology = std::move(topology);
   d.radius = derive_radius_matrix(d.topology, d.symbols);
@@ -23,7 +23,7 @@ Derivation derive_topology(Topology topology, const std::optional<std::vector<st
     if (!valid.empty())
       for (int b : valid[0]) d.keep.push_back(d.topology.bodies[b].name);
   }
-  d.rigid = reduce_to_rigid(d.topology, d.radius, d.elastic, d.keep, where, d.symbols);
+  d.rigid = reduce_to_rigid(d.topology, d.radius, d.elastic, d.keep, where, d.symbols, closed_forms);
   const GiNaC::exmap at = numeric_substitutions(d.symbols, d.radius.values);
   const Eigen::MatrixXd L = evaluate_matrix(d.elastic.L, at);
   const Eigen::MatrixXd M = L.diagonal().cwiseInverse().asDiagonal() * evaluate_matrix(d.elastic.A, at);

@@ -21,10 +21,11 @@ struct Derivation {
   Diagnostics diagnostics;  // of the elastic model with every effect, at the model's values
 };
 
-// `keep` overrides the model's default; `keep_where` locates it in messages.
+// `keep` overrides the model's default; `keep_where` locates it in messages. Without
+// `closed_forms` the rigid model's L1, A1, B1 are left empty (see reduce_to_rigid).
 Derivation derive_model(const std::string& model_path, const std::optional<std::vector<std::string>>& keep,
                         const SourceLocation& keep_where);
 Derivation derive_topology(Topology topology, const std::optional<std::vector<std::string>>& keep,
-                           const SourceLocation& keep_where);
+                           const SourceLocation& keep_where, bool closed_forms = true);
 
 }  // namespace pogear

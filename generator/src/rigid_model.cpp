@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 
+#include <cln/integer.h>
+#include <cln/rational.h>
 #include <fmt/format.h>
 
 #include "printer.hpp"
@@ -45,25 +48,118 @@ std::vector<int> independent_rows(const Eigen::MatrixXd& Rn, const std::vector<i
   return rows;
 }
 
-// Q with R Q = 0 and identity rows at the kept velocities.
-GiNaC::matrix kernel_basis(const GiNaC::matrix& R, const Eigen::MatrixXd& Rn, const std::vector<int>& kept,
+// A X = B for a nonsingular symbolic A, block by block in A's block triangular form: equations
+// matched to unknowns along A's nonzeros, and the strongly connected components of "equation
+// uses the unknown another one is matched to" (Tarjan), which come out dependencies first. Each
+// diagonal block is nonsingular (their determinants multiply to det A) and small: 2 x 2 for a
+// chain of stages, where solving all of A at once worked on e x e rational functions.
+GiNaC::matrix block_triangular_solve(const GiNaC::matrix& A, const GiNaC::matrix& B) {
+  const int e = static_cast<int>(A.rows()), k = static_cast<int>(B.cols());
+  std::vector<std::vector<int>> uses(e);
+  for (int i = 0; i < e; ++i)
+    for (int j = 0; j < e; ++j)
+      if (!A(i, j).is_zero()) uses[i].push_back(j);
+  // Maximum matching by augmenting paths; nonsingular A has a perfect one.
+  std::vector<int> row_of(e, -1), col_of(e, -1);
+  std::vector<char> seen;
+  auto augment = [&](auto& self, int i) -> bool {
+    for (int j : uses[i]) {
+      if (seen[j]) continue;
+      seen[j] = 1;
+      if (row_of[j] < 0 || self(self, row_of[j])) {
+        row_of[j] = i;
+        col_of[i] = j;
+        return true;
+      }
+    }
+    return false;
+  };
+  for (int i = 0; i < e; ++i) {
+    seen.assign(e, 0);
+    if (!augment(augment, i)) throw std::domain_error("block_triangular_solve: singular matrix");
+  }
+  // Tarjan's strongly connected components over the equations.
+  std::vector<int> index(e, -1), low(e, 0), stack;
+  std::vector<char> on_stack(e, 0);
+  std::vector<std::vector<int>> blocks;
+  int counter = 0;
+  auto connect = [&](auto& self, int i) -> void {
+    index[i] = low[i] = counter++;
+    stack.push_back(i);
+    on_stack[i] = 1;
+    for (int j : uses[i]) {
+      const int next = row_of[j];
+      if (next == i) continue;
+      if (index[next] < 0) {
+        self(self, next);
+        low[i] = std::min(low[i], low[next]);
+      } else if (on_stack[next]) {
+        low[i] = std::min(low[i], index[next]);
+      }
+    }
+    if (low[i] != index[i]) return;
+    blocks.emplace_back();
+    int top;
+    do {
+      top = stack.back();
+      stack.pop_back();
+      on_stack[top] = 0;
+      blocks.back().push_back(top);
+    } while (top != i);
+    std::sort(blocks.back().begin(), blocks.back().end());
+  };
+  for (int i = 0; i < e; ++i)
+    if (index[i] < 0) connect(connect, i);
+
+  // Each block's inverse once (its entries are radii), then one normal() per entry of X: solving
+  // for all k columns at once normalized every intermediate rational function.
+  GiNaC::matrix X(e, k);
+  std::vector<char> solved(e, 0);
+  for (const auto& rows : blocks) {
+    const unsigned size = rows.size();
+    GiNaC::matrix Ab(size, size);
+    for (unsigned a = 0; a < size; ++a)
+      for (unsigned b = 0; b < size; ++b) Ab(a, b) = A(rows[a], col_of[rows[b]]);
+    GiNaC::matrix inverse = Ab.inverse();
+    for (unsigned a = 0; a < size; ++a)
+      for (unsigned b = 0; b < size; ++b) inverse(a, b) = inverse(a, b).normal();
+    for (int c = 0; c < k; ++c) {
+      std::vector<ex> rhs(size);
+      for (unsigned a = 0; a < size; ++a) {
+        const int i = rows[a];
+        GiNaC::exvector terms{B(i, c)};
+        for (int j : uses[i])
+          if (solved[j] && !X(j, c).is_zero()) terms.push_back(-A(i, j) * X(j, c));
+        rhs[a] = GiNaC::add(terms);
+      }
+      for (unsigned a = 0; a < size; ++a) {
+        GiNaC::exvector terms;
+        for (unsigned b = 0; b < size; ++b)
+          if (!inverse(a, b).is_zero() && !rhs[b].is_zero()) terms.push_back(inverse(a, b) * rhs[b]);
+        X(col_of[rows[a]], c) = ex(GiNaC::add(terms)).normal();
+      }
+    }
+    for (int i : rows) solved[col_of[i]] = 1;
+  }
+  return X;
+}
+
+// Q with R_rows Q = 0 and identity rows at the kept velocities; `rows` are independent on the
+// eliminated columns (independent_rows), so this is ker R.
+GiNaC::matrix kernel_basis(const GiNaC::matrix& R, const std::vector<int>& rows, const std::vector<int>& kept,
                            const std::vector<int>& elim) {
   const unsigned n = R.cols();
   const unsigned k = kept.size();
   GiNaC::matrix Q(n, k);
   for (unsigned j = 0; j < k; ++j) Q(kept[j], j) = 1;
   if (elim.empty()) return Q;
-  const std::vector<int> rows = independent_rows(Rn, elim);
   const unsigned e = elim.size();
-  GiNaC::matrix A(e, e), B(e, k), vars(e, k);
+  GiNaC::matrix A(e, e), B(e, k);
   for (unsigned i = 0; i < e; ++i) {
     for (unsigned j = 0; j < e; ++j) A(i, j) = R(rows[i], elim[j]);
-    for (unsigned j = 0; j < k; ++j) {
-      B(i, j) = -R(rows[i], kept[j]);
-      vars(i, j) = GiNaC::symbol(fmt::format("__q{}_{}", i, j));
-    }
+    for (unsigned j = 0; j < k; ++j) B(i, j) = -R(rows[i], kept[j]);
   }
-  const GiNaC::matrix X = A.solve(vars, B);
+  const GiNaC::matrix X = block_triangular_solve(A, B);
   for (unsigned i = 0; i < e; ++i)
     for (unsigned j = 0; j < k; ++j) Q(elim[i], j) = X(i, j).normal();
   return Q;
@@ -90,6 +186,12 @@ ex normal_product(const ex& a, const ex& b) {
   return (a * b).normal();
 }
 
+cln::cl_RA rational_value(const ex& x) {
+  const GiNaC::numeric v = as_number(x);
+  if (!v.is_rational()) throw std::domain_error("a parameter value is not a rational number");
+  return cln::the<cln::cl_RA>(v.to_cl_N());
+}
+
 std::string names_of(const Topology& t, const std::vector<int>& bodies, const char* sep = ",") {
   std::string s;
   for (int b : bodies) s += (s.empty() ? "" : sep) + t.bodies[b].name;
@@ -107,7 +209,7 @@ std::string names_of(const Topology& t, const std::vector<int>& bodies, const ch
     std::vector<int> other;
     for (int b = 0; b < static_cast<int>(t.bodies.size()); ++b)
       if (std::find(valid[0].begin(), valid[0].end(), b) == valid[0].end()) other.push_back(b);
-    const GiNaC::matrix Q = kernel_basis(R, Rn, valid[0], other);
+    const GiNaC::matrix Q = kernel_basis(R, independent_rows(Rn, other), valid[0], other);
     const Eigen::MatrixXd Qn = evaluate_matrix(Q, values);
     bool found = false;
     for (std::size_t a = 0; a < kept.size() && !found; ++a)
@@ -187,7 +289,8 @@ std::vector<std::vector<int>> valid_keep_sets(const Eigen::MatrixXd& Rn, std::si
 }
 
 RigidModel reduce_to_rigid(const Topology& t, const RadiusMatrix& rm, const ElasticModel& e,
-                           const std::vector<std::string>& keep, const SourceLocation& where, Symbols& s) {
+                           const std::vector<std::string>& keep, const SourceLocation& where, Symbols& s,
+                           bool closed_forms) {
   const int n = static_cast<int>(t.bodies.size());
   const GiNaC::exmap values = numeric_substitutions(s, rm.values);
   const Eigen::MatrixXd Rn = evaluate_matrix(e.R, values);
@@ -215,12 +318,18 @@ RigidModel reduce_to_rigid(const Topology& t, const RadiusMatrix& rm, const Elas
   if (numeric_rank(columns(Rn, r.eliminated)) != static_cast<int>(r.eliminated.size()))
     fail_tied(t, e.R, Rn, r.kept, valid, where, values, s);
 
-  r.Q1 = kernel_basis(e.R, Rn, r.kept, r.eliminated);
+  r.constraint_rows = independent_rows(Rn, r.eliminated);
+  r.Q1 = kernel_basis(e.R, r.constraint_rows, r.kept, r.eliminated);
   const unsigned k = r.kept.size();
-  r.L1 = GiNaC::matrix(k, k);
-  r.A1 = GiNaC::matrix(k, k);
+  if (closed_forms) {
+    r.L1 = GiNaC::matrix(k, k);
+    r.A1 = GiNaC::matrix(k, k);
+    r.B1 = r.Q1.transpose();
+  } else {
+    r.L1 = r.A1 = r.B1 = GiNaC::matrix(0, 0);
+  }
   // L1 and A1 are symmetric; each sum is built at once (adding term by term re-sorts it each time).
-  for (unsigned i = 0; i < k; ++i)
+  for (unsigned i = 0; i < k && closed_forms; ++i)
     for (unsigned j = i; j < k; ++j) {
       GiNaC::exvector l, a;
       for (int b = 0; b < n; ++b) {
@@ -232,7 +341,6 @@ RigidModel reduce_to_rigid(const Topology& t, const RadiusMatrix& rm, const Elas
       r.L1(i, j) = r.L1(j, i) = GiNaC::add(l);
       r.A1(i, j) = r.A1(j, i) = GiNaC::add(a);
     }
-  r.B1 = r.Q1.transpose();
 
   // Eq. (8) needs R R^T invertible; with redundant meshes it is not (DESIGN.md §4).
   const int m = static_cast<int>(t.meshes.size());
@@ -267,13 +375,11 @@ RigidModel reduce_to_rigid(const Topology& t, const RadiusMatrix& rm, const Elas
     // On the rigid model g = tau - J Q1 x1' - B_J Q1 x1 lies in range(R^T), so eq. (8)'s
     // (R R^T)^-1 R g equals (R_S^T)^-1 g_S for any m bodies S with independent columns of R.
     // The sparsest S gives the shortest expressions, e.g. F_sg = -g_g/r_g.
-    GiNaC::matrix RSt(m, m), vars(m, m);
+    GiNaC::matrix RSt(m, m);
     for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j) {
-        RSt(i, j) = e.R(j, r.force_bodies[i]);
-        vars(i, j) = GiNaC::symbol(fmt::format("__p{}_{}", i, j));
-      }
-    const GiNaC::matrix P = RSt.solve(vars, GiNaC::ex_to<GiNaC::matrix>(GiNaC::unit_matrix(m)));  // (R_S^T)^-1
+      for (int j = 0; j < m; ++j) RSt(i, j) = e.R(j, r.force_bodies[i]);
+    // (R_S^T)^-1; R_S^T is as sparse as R (block triangular along a chain).
+    const GiNaC::matrix P = block_triangular_solve(RSt, GiNaC::ex_to<GiNaC::matrix>(GiNaC::unit_matrix(m)));
     for (int i = 0; i < m; ++i) {
       ex f = 0;
       std::vector<ex> inertial(k, 0), friction(k, 0);
@@ -304,24 +410,84 @@ RigidValues exact_rigid_values(const RigidModel& r, const ElasticModel& e, const
   const unsigned n = v.Q1.rows(), k = v.Q1.cols();
   v.L1 = GiNaC::matrix(k, k);
   v.A1 = GiNaC::matrix(k, k);
-  std::vector<GiNaC::numeric> J(n), BJ(n);
+  // Integers over common denominators: Q1(b, i) = q[b][i] / qden[i], J_b = jn[b] / jden and
+  // B_J(b) = bn[b] / bden, so that each entry of L1 = Q1^T J Q1 and A1 = -Q1^T B_J Q1 is an integer
+  // sum reduced once. Summing the rationals term by term took a gcd of numbers of thousands of
+  // bits per term for a long chain.
+  std::vector<cln::cl_RA> J(n), BJ(n);
+  cln::cl_I jden = 1, bden = 1;
   for (unsigned b = 0; b < n; ++b) {
-    J[b] = as_number(exact_value(e.J(b, b), values));
-    BJ[b] = as_number(exact_value(e.B_J(b, b), values));
+    J[b] = rational_value(exact_value(e.J(b, b), values));
+    BJ[b] = rational_value(exact_value(e.B_J(b, b), values));
+    jden = cln::lcm(jden, cln::denominator(J[b]));
+    bden = cln::lcm(bden, cln::denominator(BJ[b]));
+  }
+  std::vector<cln::cl_I> jn(n), bn(n), qden(k, cln::cl_I(1));
+  for (unsigned b = 0; b < n; ++b) {
+    jn[b] = cln::numerator(J[b]) * cln::exquo(jden, cln::denominator(J[b]));
+    bn[b] = cln::numerator(BJ[b]) * cln::exquo(bden, cln::denominator(BJ[b]));
+  }
+  std::vector<std::vector<cln::cl_I>> q(n, std::vector<cln::cl_I>(k, cln::cl_I(0)));
+  for (unsigned i = 0; i < k; ++i) {
+    for (unsigned b = 0; b < n; ++b)
+      if (!v.Q1(b, i).is_zero()) qden[i] = cln::lcm(qden[i], cln::denominator(rational_value(v.Q1(b, i))));
+    for (unsigned b = 0; b < n; ++b)
+      if (!v.Q1(b, i).is_zero()) {
+        const cln::cl_RA x = rational_value(v.Q1(b, i));
+        q[b][i] = cln::numerator(x) * cln::exquo(qden[i], cln::denominator(x));
+      }
   }
   for (unsigned i = 0; i < k; ++i)
     for (unsigned j = i; j < k; ++j) {
-      GiNaC::numeric l = 0, a = 0;
+      cln::cl_I l = 0, a = 0;
       for (unsigned b = 0; b < n; ++b) {
-        if (v.Q1(b, i).is_zero() || v.Q1(b, j).is_zero()) continue;
-        const GiNaC::numeric q = as_number(v.Q1(b, i)).mul(as_number(v.Q1(b, j)));
-        l = l.add(J[b].mul(q));
-        a = a.sub(BJ[b].mul(q));
+        if (cln::zerop(q[b][i]) || cln::zerop(q[b][j])) continue;
+        const cln::cl_I qq = q[b][i] * q[b][j];
+        l = l + jn[b] * qq;
+        a = a - bn[b] * qq;
       }
-      v.L1(i, j) = v.L1(j, i) = l;
-      v.A1(i, j) = v.A1(j, i) = a;
+      const cln::cl_I d = qden[i] * qden[j];
+      v.L1(i, j) = v.L1(j, i) = GiNaC::numeric(cln::cl_N(l / (jden * d)));
+      v.A1(i, j) = v.A1(j, i) = GiNaC::numeric(cln::cl_N(a / (bden * d)));
     }
   return v;
+}
+
+GiNaC::matrix exact_rigid_response(const RigidModel& r, const ElasticModel& e, const GiNaC::exmap& values,
+                                   const GiNaC::matrix& torques) {
+  // With omega' = Q1 y (the constraint rows force it, their kernel being exactly span Q1) the
+  // first block row J Q1 y + R_c^T lambda = T, multiplied by Q1^T (R_c Q1 = 0), is L1 y = Q1^T T;
+  // and y = omega' at the kept bodies, where Q1 is the identity. So this is L1^-1 Q1^T T without
+  // L1: the saddle-point matrix has the sparsity of R (a few entries per row, banded along a
+  // chain) and entries of a few machine words, where L1 is dense with entries of thousands of
+  // bits for a long chain, and exact elimination of it cost seconds to minutes.
+  const unsigned n = e.J.rows(), c = r.constraint_rows.size(), s = n + c, cols = torques.cols();
+  GiNaC::matrix S(s, s), rhs(s, cols);
+  for (unsigned b = 0; b < n; ++b) {
+    S(b, b) = exact_value(e.J(b, b), values);
+    for (unsigned i = 0; i < c; ++i) S(b, n + i) = S(n + i, b) = exact_value(e.R(r.constraint_rows[i], b), values);
+  }
+  // Each column of T as integers over a common denominator, divided out at the end: the
+  // elimination then mixes T's big denominators (products of radii along a chain) into no gcd.
+  std::vector<cln::cl_I> den(cols, cln::cl_I(1));
+  for (unsigned j = 0; j < cols; ++j) {
+    for (unsigned b = 0; b < n; ++b)
+      if (!torques(b, j).is_zero()) den[j] = cln::lcm(den[j], cln::denominator(rational_value(torques(b, j))));
+    for (unsigned b = 0; b < n; ++b) {
+      if (torques(b, j).is_zero()) continue;
+      const cln::cl_RA t = rational_value(torques(b, j));
+      rhs(b, j) = GiNaC::numeric(cln::cl_N(cln::numerator(t) * cln::exquo(den[j], cln::denominator(t))));
+    }
+  }
+  // Bodies first: their pivots are the diagonal J, and eliminating them leaves -R_c J^-1 R_c^T,
+  // which couples only meshes that share a body, so forward elimination fills within its band.
+  // Only the kept bodies' accelerations are solved for, and the multipliers they depend on.
+  std::vector<int> rows(r.kept.begin(), r.kept.end());
+  GiNaC::matrix y = exact_solve_rows(S, rhs, rows);
+  for (unsigned i = 0; i < y.rows(); ++i)
+    for (unsigned j = 0; j < cols; ++j)
+      if (!y(i, j).is_zero()) y(i, j) = as_number(y(i, j)).div(GiNaC::numeric(cln::cl_N(den[j])));
+  return y;
 }
 
 }  // namespace pogear

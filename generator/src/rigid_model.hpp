@@ -14,8 +14,10 @@ namespace pogear {
 struct RigidModel {
   std::vector<int> kept;        // body indices of x1, in the order the user gave
   std::vector<int> eliminated;  // the other bodies, in body order
+  std::vector<int> constraint_rows;  // rows of R independent on `eliminated`: their kernel is span Q1
   int rank = 0;                 // rank of R under the geometry relations
-  GiNaC::matrix Q1, L1, A1, B1;
+  GiNaC::matrix Q1;
+  GiNaC::matrix L1, A1, B1;  // closed forms; 0 x 0 when not asked for (reduce_to_rigid)
   // Eq. (8), F = (R R^T)^-1 R g with g = tau - J Q1 dx1/dt - B_J Q1 x1, written as the equal
   // (on every rigid motion) F = (R_S^T)^-1 g_S over the bodies S = force_bodies: one expression
   // per mesh in tau_<body>, omega_<kept> and domega_<kept> (= d omega/dt). When R R^T is
@@ -28,9 +30,11 @@ struct RigidModel {
 
 // Throws InputError (at `keep_where`) when the number kept is not n - rank(R) or the kept set
 // does not parametrize ker R; the message names the tied velocities and lists valid sets.
+// Without `closed_forms` L1, A1 and B1 are left empty: a simulator with every parameter a number
+// needs only Q1 (exact_rigid_response), and for a long chain they are most of the work.
 RigidModel reduce_to_rigid(const Topology& topology, const RadiusMatrix& radius, const ElasticModel& elastic,
                            const std::vector<std::string>& keep, const SourceLocation& keep_where,
-                           Symbols& symbols);
+                           Symbols& symbols, bool closed_forms = true);
 
 // Q1, L1 and A1 with `values` (symbol -> exact number, every parameter they hold) put in: the
 // numbers the closed forms give, computed from Q1's entries instead of the closed forms, which
@@ -39,6 +43,12 @@ struct RigidValues {
   GiNaC::matrix Q1, L1, A1;  // exact numbers
 };
 RigidValues exact_rigid_values(const RigidModel& rigid, const ElasticModel& elastic, const GiNaC::exmap& values);
+
+// L1^-1 Q1^T T for the torques T (n x c; exact numbers), i.e. dx1/dt of the rigid model under
+// each column of T, exactly, at `values` (every parameter of J and R). Solved through the
+// sparse saddle-point system [J R_c^T; R_c 0] of the constraint rows, not through L1.
+GiNaC::matrix exact_rigid_response(const RigidModel& rigid, const ElasticModel& elastic, const GiNaC::exmap& values,
+                                   const GiNaC::matrix& torques);
 
 // m bodies whose columns of R are independent, preferring sparse columns (short expressions).
 std::vector<int> force_recovery_bodies(const Eigen::MatrixXd& R_numeric);

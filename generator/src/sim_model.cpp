@@ -3,6 +3,7 @@
 #include "sim_model.hpp"
 
 #include <algorithm>
+#include <map>
 #include <set>
 
 #include <fmt/format.h>
@@ -58,16 +59,72 @@ ex input_or_zero(Symbols& s, const SimSystem& sys, const std::string& torque) {
   return contains(sys.inputs, torque) ? ex(symbol(s, torque)) : ex(0);
 }
 
+using VariableIndex = std::map<ex, int, GiNaC::ex_is_less>;
+
+// Whether e holds any of the variables.
+bool has_variable(const ex& e, const VariableIndex& vars) {
+  if (GiNaC::is_a<GiNaC::symbol>(e)) return vars.count(e) > 0;
+  for (const ex& op : e)
+    if (has_variable(op, vars)) return true;
+  return false;
+}
+
+// The variable a term of an expanded linear form is proportional to: -1 for none, -2 when the
+// term is not of the form (variable-free factors) * variable.
+int variable_of(const ex& term, const VariableIndex& vars) {
+  if (GiNaC::is_a<GiNaC::symbol>(term)) {
+    const auto it = vars.find(term);
+    return it == vars.end() ? -1 : it->second;
+  }
+  if (!GiNaC::is_exactly_a<GiNaC::mul>(term)) return has_variable(term, vars) ? -2 : -1;
+  int found = -1;
+  for (const ex& factor : term) {
+    const auto it = GiNaC::is_a<GiNaC::symbol>(factor) ? vars.find(factor) : vars.end();
+    if (it != vars.end()) {
+      if (found != -1) return -2;
+      found = it->second;
+    } else if (has_variable(factor, vars)) {
+      return -2;
+    }
+  }
+  return found;
+}
+
 // dx/dt = M x + N u, read off the (linear) right-hand side with the temporaries substituted.
+// Each term of a row is differentiated once, by its own variable: differentiating the whole row
+// by every variable re-added the row's big numbers (k^3 additions for a rigid chain of k states).
+// The sums of the derivatives are the same canonical expressions diff gives; a row with a term
+// of another shape goes through diff.
 void linear_form(Symbols& s, SimSystem& sys) {
   GiNaC::exmap temps;
   for (const auto& a : sys.rhs_temporaries) temps[symbol(s, a.name)] = a.value.subs(temps, GiNaC::subs_options::no_pattern);
-  sys.M = GiNaC::matrix(sys.states.size(), sys.states.size());
-  sys.N = GiNaC::matrix(sys.states.size(), sys.inputs.size());
-  for (std::size_t i = 0; i < sys.states.size(); ++i) {
+  const std::size_t nx = sys.states.size(), nu = sys.inputs.size();
+  std::vector<ex> variables;
+  VariableIndex index;
+  for (const auto& name : sys.states) variables.push_back(symbol(s, name));
+  for (const auto& name : sys.inputs) variables.push_back(symbol(s, name));
+  for (std::size_t j = 0; j < variables.size(); ++j) index.emplace(variables[j], static_cast<int>(j));
+  sys.M = GiNaC::matrix(nx, nx);
+  sys.N = GiNaC::matrix(nx, nu);
+  for (std::size_t i = 0; i < nx; ++i) {
     const ex f = sys.rhs[i].subs(temps, GiNaC::subs_options::no_pattern).expand();
-    for (std::size_t j = 0; j < sys.states.size(); ++j) sys.M(i, j) = f.diff(symbol(s, sys.states[j]));
-    for (std::size_t j = 0; j < sys.inputs.size(); ++j) sys.N(i, j) = f.diff(symbol(s, sys.inputs[j]));
+    std::vector<GiNaC::exvector> parts(variables.size());
+    bool linear = true;
+    auto take = [&](const ex& term) {
+      const int v = variable_of(term, index);
+      if (v == -2) linear = false;
+      if (v >= 0) parts[v].push_back(term.diff(GiNaC::ex_to<GiNaC::symbol>(variables[v])));
+    };
+    if (GiNaC::is_exactly_a<GiNaC::add>(f)) {
+      for (const ex& term : f) take(term);
+    } else {
+      take(f);
+    }
+    for (std::size_t j = 0; j < variables.size(); ++j) {
+      const ex c = !linear ? f.diff(GiNaC::ex_to<GiNaC::symbol>(variables[j]))
+                   : parts[j].empty() ? ex(0) : GiNaC::add(parts[j]);
+      if (j < nx) sys.M(i, j) = c; else sys.N(i, j - nx) = c;
+    }
   }
 }
 
@@ -169,18 +226,22 @@ SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
     for (int k : d.rigid.kept) sys.states.push_back(d.elastic.velocities[k]);
     const std::size_t k1 = sys.states.size();
     if (sc.tunable.empty()) {
-      // Every parameter is a number: L1 x1' = A1 x1 + B1 tau solved exactly, with L1, A1 and B1 =
-      // Q1^T from Q1's entries (the closed forms of a long chain are megabytes to substitute into).
-      const RigidValues v = exact_rigid_values(d.rigid, d.elastic, fold);
+      // Every parameter is a number: x1' = L1^-1 (A1 x1 + B1 tau) exactly, and as A1 = -Q1^T B_J Q1
+      // and B1 = Q1^T, that is L1^-1 Q1^T applied to the torques -B_J Q1 (one column per kept
+      // velocity) and to the inputs' unit vectors: one sparse exact solve (exact_rigid_response),
+      // neither L1 nor A1 formed (the closed forms of a long chain are megabytes to substitute into).
+      const GiNaC::matrix Q1 = exact_matrix(d.rigid.Q1, fold);
       std::vector<std::size_t> driven;  // bodies with an input torque
       for (std::size_t b = 0; b < n; ++b)
         if (!input_or_zero(s, sys, d.elastic.torques[b]).is_zero()) driven.push_back(b);
-      GiNaC::matrix rhs(k1, k1 + driven.size());
-      for (std::size_t i = 0; i < k1; ++i) {
-        for (std::size_t j = 0; j < k1; ++j) rhs(i, j) = v.A1(i, j);
-        for (std::size_t c = 0; c < driven.size(); ++c) rhs(i, k1 + c) = v.Q1(driven[c], i);
+      GiNaC::matrix torques(n, k1 + driven.size());
+      for (std::size_t b = 0; b < n; ++b) {
+        const GiNaC::numeric friction = as_number(exact_value(d.elastic.B_J(b, b), fold));
+        for (std::size_t j = 0; j < k1 && !friction.is_zero(); ++j)
+          if (!Q1(b, j).is_zero()) torques(b, j) = -friction.mul(as_number(Q1(b, j)));
       }
-      const GiNaC::matrix X = exact_solve(v.L1, rhs);
+      for (std::size_t c = 0; c < driven.size(); ++c) torques(driven[c], k1 + c) = 1;
+      const GiNaC::matrix X = exact_rigid_response(d.rigid, d.elastic, fold, torques);
       for (std::size_t j = 0; j < k1; ++j) {
         GiNaC::exvector f;
         for (std::size_t i = 0; i < k1; ++i) f.push_back(X(j, i) * symbol(s, sys.states[i]));
@@ -252,7 +313,8 @@ SimModel specialize(const Scene& scene) {
   Topology t = apply_overrides(parse_topology(scene.model_file), scene);
   std::optional<std::vector<std::string>> keep;
   if (!scene.keep.empty()) keep = scene.keep;
-  model.derivation = derive_topology(std::move(t), keep, scene.keep_where);
+  // With every parameter a number the rigid system needs no closed forms of L1 and A1.
+  model.derivation = derive_topology(std::move(t), keep, scene.keep_where, !scene.tunable.empty());
   const bool rigid_forces = scene.effects.mesh_forces && (!scene.effects.mesh_compliance || scene.compare_rigid);
   if (model.derivation.rigid.redundant_meshes && rigid_forces && !scene.tunable.empty())
     throw InputError(SourceLocation{scene.file, 0, 0},
@@ -342,8 +404,11 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
 Diagnostics system_diagnostics(const SimModel& model, const SimSystem& sys) {
   Derivation d = model.derivation;
   const GiNaC::exmap values = folding(model.scene, d, false);
+  // The specialized system's own M, exact in the tunable parameters, at their values: the numbers
+  // numeric_system computes by another formula (the tests compare them), without solving again.
   // L1 holds inertias and radii only, which the folding leaves at the model's values.
-  return diagnose(numeric_system(model, sys).M, evaluate_matrix(d.rigid_values.L1, {}), evaluate_matrix(d.elastic.R, values));
+  return diagnose(evaluate_matrix(sys.M, values), evaluate_matrix(d.rigid_values.L1, {}),
+                  evaluate_matrix(d.elastic.R, values));
 }
 
 }  // namespace pogear

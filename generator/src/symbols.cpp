@@ -90,6 +90,12 @@ GiNaC::matrix exact_product(const GiNaC::matrix& a, const GiNaC::matrix& b) {
 }
 
 GiNaC::matrix exact_solve(const GiNaC::matrix& a, const GiNaC::matrix& b) {
+  std::vector<int> all(a.rows());
+  for (unsigned i = 0; i < a.rows(); ++i) all[i] = static_cast<int>(i);
+  return exact_solve_rows(a, b, all);
+}
+
+GiNaC::matrix exact_solve_rows(const GiNaC::matrix& a, const GiNaC::matrix& b, const std::vector<int>& rows) {
   const unsigned n = a.rows(), m = b.cols();
   // Gaussian elimination on [a | b], pivot = first nonzero: exact, so any pivot gives the same x.
   std::vector<std::vector<numeric>> w(n, std::vector<numeric>(n + m, numeric(0)));
@@ -98,33 +104,43 @@ GiNaC::matrix exact_solve(const GiNaC::matrix& a, const GiNaC::matrix& b) {
     for (unsigned j = 0; j < m; ++j) w[i][n + j] = as_number(b(i, j));
   }
   // Forward elimination below the pivots only, then back substitution: a banded a (R R^T of a
-  // chain) stays banded, where eliminating above the pivots too would fill it.
+  // chain) stays banded, where eliminating above the pivots too would fill it. Pivot rows are
+  // not scaled: after the swaps row c holds unknown c, divided by its pivot only if needed.
   for (unsigned c = 0; c < n; ++c) {
     unsigned p = c;
     while (p < n && w[p][c].is_zero()) ++p;
     if (p == n) throw std::domain_error("exact_solve: singular matrix");
     std::swap(w[p], w[c]);
     const numeric inv = w[c][c].inverse();
-    for (unsigned j = c; j < n + m; ++j)
-      if (!w[c][j].is_zero()) w[c][j] = w[c][j].mul(inv);
     for (unsigned r = c + 1; r < n; ++r) {
       if (w[r][c].is_zero()) continue;
-      const numeric f = w[r][c];
-      for (unsigned j = c; j < n + m; ++j)
+      const numeric f = w[r][c].mul(inv);
+      w[r][c] = 0;
+      for (unsigned j = c + 1; j < n + m; ++j)
         if (!w[c][j].is_zero()) w[r][j] = w[r][j].sub(f.mul(w[c][j]));
     }
   }
-  for (unsigned c = n; c-- > 0;)
+  // Unknown c is needed if asked for or if a needed unknown above it depends on it (w is upper
+  // triangular now). In the rigid saddle-point system no one needs the eliminated bodies' ones.
+  std::vector<bool> needed(n, false);
+  for (int r : rows) needed.at(r) = true;
+  for (unsigned c = 0; c < n; ++c)
+    for (unsigned r = 0; r < c && !needed[c]; ++r) needed[c] = needed[r] && !w[r][c].is_zero();
+  for (unsigned c = n; c-- > 0;) {
+    if (!needed[c]) continue;
+    const numeric inv = w[c][c].inverse();
+    for (unsigned j = n; j < n + m; ++j)
+      if (!w[c][j].is_zero()) w[c][j] = w[c][j].mul(inv);
     for (unsigned r = 0; r < c; ++r) {
-      if (w[r][c].is_zero()) continue;
+      if (!needed[r] || w[r][c].is_zero()) continue;
       const numeric f = w[r][c];
-      w[r][c] = 0;
       for (unsigned j = n; j < n + m; ++j)
         if (!w[c][j].is_zero()) w[r][j] = w[r][j].sub(f.mul(w[c][j]));
     }
-  GiNaC::matrix x(n, m);
-  for (unsigned i = 0; i < n; ++i)
-    for (unsigned j = 0; j < m; ++j) x(i, j) = w[i][n + j];
+  }
+  GiNaC::matrix x(rows.size(), m);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (unsigned j = 0; j < m; ++j) x(i, j) = w[rows[i]][n + j];
   return x;
 }
 

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include <ginac/ginac.h>
 
@@ -39,6 +40,8 @@ GiNaC::numeric as_number(const GiNaC::ex& e);  // throws std::domain_error when 
 // sparse, and GiNaC's own dense routines treat every entry as a symbolic expression.
 GiNaC::matrix exact_product(const GiNaC::matrix& a, const GiNaC::matrix& b);
 GiNaC::matrix exact_solve(const GiNaC::matrix& a, const GiNaC::matrix& b);  // a x = b; throws if a is singular
+// The given rows of x, in that order; unknowns no given row depends on are not computed.
+GiNaC::matrix exact_solve_rows(const GiNaC::matrix& a, const GiNaC::matrix& b, const std::vector<int>& rows);
 
 }  // namespace pogear
 

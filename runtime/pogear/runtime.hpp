@@ -1,5 +1,5 @@
 // Umbrella header of the pogear numeric runtime, included by generated simulators and by the
-// interpreted mode: signals, exact discretization, steppers, drivers and CSV output.
+// interpreted mode: signals, exact discretization, steppers, drivers, batched sweeps and CSV output.
 #pragma once
 
 #include "pogear/csv.hpp"
@@ -7,3 +7,4 @@
 #include "pogear/signals.hpp"
 #include "pogear/simulate.hpp"
 #include "pogear/steppers.hpp"
+#include "pogear/sweep.hpp"

@@ -86,7 +86,7 @@ struct Run {
     return true;
   }
   template <class Obs, class X>
-  bool emit(Obs& obs, double t, const X& x) {
+  POGEAR_RT_INLINE bool emit(Obs& obs, double t, const X& x) {
     ++k;
     last_sample = t;
     if constexpr (std::is_convertible_v<std::invoke_result_t<Obs&, double, const X&>, bool>) {
@@ -103,46 +103,79 @@ struct Run {
 // Eigen's allFinite() compares and branches entry by entry (a third of the exact driver's per-step
 // instructions for the 10-state paper model).
 template <class X>
-bool all_finite(const X& x) {
+POGEAR_RT_INLINE bool all_finite(const X& x) {
   return (x - x).sum() == 0;
 }
 
 // Fixed steps: each interval between consecutive stops (samples and breakpoints) is cut into the
-// fewest equal steps not longer than h, so that steps land exactly on both.
+// fewest equal steps not longer than h, so that steps land exactly on both. The counters live in
+// locals, written back to run on the way out: run's address escapes into the error paths, so its
+// members would go through memory on every step (a good part of a batched step's instructions).
 template <class X, class Advance, class Obs>
-RunStatus run_fixed(const char* name, Advance&& advance, X& x, double t0, double t_end, double dt,
-                    const SolverOptions& opt, Obs& obs, const std::vector<double>& bps) {
+POGEAR_RT_INLINE RunStatus run_fixed(const char* name, Advance&& advance, X& x, double t0, double t_end, double dt,
+                                     const SolverOptions& opt, Obs& obs, const std::vector<double>& bps) {
   Run run;
   if (!run.setup(x, t0, t_end, dt, opt, bps) || !run.emit(obs, t0, x)) return run.st;
-  double t = t0;
+  const Grid grid = run.grid;
+  const double* const breaks = run.breaks.data();
+  const std::size_t n_breaks = run.breaks.size();
+  const long max_steps = opt.max_steps;
+  const double h_max = opt.h;
+  std::size_t next_break = 0;
+  long k = run.k, steps = 0;
+  double t = t0, t_reached = t0, last_sample = t0;
+  auto finish = [&]() -> RunStatus& {
+    run.k = k;
+    run.next_break = next_break;
+    run.last_sample = last_sample;
+    run.st.steps = steps;
+    run.st.t_reached = t_reached;
+    return run.st;
+  };
   // The step count of the previous interval: consecutive sample intervals differ by rounding only,
   // so the division and ceil (a libm call without SSE4.1) are done once, not on every sample.
   double last_len = -1;
   long n = 1;
-  while (run.k < run.grid.count) {
-    const double ts = run.grid.at(run.k);
-    const bool brk = run.next_break < run.breaks.size() && run.breaks[run.next_break] <= ts;
-    const double te = brk ? run.breaks[run.next_break++] : ts;
+  while (k < grid.count) {
+    const double ts = grid.at(k);
+    const bool brk = next_break < n_breaks && breaks[next_break] <= ts;
+    const double te = brk ? breaks[next_break++] : ts;
     const double len = te - t;
     if (!(std::abs(len - last_len) <= 1e-9 * last_len)) {
-      n = std::max(1L, static_cast<long>(std::ceil(len / opt.h - 1e-9)));
+      n = std::max(1L, static_cast<long>(std::ceil(len / h_max - 1e-9)));
       last_len = len;
     }
     const double hs = n == 1 ? len : len / static_cast<double>(n);
     for (long i = 0; i < n; ++i) {
-      if (run.st.steps >= opt.max_steps)
-        return run.fail(std::string(name) + " stopped at t = " + num(run.st.t_reached) +
-                        ": max_steps = " + std::to_string(opt.max_steps) + " reached");
+      if (steps >= max_steps) {
+        finish();
+        return run.fail(std::string(name) + " stopped at t = " + num(t_reached) + ": max_steps = " +
+                        std::to_string(max_steps) + " reached");
+      }
       const double ta = t + static_cast<double>(i) * hs, tb = i + 1 == n ? te : ta + hs;
       advance(ta, tb - ta, brk && i + 1 == n, x);
-      ++run.st.steps;
-      if (!all_finite(x)) return run.non_finite(tb);
-      run.st.t_reached = tb;
+      ++steps;
+      if (!all_finite(x)) {
+        finish();
+        return run.non_finite(tb);
+      }
+      t_reached = tb;
     }
     t = te;
-    if (te == ts && !run.emit(obs, ts, x)) return run.st;
+    if (te == ts) {
+      ++k;
+      last_sample = ts;
+      if constexpr (std::is_convertible_v<std::invoke_result_t<Obs&, double, const X&>, bool>) {
+        if (!obs(ts, static_cast<const X&>(x))) {
+          finish();
+          return run.fail("stopped by the observer at t = " + num(ts));
+        }
+      } else {
+        obs(ts, static_cast<const X&>(x));
+      }
+    }
   }
-  return run.st;
+  return finish();
 }
 
 // Adaptive steps (see the stepper protocol in steppers.hpp): steps end on breakpoints and t_end,
@@ -254,40 +287,85 @@ RunStatus simulate_implicit(F&& f, JacF&& jac, bool constant_jacobian, const X0&
 // dt / n not above h.
 inline double exact_nominal_step(double dt, double h) { return dt / std::max(1.0, std::ceil(dt / h - 1e-9)); }
 
+namespace detail {
+
+// Step lengths within 1e-9 of each other differ by rounding of the grid times only.
+inline bool same_step(double a, double b) { return std::abs(a - b) <= 1e-9 * b; }
+
+template <class D>
+RunStatus check_nominal(const D& nominal, double dt, const SolverOptions& opt) {
+  if (!(dt > 0) || !(opt.h > 0)) return Run{}.fail("invalid step: dt = " + num(dt));
+  if (!same_step(nominal.h, exact_nominal_step(dt, opt.h)))
+    return Run{}.fail("the discretization's step " + num(nominal.h) + " is not the nominal step " +
+                      num(exact_nominal_step(dt, opt.h)) + " of dt and h");
+  return {};
+}
+
+// simulate_exact's body; W is the step kernel's lane width (exact.hpp).
+template <int W, int NX, int NU, class UFun, class Obs>
+POGEAR_RT_INLINE RunStatus simulate_exact_lanes(const ExactDiscretization<NX, NU>& nominal,
+                                                const Eigen::Matrix<double, NX, NX>& M,
+                                                const Eigen::Matrix<double, NX, NU>& N, UFun& u,
+                                                Eigen::Matrix<double, NX, 1>& x, double t0, double t_end, double dt,
+                                                const SolverOptions& opt, Obs& obs, const std::vector<double>& breaks) {
+  using D = ExactDiscretization<NX, NU>;
+  D odd;  // the last other step size (next to breakpoints, the final partial interval)
+  typename D::Input u0 = D::Input::Zero(N.cols()), u1 = u0;
+  typename D::State xn = x;
+  bool u0_valid = false;
+  const double h_nom = nominal.h, tol_nom = 1e-9 * nominal.h;
+  auto advance = [&](double t, double h, bool brk, typename D::State& xs) POGEAR_RT_LAMBDA_INLINE {
+    const D* disc = &nominal;
+    if (!(std::abs(h - h_nom) <= tol_nom)) {  // same_step(h, h_nom)
+      if (!same_step(h, odd.h)) odd = D(M, N, h);
+      disc = &odd;
+    }
+    if (!u0_valid) u(t, u0);
+    u(stage_end(t, t + h, brk), u1);
+    if constexpr (ExactKernel<NX, NU>::enabled) {
+      exact_step<W>(disc->kernel, xs.data(), u0.data(), u1.data(), xs.data());
+    } else {
+      disc->step(xs, u0, u1, xn);
+      xs = xn;
+    }
+    u0 = u1;
+    u0_valid = !brk;  // after a breakpoint the input restarts from its new (right) value
+  };
+  return run_fixed("exact", advance, x, t0, t_end, dt, opt, obs, breaks);
+}
+
+#if defined(POGEAR_RT_AVX2_DISPATCH)
+inline bool cpu_has_avx2() { return __builtin_cpu_supports("avx2"); }
+
+// The same run in AVX2 registers: 4 rows per operation (2 for a 2-state model, which has no more).
+template <int NX, int NU, class UFun, class Obs>
+POGEAR_RT_TARGET_AVX2 RunStatus simulate_exact_avx2(const ExactDiscretization<NX, NU>& nominal,
+                                                    const Eigen::Matrix<double, NX, NX>& M,
+                                                    const Eigen::Matrix<double, NX, NU>& N, UFun& u,
+                                                    Eigen::Matrix<double, NX, 1>& x, double t0, double t_end,
+                                                    double dt, const SolverOptions& opt, Obs& obs,
+                                                    const std::vector<double>& breaks) {
+  return simulate_exact_lanes<NX <= 2 ? 2 : 4>(nominal, M, N, u, x, t0, t_end, dt, opt, obs, breaks);
+}
+#endif
+
+}  // namespace detail
+
 // As simulate_exact below, with the discretization of the nominal step (exact_nominal_step(dt,
 // opt.h)) computed beforehand: a sweep that runs one model many times pays for the matrix
 // exponential once. M and N serve the other step sizes (next to breakpoints, a partial last interval).
+// On x86-64 CPUs with AVX2 a copy of the driver compiled for AVX2 runs; it gives the same bits.
 template <int NX, int NU, class UFun, class Obs>
 RunStatus simulate_exact(const ExactDiscretization<NX, NU>& nominal, const Eigen::Matrix<double, NX, NX>& M,
                          const Eigen::Matrix<double, NX, NU>& N, UFun&& u, Eigen::Matrix<double, NX, 1> x, double t0,
                          double t_end, double dt, const SolverOptions& opt, Obs&& obs,
                          const std::vector<double>& breaks = {}) {
-  using D = ExactDiscretization<NX, NU>;
-  if (!(dt > 0) || !(opt.h > 0)) return detail::Run{}.fail("invalid step: dt = " + detail::num(dt));
-  // Step lengths within 1e-9 of each other differ by rounding of the grid times only.
-  auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9 * b; };
-  const double h_nom = nominal.h;
-  if (!same(h_nom, exact_nominal_step(dt, opt.h)))
-    return detail::Run{}.fail("the discretization's step " + detail::num(h_nom) + " is not the nominal step " +
-                              detail::num(exact_nominal_step(dt, opt.h)) + " of dt and h");
-  D odd;  // the last other step size (next to breakpoints, the final partial interval)
-  typename D::Input u0 = D::Input::Zero(N.cols()), u1 = u0;
-  typename D::State xn = x;
-  bool u0_valid = false;
-  auto advance = [&](double t, double h, bool brk, typename D::State& xs) {
-    const D* disc = &nominal;
-    if (!same(h, h_nom)) {
-      if (!same(h, odd.h)) odd = D(M, N, h);
-      disc = &odd;
-    }
-    if (!u0_valid) u(t, u0);
-    u(stage_end(t, t + h, brk), u1);
-    disc->step(xs, u0, u1, xn);
-    xs = xn;
-    u0 = u1;
-    u0_valid = !brk;  // after a breakpoint the input restarts from its new (right) value
-  };
-  return detail::run_fixed("exact", advance, x, t0, t_end, dt, opt, obs, breaks);
+  if (RunStatus bad = detail::check_nominal(nominal, dt, opt); !bad.ok) return bad;
+#if defined(POGEAR_RT_AVX2_DISPATCH)
+  if constexpr (detail::ExactKernel<NX, NU>::enabled)
+    if (detail::cpu_has_avx2()) return detail::simulate_exact_avx2(nominal, M, N, u, x, t0, t_end, dt, opt, obs, breaks);
+#endif
+  return detail::simulate_exact_lanes<detail::kDefaultLanes>(nominal, M, N, u, x, t0, t_end, dt, opt, obs, breaks);
 }
 
 // dx/dt = M x + N u with u(t, U& out) filling the inputs, by ExactDiscretization steps of at most

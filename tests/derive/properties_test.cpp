@@ -1,5 +1,7 @@
 // Properties every derivation must have, checked on the paper's models: R Q1 = 0, the paper's
 // sign rules 2 and 3, L1 positive definite, and forces that balance the rigid model.
+#include <cstdlib>
+
 #include <Eigen/Dense>
 
 #include "test_support.hpp"
@@ -112,6 +114,45 @@ TEST(Degrees, PaperModelsHaveTwoDegreesOfFreedom) {
     Derivation d = derive_paper(m, {});
     EXPECT_EQ(d.topology.bodies.size() - d.rigid.rank, 2u) << m;
   }
+}
+
+// exact_rigid_response (the sparse saddle-point solve behind generated rigid simulators) against
+// L1^-1 Q1^T T by dense elimination of L1, exactly, for every valid kept set of the paper's
+// models, the redundant meshes of three_planets and a synthetic chain of 5 stages.
+void expect_rigid_response_is_dense_solve(Derivation& d, const std::string& what) {
+  const GiNaC::exmap at = values_of(d);
+  const RigidValues v = exact_rigid_values(d.rigid, d.elastic, at);
+  const unsigned n = v.Q1.rows(), k = v.Q1.cols();
+  GiNaC::matrix T(n, k + n);  // -B_J Q1 and every unit torque
+  for (unsigned b = 0; b < n; ++b) {
+    for (unsigned j = 0; j < k; ++j) T(b, j) = -exact_value(d.elastic.B_J(b, b), at) * v.Q1(b, j);
+    T(b, k + b) = 1;
+  }
+  const GiNaC::matrix sparse = exact_rigid_response(d.rigid, d.elastic, at, T);
+  const GiNaC::matrix dense = exact_solve(v.L1, exact_product(v.Q1.transpose(), exact_matrix(T, {})));
+  ASSERT_EQ(sparse.rows(), dense.rows());
+  for (unsigned i = 0; i < dense.rows(); ++i)
+    for (unsigned j = 0; j < dense.cols(); ++j)
+      EXPECT_TRUE((sparse(i, j) - dense(i, j)).is_zero()) << what << " (" << i << ", " << j << ")";
+}
+
+TEST(RigidResponse, EqualsTheDenseSolveThroughL1) {
+  for (const char* m : {"paper_one_stage", "paper_two_stage"}) {
+    Derivation d0 = derive_paper(m, {});
+    for (const auto& set : valid_keep_sets(evaluate_matrix(d0.elastic.R, values_of(d0)), 100)) {
+      std::vector<std::string> keep;
+      for (int b : set) keep.push_back(d0.topology.bodies[b].name);
+      Derivation d = derive_paper(m, keep);
+      expect_rigid_response_is_dense_solve(d, std::string(m) + " keep " + keep[0] + "," + keep[1]);
+    }
+  }
+  Derivation redundant = derive_paper("three_planets", {});
+  ASSERT_TRUE(redundant.rigid.redundant_meshes);
+  expect_rigid_response_is_dense_solve(redundant, "three_planets");
+  const std::string chain = ::testing::TempDir() + "/chain_5.toml";
+  ASSERT_EQ(std::system(("bash " + source_path("scripts/make_chain.sh") + " 5 >" + chain).c_str()), 0);
+  Derivation d = derive_model(chain, std::nullopt, SourceLocation{"--keep", 0, 0});
+  expect_rigid_response_is_dense_solve(d, "chain of 5 stages");
 }
 
 }  // namespace
