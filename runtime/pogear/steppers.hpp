@@ -81,13 +81,27 @@ double rk4_stability_limit(const M& A) {
 
 // Dormand-Prince 5(4) (Hairer, Norsett & Wanner, "Solving ODEs I", code DOPRI5): FSAL, 5th-order
 // result, 4th-order embedded estimate, 4th-order continuous extension.
+//
+// Written as plain loops over the components rather than Eigen expressions: GCC does not inline
+// Eigen's assignment loops for the longer stage sums, so each stage cost a call plus a walk through
+// the expression tree, and allFinite() another call. Each loop evaluates every component with the
+// same operations in the same order as the Eigen expression it replaces, so stages, result and error
+// estimate are bit for bit those of the expression form.
 template <class X, class F>
 struct Dopri5 {
   F& f;
   double rtol, atol;
+  // k1 is the stage at the start of the step. accept() swaps k1 and k7 (first same as last), so until
+  // the next attempt the accepted step's own k1 sits in k7 and its k7 in k1.
   X k1, k2, k3, k4, k5, k6, k7, y1, tmp, r1, r2, r3, r4, r5;
   double t_old = 0, h_old = 1, facold = 1e-4;
-  bool rejected = false;
+  // log(facold): the controller needs err^0.17 / facold^0.04; from logs that is one exp per step
+  // instead of two pow calls (each several times an exp), and log(err) of this step is the next
+  // step's log(facold).
+  double log_facold = std::log(1e-4);
+  // The dense-output coefficients are built on the first dense() after accept(), not in accept():
+  // at tight tolerances most steps contain no sample and never need them.
+  bool rejected = false, dense_pending = false;
   long rhs_evals = 0;
 
   Dopri5(F& f_, const X& x, double rtol_, double atol_)
@@ -95,6 +109,7 @@ struct Dopri5 {
         tmp(x), r1(x), r2(x), r3(x), r4(x), r5(x) {}
 
   void start(double t, const X& x) {
+    build_dense();  // f overwrites k1, which holds the last step's k7: keep dense() valid
     f(t, x, k1);
     ++rhs_evals;
   }
@@ -107,59 +122,104 @@ struct Dopri5 {
                      a74 = 125.0 / 192, a75 = -2187.0 / 6784, a76 = 11.0 / 84;
     constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
                      e6 = 22.0 / 525, e7 = -1.0 / 40;
-    const double t_end = stage_end(t, t + h, ends_on_break);
-    tmp = x + (h * a21) * k1;
+    dense_pending = false;  // the stages are about to change: the last step's dense output is gone
+    const Eigen::Index n = x.size();
+    const double t_end = stage_end(t, t + h, ends_on_break), ha21 = h * a21;
+    for (Eigen::Index i = 0; i < n; ++i) tmp[i] = x[i] + ha21 * k1[i];
     f(t + 0.2 * h, tmp, k2);
-    tmp = x + h * (a31 * k1 + a32 * k2);
+    for (Eigen::Index i = 0; i < n; ++i) tmp[i] = x[i] + h * (a31 * k1[i] + a32 * k2[i]);
     f(t + 0.3 * h, tmp, k3);
-    tmp = x + h * (a41 * k1 + a42 * k2 + a43 * k3);
+    for (Eigen::Index i = 0; i < n; ++i) tmp[i] = x[i] + h * (a41 * k1[i] + a42 * k2[i] + a43 * k3[i]);
     f(t + 0.8 * h, tmp, k4);
-    tmp = x + h * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4);
+    for (Eigen::Index i = 0; i < n; ++i)
+      tmp[i] = x[i] + h * (a51 * k1[i] + a52 * k2[i] + a53 * k3[i] + a54 * k4[i]);
     f(t + (8.0 / 9) * h, tmp, k5);
-    tmp = x + h * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5);
+    for (Eigen::Index i = 0; i < n; ++i)
+      tmp[i] = x[i] + h * (a61 * k1[i] + a62 * k2[i] + a63 * k3[i] + a64 * k4[i] + a65 * k5[i]);
     f(t_end, tmp, k6);
-    y1 = x + h * (a71 * k1 + a73 * k3 + a74 * k4 + a75 * k5 + a76 * k6);
+    for (Eigen::Index i = 0; i < n; ++i)
+      y1[i] = x[i] + h * (a71 * k1[i] + a73 * k3[i] + a74 * k4[i] + a75 * k5[i] + a76 * k6[i]);
     f(t_end, y1, k7);
     rhs_evals += 6;
-    tmp = h * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7);
-    if (!y1.allFinite() || !tmp.allFinite()) return std::numeric_limits<double>::quiet_NaN();
-    return error_norm(tmp, x, y1, rtol, atol);
+    // The error estimate and its scaled components in one vectorizable pass; the sum of squares is
+    // then taken in the same order as error_norm(), so the norm is error_norm()'s to the last bit.
+    // v - v is 0 for finite v and NaN otherwise: one sum checks y1 and the estimate for non-finite
+    // entries (a NaN or inf in y1 could otherwise vanish from the norm through the max()).
+    double finite = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double e = h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * k7[i]);
+      finite += (y1[i] - y1[i]) + (e - e);
+      tmp[i] = e / (atol + rtol * std::max(std::abs(x[i]), std::abs(y1[i])));
+    }
+    if (!(finite == 0)) return std::numeric_limits<double>::quiet_NaN();
+    double sum = 0;
+    for (Eigen::Index i = 0; i < n; ++i) sum += tmp[i] * tmp[i];
+    return n == 0 ? 0 : std::sqrt(sum / static_cast<double>(n));
   }
 
   void accept(double t, X& x, double h) {
-    constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
-                     d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
-                     d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
     r1 = x;
-    r2 = y1 - x;
-    r3 = h * k1 - r2;
-    r4 = r2 - h * k7 - r3;
-    r5 = h * (d1 * k1 + d3 * k3 + d4 * k4 + d5 * k5 + d6 * k6 + d7 * k7);
     x = y1;
     k1.swap(k7);  // first same as last
     t_old = t;
     h_old = h;
+    dense_pending = true;
   }
 
-  void dense(double t, X& out) const {
+  // The coefficients of the continuous extension of the last accepted step, as DOPRI5 computes them
+  // (r1 = x_old, r2 = y1 - x_old, r3 = h k1 - r2, r4 = r2 - h k7 - r3, r5 = h sum d_j k_j) with k1 and
+  // k7 in each other's place (see accept()); y1 still holds the step's result. With out, also the
+  // state at theta = th, in the same pass: evaluating from the registers avoids reloading the
+  // coefficients right after storing them (GCC 12 does not vectorize this loop, and packed loads of
+  // just-stored scalars stall on store forwarding).
+  void build_dense(double th = 0, X* out = nullptr) {
+    if (!dense_pending) return;
+    constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
+                     d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
+                     d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
+    const double h = h_old, th1 = 1 - th;
+    for (Eigen::Index i = 0; i < r1.size(); ++i) {  // k7[i] is the step's k1, k1[i] its k7
+      const double c2 = y1[i] - r1[i], c3 = h * k7[i] - c2, c4 = c2 - h * k1[i] - c3,
+                   c5 = h * (d1 * k7[i] + d3 * k3[i] + d4 * k4[i] + d5 * k5[i] + d6 * k6[i] + d7 * k1[i]);
+      r2[i] = c2;
+      r3[i] = c3;
+      r4[i] = c4;
+      r5[i] = c5;
+      if (out) (*out)[i] = r1[i] + th * (c2 + th1 * (c3 + th * (c4 + th1 * c5)));
+    }
+    dense_pending = false;
+  }
+
+  void dense(double t, X& out) {
     const double th = (t - t_old) / h_old, th1 = 1 - th;
-    out = r1 + th * (r2 + th1 * (r3 + th * (r4 + th1 * r5)));
+    out.resize(r1.size());
+    if (dense_pending) return build_dense(th, &out);
+    for (Eigen::Index i = 0; i < r1.size(); ++i)
+      out[i] = r1[i] + th * (r2[i] + th1 * (r3[i] + th * (r4[i] + th1 * r5[i])));
   }
 
   // DOPRI5's PI controller (beta = 0.04, safety 0.9, step ratio within [0.2, 10]); after a rejection
-  // the step may not grow, which avoids reject/accept ping-pong.
+  // the step may not grow, which avoids reject/accept ping-pong. err^0.17 / facold^0.04 is taken as
+  // exp(0.17 log err - 0.04 log facold): the same quantity, rounded differently (relative
+  // differences of a few 1e-16 in h, far below anything the controller responds to).
   double next_h(double err, double h) {
     if (std::isnan(err)) {
       rejected = true;
       return 0.1 * h;
     }
-    const double fac11 = std::pow(err, 0.2 - 0.04 * 0.75);
+    const double log_err = std::log(err);
     if (err > 1) {
       rejected = true;
-      return h / std::min(5.0, fac11 / 0.9);
+      return h / std::min(5.0, std::exp((0.2 - 0.04 * 0.75) * log_err) / 0.9);
     }
-    double hnew = h / std::clamp(fac11 / std::pow(facold, 0.04) / 0.9, 0.1, 5.0);
-    facold = std::max(err, 1e-4);
+    double hnew = h / std::clamp(std::exp((0.2 - 0.04 * 0.75) * log_err - 0.04 * log_facold) / 0.9, 0.1, 5.0);
+    if (err > 1e-4) {
+      facold = err;
+      log_facold = log_err;
+    } else {
+      facold = 1e-4;
+      log_facold = std::log(1e-4);
+    }
     if (rejected) hnew = std::min(hnew, h);
     rejected = false;
     return hnew;
