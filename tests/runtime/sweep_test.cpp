@@ -78,14 +78,38 @@ TEST(Sweep, BatchOfSixWithSubstepsEqualsSingleRunsBitForBit) {
   expect_batch_equals_single_runs<6>(opt, 1.0);  // 6 runs: 2 per AVX2 operation, not 4
 }
 
+// A system of the one-stage paper scene, set up for exact stepping at 1 ms.
+template <class System>
+struct PaperSystem {
+  using Sys = System;
+  typename Sys::StateMatrix M;
+  typename Sys::InputMatrix N;
+  rt::LinearOutputs<Sys::ny, Sys::nx, Sys::nu> lo;
+  rt::SolverOptions opt;
+  rt::ExactDiscretization<Sys::nx, Sys::nu> disc;
+
+  PaperSystem() : PaperSystem(system_matrices()) {}
+
+ private:
+  explicit PaperSystem(const std::pair<typename Sys::StateMatrix, typename Sys::InputMatrix>& mn)
+      : M(mn.first), N(mn.second), lo(rt::linear_outputs(Sys{}, {})), opt(), disc(M, N, 1e-3) {
+    opt.h = 1e-3;
+  }
+  static std::pair<typename Sys::StateMatrix, typename Sys::InputMatrix> system_matrices() {
+    std::pair<typename Sys::StateMatrix, typename Sys::InputMatrix> mn;
+    Sys::matrices({}, mn.first, mn.second);
+    return mn;
+  }
+};
+using ElasticPaper = PaperSystem<pogear_generated::paper_one_stage::Elastic>;
+using RigidPaper = PaperSystem<pogear_generated::paper_one_stage::Rigid>;
+
 // The kernel gives the same bits whatever its lane width (plain doubles, SSE2 pairs, AVX quads),
 // and its result is Phi x + Gamma0 u0 + Gamma1 (u1 - u0) up to rounding.
 TEST(Sweep, StepKernelLaneWidthsAgree) {
-  using Sys = pogear_generated::paper_one_stage::Elastic;
-  Sys::StateMatrix M;
-  Sys::InputMatrix N;
-  Sys::matrices({}, M, N);
-  const rt::ExactDiscretization<10, 1> disc(M, N, 1e-3);
+  using Sys = ElasticPaper::Sys;
+  const ElasticPaper paper;
+  const auto& disc = paper.disc;
   Sys::State x;
   for (int i = 0; i < 10; ++i) x[i] = i < 6 ? 3.0 - 0.7 * i : 150.0 * (i - 5);
   const Eigen::Matrix<double, 1, 1> u0(100.0), u1(120.0);
@@ -107,13 +131,9 @@ TEST(Sweep, StepKernelLaneWidthsAgree) {
 // The portable driver and the one simulate_exact dispatches to (AVX2 where the CPU has it) give
 // the same bits.
 TEST(Sweep, DriverCopiesAgree) {
-  using Sys = pogear_generated::paper_one_stage::Elastic;
-  Sys::StateMatrix M;
-  Sys::InputMatrix N;
-  Sys::matrices({}, M, N);
-  const rt::ExactDiscretization<10, 1> disc(M, N, 1e-3);
-  rt::SolverOptions opt;
-  opt.h = 1e-3;
+  using Sys = ElasticPaper::Sys;
+  const ElasticPaper paper;
+  const auto& [M, N, lo, opt, disc] = paper;
   auto u = [](double t, Sys::Input& out) { out[0] = 100 + 50 * t; };
   std::vector<Sys::State> a, b;
   auto obs_a = [&](double, const Sys::State& x) { a.push_back(x); };
@@ -178,29 +198,6 @@ TEST(Sweep, NonFiniteStateStopsTheBatch) {
   EXPECT_FALSE(st.ok);
   EXPECT_NE(st.message.find("non-finite"), std::string::npos) << st.message;
 }
-
-// The rigid model of the one-stage paper scene, set up for exact stepping at 1 ms.
-struct RigidPaper {
-  using Sys = pogear_generated::paper_one_stage::Rigid;
-  Sys::StateMatrix M;
-  Sys::InputMatrix N;
-  rt::LinearOutputs<Sys::ny, Sys::nx, Sys::nu> lo;
-  rt::SolverOptions opt;
-  rt::ExactDiscretization<2, 1> disc;
-
-  RigidPaper() : RigidPaper(system_matrices()) {}
-
- private:
-  explicit RigidPaper(const std::pair<Sys::StateMatrix, Sys::InputMatrix>& mn)
-      : M(mn.first), N(mn.second), lo(rt::linear_outputs(Sys{}, {})), opt(), disc(M, N, 1e-3) {
-    opt.h = 1e-3;
-  }
-  static std::pair<Sys::StateMatrix, Sys::InputMatrix> system_matrices() {
-    std::pair<Sys::StateMatrix, Sys::InputMatrix> mn;
-    Sys::matrices({}, mn.first, mn.second);
-    return mn;
-  }
-};
 
 // Outputs computed in the batch driver take the inputs at the sample time, right-continuous, as the
 // generated main does: a step of the input torque at t = 0.5 (on the sample grid) shows in the forces
