@@ -345,4 +345,11 @@ inline double adaptive_bound(double rtol) { return 1e3 * std::max(rtol, 1e-8) + 
 // measured on the paper scenes the factor stays below 30.
 inline double low_order_bound(double rtol) { return 100 * std::pow(rtol, 2.0 / 3.0) + 1e-11; }
 
+// --check of a run at tolerance rtol: it succeeded and its error is within `bound`.
+inline void expect_error_within(Checker& chk, const std::string& label, const Row& r, bool ok, double rtol,
+                                double bound) {
+  chk.expect(ok && r.error <= bound, label + ": " + r.method + " rtol " + fmt_double(rtol) + ": error " +
+                                         fmt_double(r.error) + " <= " + fmt_double(bound));
+}
+
 }  // namespace bench

@@ -129,9 +129,7 @@ void bench_cvode(const Problem<Sys>& pb, SUNContext ctx, const Options& o, Resul
       write_row(res, r);
       // CVODE is a variable-order code (BDF 1-5, Adams 1-12) whose global error tracks the tolerance
       // like dopri5's does: the same bound.
-      chk.expect(cr.ok && r.error <= adaptive_bound(rtol), pb.label() + ": " + r.method + " rtol " + fmt_double(rtol) +
-                                                               ": error " + fmt_double(r.error) + " <= " +
-                                                               fmt_double(adaptive_bound(rtol)));
+      expect_error_within(chk, pb.label(), r, cr.ok, rtol, adaptive_bound(rtol));
     }
   }
 }

@@ -119,9 +119,7 @@ void bench_odeint(const Problem<Sys>& pb, const Options& o, Results& res, Checke
       slow = r.time.median > o.max_run;
       write_row(res, r);
       // odeint's error test uses the max norm (stricter than an RMS norm); rosenbrock4 is 4th order.
-      chk.expect(orun.ok && r.error <= adaptive_bound(rtol), pb.label() + ": " + method + " rtol " + fmt_double(rtol) +
-                                                                 ": error " + fmt_double(r.error) + " <= " +
-                                                                 fmt_double(adaptive_bound(rtol)));
+      expect_error_within(chk, pb.label(), r, orun.ok, rtol, adaptive_bound(rtol));
     }
   }
 }

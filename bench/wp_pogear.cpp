@@ -181,8 +181,7 @@ Kept bench_methods(const Problem<Sys>& pb, const Options& o, Results& res, Check
         kept.dopri5_1e8_error = r.error;
       }
       const double bound = std::string_view(method) == "dopri5" ? adaptive_bound(rtol) : low_order_bound(rtol);
-      chk.expect(st.ok && r.error <= bound, pb.label() + ": " + method + " rtol " + fmt_double(rtol) + ": error " +
-                                                fmt_double(r.error) + " <= " + fmt_double(bound));
+      expect_error_within(chk, pb.label(), r, st.ok, rtol, bound);
     }
   }
   return kept;
