@@ -1,6 +1,8 @@
 # pogear_add_simulator(TARGET SCENE): builds an executable TARGET that simulates a scene file, from
-# the C++ that `pogear generate` writes at build time. Installed with the pogear package; in-tree use
-# is `include(${PROJECT_SOURCE_DIR}/cmake/pogear_add_simulator.cmake)`.
+# the C++ that `pogear generate` writes at build time into ${CMAKE_CURRENT_BINARY_DIR}/pogear_TARGET/
+# (the target property POGEAR_GENERATED_DIR, for programs of one's own that include the generated
+# header: docs/simulator-api.md). Installed with the pogear package; in-tree use is
+# `include(${PROJECT_SOURCE_DIR}/cmake/pogear_add_simulator.cmake)`.
 include_guard(GLOBAL)
 
 function(pogear_add_simulator target scene)
@@ -65,6 +67,9 @@ function(pogear_add_simulator target scene)
   target_include_directories(${target} PRIVATE "${out_dir}")
   target_link_libraries(${target} PRIVATE ${runtime})
   target_compile_features(${target} PRIVATE cxx_std_20)
+  # Where the header is, for a program of one's own (which then depends on TARGET, whose build
+  # generates it): one custom command must not feed several independent targets.
+  set_target_properties(${target} PROPERTIES POGEAR_GENERATED_DIR "${out_dir}")
   # Generated code is held to warning-free; a warning here is a generator bug worth failing on.
   if(MSVC)
     target_compile_options(${target} PRIVATE /W4 /WX)

@@ -23,7 +23,7 @@ std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v
 
 }  // namespace
 
-Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R) {
+Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R, double sample) {
   Diagnostics d;
   const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(M, false).eigenvalues();
   d.fastest_rate = lambda.cwiseAbs().maxCoeff();
@@ -53,9 +53,22 @@ Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const 
   if (qr.rank() == RRt.rows()) d.cond_RRt = condition(RRt);
   d.rk4_max_step = rt::rk4_stability_limit(M);
   d.suggested_solver = "exact";
-  d.reason = fmt::format("the scene is linear: exact stepping is exact for any stiffness; among adaptive methods use {}",
-                         d.stiffness_ratio > 1e3 ? fmt::format("implicit (stiffness ratio {})", number(d.stiffness_ratio))
-                                                 : "dopri5 (not stiff)");
+  // An explicit method's step is bounded by the fastest mode, |lambda| h < ~3, whether that mode
+  // decays or not; the stiffness ratio only sees decaying modes, so an undamped gear with 1e-29 s
+  // mesh modes had ratio 1 and was called not stiff. Stability alone then costs sample |lambda|max
+  // steps per sample: above 1e3, the steps are set by a mode the output does not resolve.
+  const double steps_per_sample = sample * d.fastest_rate;
+  std::string why;
+  if (d.stiffness_ratio > 1e3) {
+    why = fmt::format("stiffness ratio {}", number(d.stiffness_ratio));
+  } else if (steps_per_sample > 1e3) {
+    why = fmt::format("the fastest time scale {} s is {} times below the sample period and bounds an explicit "
+                      "method's step, damped or not", number(d.fastest_time_constant), number(steps_per_sample));
+  }
+  d.adaptive_solver = why.empty() ? "dopri5" : "implicit";
+  d.reason = fmt::format("the scene is linear: exact stepping is exact up to rounding, or refuses the step; among "
+                         "adaptive methods use {}",
+                         why.empty() ? "dopri5 (not stiff)" : fmt::format("implicit ({})", why));
   return d;
 }
 

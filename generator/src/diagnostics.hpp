@@ -20,11 +20,15 @@ struct Diagnostics {
   std::optional<double> cond_RRt;     // of R R^T; none when singular (redundant meshes)
   double rk4_max_step = 0;            // largest stable rk4 step [s]
   std::string suggested_solver;
+  std::string adaptive_solver;        // the adaptive method to use: "dopri5", or "implicit" when stiff
   std::string reason;
 };
 
-// M: the system matrix of the simulated model (elastic or rigid); L1, R: numeric.
-Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R);
+// M: the system matrix of the simulated model (elastic or rigid); L1, R: numeric. sample: the
+// scene's sample period [s], which the fastest time scale is compared with; 0 when there is no
+// scene (derive), and only the stiffness ratio decides.
+Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R,
+                     double sample = 0);
 
 std::string diagnostics_text(const Diagnostics& d, const std::string& indent);
 std::string diagnostics_json(const Diagnostics& d, const std::string& indent);

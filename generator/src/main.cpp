@@ -1,4 +1,5 @@
 // The pogear command line: a thin layer that parses options and calls the library.
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -6,11 +7,16 @@
 #include <sstream>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "derivation.hpp"
+#include "interrupts.hpp"
 #include "output_file.hpp"
+#include "plot.hpp"
+#include "pogear/run_limits.hpp"
 #include "report.hpp"
 #include "simulation.hpp"
+#include "simulator_cache.hpp"
 
 namespace {
 
@@ -23,9 +29,18 @@ std::vector<std::string> split_list(const std::string& s) {
   return out;
 }
 
-void emit(const std::string& text, const std::string& output) {
-  if (output.empty()) std::fwrite(text.data(), 1, text.size(), stdout);
-  else pogear::write_file_atomically(output, text);
+void emit(const std::string& text, const std::optional<std::string>& output) {
+  if (!output) std::fwrite(text.data(), 1, text.size(), stdout);
+  else pogear::write_file_atomically(*output, text);
+}
+
+// "-o ''" would otherwise mean standard output (derive) or the root of the file system.
+CLI::Validator non_empty_path() {
+  return CLI::Validator(
+      [](std::string& value) {
+        return value.empty() ? std::string("the path is empty; give a file or directory name") : std::string();
+      },
+      "PATH");
 }
 
 }  // namespace
@@ -35,28 +50,43 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "pogear 0.1.0");
 
-  std::string model, keep, format = "text", output;
+  std::string model, keep, format = "text";
+  std::optional<std::string> output;
   CLI::App* derive = app.add_subcommand("derive", "Derive R, the elastic and the rigid reduced model of a gear");
   derive->add_option("MODEL", model, "Model file (TOML)")->required();
   derive->add_option("--keep", keep, "Velocities kept in the rigid model, e.g. c,r");
   derive->add_option("--format", format, "Report format")
       ->check(CLI::IsMember({"text", "latex", "markdown", "json"}));
-  derive->add_option("-o,--output", output, "Write the report to FILE instead of standard output");
+  derive->add_option("-o,--output", output, "Write the report to FILE instead of standard output")
+      ->check(non_empty_path());
 
   std::string scene_file, generate_dir = ".", simulate_dir = "out", solver;
-  bool interpreted = false;
-  int repeat = 1;
+  bool interpreted = false, large_output = false;
+  long repeat = 1;
   CLI::App* generate = app.add_subcommand("generate", "Write the specialized C++ simulator of a scene");
   generate->add_option("SCENE", scene_file, "Scene file (TOML)")->required();
-  generate->add_option("-o,--output", generate_dir, "Directory for <scene>.hpp and <scene>_main.cpp");
+  generate->add_option("-o,--output", generate_dir, "Directory for <scene>.hpp and <scene>_main.cpp")
+      ->check(non_empty_path());
 
   CLI::App* simulate = app.add_subcommand("simulate", "Generate, compile and run a scene; write CSV and plots");
   simulate->add_option("SCENE", scene_file, "Scene file (TOML)")->required();
-  simulate->add_option("-o,--output", simulate_dir, "Directory for the CSV files and plots");
+  simulate->add_option("-o,--output", simulate_dir, "Directory for the CSV files and plots")->check(non_empty_path());
   simulate->add_option("--solver", solver, "Override the scene's solver")
       ->check(CLI::IsMember({"exact", "rk4", "dopri5", "implicit"}));
   simulate->add_flag("--interpreted", interpreted, "Run from the numeric matrices, without compiling");
-  simulate->add_option("--repeat", repeat, "Run N times and report the median time")->check(CLI::PositiveNumber);
+  simulate->add_option("--repeat", repeat, "Run N times and report the median time")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            long n = 0;
+            const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
+            if (ec == std::errc() && end == value.data() + value.size() && n >= 1 && n <= pogear::rt::limits::max_repeat)
+              return std::string();
+            return fmt::format("'{}' is not a whole number from 1 to {}; give how many times to run, e.g. --repeat 5",
+                               value, pogear::rt::limits::max_repeat);
+          },
+          "N"));
+  simulate->add_flag("--large-output", large_output,
+                     fmt::format("Write CSV files even when they may exceed {} GB", pogear::max_csv_bytes >> 30));
 
   try {
     app.parse(argc, argv);
@@ -65,7 +95,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 1;
   }
 
-  pogear::install_interrupt_cleanup();  // Ctrl-C leaves no temporary file behind
+  pogear::install_interrupt_cleanup();  // Ctrl-C leaves no temporary file and no running child behind
   try {
     if (*derive) {
       std::optional<std::vector<std::string>> kept;
@@ -80,12 +110,14 @@ int main(int argc, char** argv) {
     } else if (*generate) {
       const pogear::SimModel model = pogear::specialize(pogear::parse_scene(scene_file));
       const pogear::GeneratedSources sources = pogear::generate_sources(model);
+      pogear::ensure_directory(generate_dir);
       pogear::write_sources(sources, generate_dir);
       std::cout << "wrote " << generate_dir << "/" << sources.header_name << " and " << generate_dir << "/"
                 << sources.main_name << "\n"
                 << pogear::operation_summary(model);
     } else if (*simulate) {
       const pogear::SimModel model = pogear::specialize(pogear::parse_scene(scene_file));
+      pogear::check_output_size(model, large_output);
       pogear::rt::SceneRun run;
       run.name = model.scene.name;
       run.horizon = model.scene.horizon;
@@ -96,20 +128,15 @@ int main(int argc, char** argv) {
       run.options.h = model.scene.step;
       run.options.max_steps = model.scene.max_steps;
       run.out_dir = simulate_dir;
-      run.repeat = repeat;
-      std::filesystem::create_directories(simulate_dir);
+      run.repeat = static_cast<int>(repeat);
+      pogear::ensure_directory(simulate_dir);
       std::cout << pogear::operation_summary(model);
-      // The simulator writes <name>.csv.tmp and renames it when done; an interrupt must not leave it.
-      for (const char* suffix : {".csv.tmp", ".rigid.csv.tmp"})
-        pogear::remember_temporary(simulate_dir + "/" + run.name + suffix);
       int status = 0;
       if (interpreted) {
         status = pogear::run_interpreted(model, run);
       } else {
-        const std::string exe = pogear::build_simulator(pogear::generate_sources(model));
-        status = pogear::run_compiled(exe, run);
-        // std::system ignores SIGINT in pogear while the simulator runs; if it died of one, clean up.
-        if (status > 128) pogear::remove_remembered_temporaries();
+        const pogear::CompiledSimulator simulator = pogear::build_simulator(pogear::generate_sources(model));
+        status = pogear::run_compiled(simulator.executable(), run);
       }
       if (status != 0) return status;
       for (const auto& svg : pogear::plot_scene(model, simulate_dir)) std::cout << "wrote " << svg << "\n";

@@ -68,14 +68,39 @@ class Parser {
     if (pos_ == text_.size()) fail(pos_, "empty expression; write a number with its unit, e.g. 4.8*cm");
     Quantity q = expression(0);
     skip_space();
-    if (pos_ != text_.size())
+    if (pos_ != text_.size()) {
+      if (const std::string why = non_ascii(pos_); !why.empty()) fail(pos_, why);
       fail(pos_, fmt::format("unexpected '{}'; join factors with '*', e.g. 4.8*cm", text_[pos_]));
+    }
     return q;
   }
 
  private:
   [[noreturn]] void fail(std::size_t at, const std::string& message) const {
     throw InputError(shifted(where_, offset_ + static_cast<int>(at)), message);
+  }
+
+  // The complaint about a character outside ASCII at `at`, whole (not its first byte, which alone
+  // prints as garbage), with its code point and the ASCII it stands for; "" for ASCII.
+  std::string non_ascii(std::size_t at) const {
+    const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text_[i]); };
+    if (byte(at) < 0x80) return "";
+    std::size_t length = byte(at) >= 0xF0 ? 4 : byte(at) >= 0xE0 ? 3 : byte(at) >= 0xC0 ? 2 : 1;
+    char32_t code = length == 4 ? byte(at) & 0x07 : length == 3 ? byte(at) & 0x0F : byte(at) & 0x1F;
+    bool valid = length > 1 && at + length <= text_.size();
+    for (std::size_t i = 1; valid && i < length; ++i) {
+      valid = (byte(at + i) & 0xC0) == 0x80;
+      code = (code << 6) | (byte(at + i) & 0x3F);
+    }
+    if (!valid) return fmt::format("byte 0x{:02X} is not text (not UTF-8); write the expression in ASCII", byte(at));
+    const std::string shown(text_.substr(at, length));
+    const auto codepoint = static_cast<unsigned>(code);
+    if (code == 0x2212 || code == 0x2013 || code == 0x2012 || code == 0x2010)
+      return fmt::format("'{}' (U+{:04X}) is not the minus sign of expressions; write the ASCII '-'", shown, codepoint);
+    if (code == 0x00D7 || code == 0x22C5 || code == 0x00B7)
+      return fmt::format("'{}' (U+{:04X}) is not the multiplication of expressions; write the ASCII '*'", shown,
+                         codepoint);
+    return fmt::format("unexpected '{}' (U+{:04X}); expressions are written in ASCII, e.g. 4.8*cm", shown, codepoint);
   }
   void skip_space() {
     while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\t')) ++pos_;
@@ -145,7 +170,7 @@ class Parser {
         q = checked(Quantity{q.si * b.si, q.dimension + b.dimension, q.has_unit || b.has_unit}, at);
       } else if (accept('/')) {
         Quantity b = unary(depth + 1);
-        if (b.si == 0.0) fail(at, "division by zero");
+        if (b.si == 0.0) fail(at, "division by zero: the divisor is 0; check the value or the parameter it names");
         q = checked(Quantity{q.si / b.si, q.dimension - b.dimension, q.has_unit || b.has_unit}, at);
       } else {
         return q;
@@ -195,6 +220,7 @@ class Parser {
     }
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') return number();
     if (is_ident_start(c)) return name();
+    if (const std::string why = non_ascii(pos_); !why.empty()) fail(pos_, why);
     fail(pos_, fmt::format("unexpected '{}'; expected a number, a unit or a parameter name", c));
   }
 

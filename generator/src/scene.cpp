@@ -3,14 +3,19 @@
 #include "scene.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <toml++/toml.h>
 
+#include "pogear/run_limits.hpp"
+#include "cpp_text.hpp"
 #include "pogear/signals.hpp"
 #include "toml_reader.hpp"
 
@@ -127,23 +132,6 @@ SignalSpec read_signal(const Reader& r, const toml::node& n, const fs::path& sce
   return s;
 }
 
-// C++ keywords and the macros of the headers generated code includes: no name in it can be one.
-bool is_cpp_reserved(const std::string& name) {
-  static const std::set<std::string> reserved{
-      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
-      "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
-      "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
-      "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for",
-      "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
-      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast",
-      "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
-      "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
-      "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
-      "errno", "assert", "stdin", "stdout", "stderr", "EOF", "NULL", "BUFSIZ", "INFINITY", "NAN", "HUGE_VAL",
-      "EXIT_SUCCESS", "EXIT_FAILURE", "RAND_MAX"};
-  return reserved.count(name) || name.rfind("M_", 0) == 0 || name.rfind("EIGEN_", 0) == 0 || name.rfind("FP_", 0) == 0;
-}
-
 // Tunable parameters become variables of the generated C++, beside the states, inputs and the
 // functions' own arguments; these names would not compile there.
 bool clashes_with_generated_code(const std::string& name, const Topology& t) {
@@ -243,10 +231,17 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   // The path is quoted in a comment of the generated code, which a line break would end.
   if (std::any_of(model_name.begin(), model_name.end(), [](char c) { return c == '\n' || c == '\r'; }))
     r.fail(*model, "the model path contains a line break; give the path of the model file");
+  if (model_name.empty()) r.fail(*model, "the model path is empty; give the path of the model file, e.g. model = \"gear.toml\"");
+  // TOML strings may hold \u0000; the system would read the path only up to it.
+  if (model_name.find('\0') != std::string::npos)
+    r.fail(*model, "the model path contains a NUL character; give the path of the model file");
   s.model_file = (fs::path(model_name).is_absolute() ? fs::path(model_name) : scene_dir / model_name).lexically_normal().string();
-  std::error_code exists_error;  // a path too long or unreadable is as good as missing here
-  if (!fs::exists(s.model_file, exists_error))
-    r.fail(*model, fmt::format("model file '{}' does not exist; give its path relative to the scene file", s.model_file));
+  if (struct stat st {}; ::stat(s.model_file.c_str(), &st) != 0) {
+    if (errno == ENOENT || errno == ENOTDIR)
+      r.fail(*model, fmt::format("model file '{}' does not exist; give its path relative to the scene file", s.model_file));
+    r.fail(*model, fmt::format("model file '{}' cannot be opened ({}); check the path and its links", s.model_file,
+                               std::strerror(errno)));
+  }
   const Topology topology = parse_topology(s.model_file);
   r.model = &topology;
 
@@ -292,6 +287,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   }
   if (const toml::node* n = root.get("tunable")) {
     s.tunable = r.strings(*n, "tunable");
+    s.tunable_where = r.loc(*n);
     std::set<std::string> seen;
     for (const auto& name : s.tunable) {
       if (!parameter_names.count(name)) r.fail(*n, fmt::format("tunable '{}' is not a parameter of the model", name));
@@ -361,27 +357,38 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     const toml::table& t = *n->as_table();
     r.only_keys(t, {"horizon", "sample", "solver", "tolerance", "step", "max_steps"}, "[simulation]");
     if (const toml::node* v = t.get("max_steps")) {
-      if (!v->is_integer() || *v->value<long>() < 1) r.fail(*v, "max_steps is a whole number of at least 1");
+      if (!v->is_integer() || *v->value<long>() < rt::limits::min_max_steps ||
+          *v->value<long>() > rt::limits::max_max_steps)
+        r.fail(*v, fmt::format("max_steps is a whole number from {} to {}", rt::limits::min_max_steps,
+                               rt::limits::max_max_steps));
       s.max_steps = *v->value<long>();
     }
     if (const toml::node* v = t.get("horizon")) s.horizon = r.quantity(*v, time_dimension(), "horizon");
-    if (const toml::node* v = t.get("sample")) s.sample = r.quantity(*v, time_dimension(), "sample");
+    if (const toml::node* v = t.get("sample")) {
+      s.sample = r.quantity(*v, time_dimension(), "sample");
+      s.sample_where = r.loc(*v);
+    }
     if (const toml::node* v = t.get("step")) s.step = r.quantity(*v, time_dimension(), "step");
     if (const toml::node* v = t.get("tolerance")) {
       if (!v->is_number()) r.fail(*v, "tolerance is a plain number, the relative tolerance, e.g. 1e-8");
       s.tolerance = *v->value<double>();
-      if (!(s.tolerance > 0 && s.tolerance < 1)) r.fail(*v, "tolerance must be between 0 and 1");
+      if (!(s.tolerance >= rt::limits::min_tolerance && s.tolerance <= rt::limits::max_tolerance))
+        r.fail(*v, fmt::format("tolerance must be from {} to {} (a looser one lets an adaptive method "
+                               "diverge, a tighter one stalls it on rounding); give one in that range, e.g. 1e-8",
+                               rt::limits::min_tolerance, rt::limits::max_tolerance));
     }
     if (const toml::node* v = t.get("solver")) {
       s.solver_where = r.loc(*v);
       s.solver = parse_solver(r.string(*v, "solver"), s.solver_where);
     }
-    if (!(s.horizon > 0)) r.fail(*t.get("horizon"), "horizon must be positive");
+    if (!(s.horizon > 0)) r.fail(*t.get("horizon"), "horizon must be positive; give the simulated time, e.g. horizon = \"2*s\"");
     if (!(s.sample > 0) || s.sample > s.horizon)
       r.fail(t.get("sample") ? *t.get("sample") : *n, "sample must be positive and at most the horizon");
     if (!(s.step > 0)) r.fail(*t.get("step"), "step must be positive");
-    // Bounded output: a CSV of more than 1e7 rows is a mistake, not a scene.
-    if (s.horizon / s.sample > 1e7)
+    if (!(s.step >= rt::limits::min_step && s.step <= rt::limits::max_step))
+      r.fail(*t.get("step"), fmt::format("step must be from {} s to {} s; give a step in that range",
+                                             rt::limits::min_step, rt::limits::max_step));
+    if (s.horizon / s.sample > rt::limits::max_samples)
       r.fail(*n, fmt::format("{} samples requested; at most 1e7 (raise sample or shorten the horizon)", s.horizon / s.sample));
   }
   return s;

@@ -60,7 +60,7 @@ struct Scene {
   double tolerance = 1e-8;  // adaptive methods, relative
   double step = 1e-4;       // fixed-step methods
   long max_steps = 10000000;  // adaptive methods: a stiff scene stops with an error, not a hang
-  SourceLocation solver_where, outputs_where, keep_where;
+  SourceLocation solver_where, outputs_where, keep_where, tunable_where, sample_where;
 };
 
 // Reads a scene and checks it against its model (bodies, meshes, parameter names).

@@ -8,6 +8,9 @@
 
 #include <fmt/format.h>
 
+#include "printer.hpp"
+#include "tunable_parameters.hpp"
+
 namespace pogear {
 namespace {
 
@@ -23,13 +26,20 @@ GiNaC::exmap folding(const Scene& sc, Derivation& d, bool keep_tunables) {
   GiNaC::exmap fold;
   std::set<std::string> tunable(sc.tunable.begin(), sc.tunable.end());
   if (!keep_tunables) tunable.clear();
-  for (const auto& [name, v] : d.radius.values)
-    if (!tunable.count(name)) fold[symbol(s, name)] = exact_number(v);
-  // A dependent radius follows a tunable one through the geometry relations.
+  // Parameters defined through a tunable follow it (K_pr = "K_ps").
+  const std::map<std::string, ex> dependents =
+      tunable.empty() ? std::map<std::string, ex>{} : tunable_dependents(d.topology.parameters, sc.tunable, s);
+  for (const auto& [name, v] : d.radius.values) {
+    if (tunable.count(name)) continue;
+    const auto it = dependents.find(name);
+    fold[symbol(s, name)] = it != dependents.end() ? it->second : ex(exact_number(v));
+  }
+  // A derived radius (one the model leaves out) follows a tunable one through the geometry
+  // relations; a given one keeps its value, and check_tunable_geometry refuses the contradiction.
   for (const auto& g : d.radius.relations) {
-    bool depends = false;
-    for (const auto& name : tunable) depends = depends || g.rhs.has(symbol(s, name));
-    if (depends) fold[symbol(s, g.parameter)] = g.rhs.subs(fold);
+    if (std::find(d.radius.derived.begin(), d.radius.derived.end(), g.parameter) == d.radius.derived.end()) continue;
+    const ex value = g.rhs.subs(fold, GiNaC::subs_options::no_pattern).expand();
+    if (!GiNaC::is_a<GiNaC::numeric>(value)) fold[symbol(s, g.parameter)] = value;
   }
   if (!sc.effects.bearing_friction)
     for (const auto& b : d.topology.bodies) fold[symbol(s, b.friction)] = 0;
@@ -140,6 +150,67 @@ OperationCount count_all(const std::vector<Assignment>& temps, const std::vector
   return c;
 }
 
+// The entries of L, A and B, one Cholesky factorization of L, its solves for M = L^-1 A and
+// N = L^-1 B, and M x + N u: what the generated rhs computes (the solve's counts are the usual
+// leading terms, not a count of Eigen's code).
+OperationCount implicit_operations(const ImplicitForm& f) {
+  std::vector<ex> entries;
+  for (const GiNaC::matrix* m : {&f.L, &f.A, &f.B})
+    for (unsigned i = 0; i < m->rows(); ++i)
+      for (unsigned j = 0; j < m->cols(); ++j) entries.push_back((*m)(i, j));
+  OperationCount c = count_all({}, entries);
+  const int k = static_cast<int>(f.L.rows()), columns = static_cast<int>(f.A.cols() + f.B.cols());
+  c.multiplications += k * k * k / 6 + k + columns * k * k + columns * k;
+  c.additions += k * k * k / 6 + columns * k * (k - 1) + columns * k;
+  return c;
+}
+
+// What `--param` accepts for a tunable, and the sign its roles in the model ask for.
+TunableParameter tunable_parameter(const Topology& t, const std::string& name, double value) {
+  TunableParameter p{name, value, {}, ""};
+  const Parameter* given = find_parameter(t, name);
+  if (given) {
+    if (auto unit = written_unit(*given)) p.units.push_back({unit->first, unit->second});
+    if (given->value.has_unit && !(given->value.dimension == Dimension{}) &&
+        (p.units.empty() || p.units[0].unit != describe(given->value.dimension)))
+      p.units.push_back({describe(given->value.dimension), 1.0});
+  }
+  bool positive = false, non_negative = false;
+  for (const auto& b : t.bodies) {
+    positive = positive || b.inertia == name || (b.axis == AxisKind::carried && b.distance == name);
+    non_negative = non_negative || b.friction == name;
+    for (const auto& w : b.wheels) positive = positive || w.radius == name;
+  }
+  for (const auto& m : t.meshes) {
+    positive = positive || m.stiffness == name;
+    non_negative = non_negative || m.damping == name;
+  }
+  p.sign = positive ? "positive" : non_negative ? "non-negative" : "";
+  return p;
+}
+
+// A given radius cannot follow a tunable through a geometry relation: it keeps its number, which
+// the relation then contradicts at every other value of the tunable.
+void check_tunable_geometry(const Scene& sc, Derivation& d) {
+  const GiNaC::exmap fold = folding(sc, d, true);
+  Symbols& s = d.symbols;
+  for (const auto& g : d.radius.relations) {
+    const ex lhs = symbol(s, g.parameter).subs(fold, GiNaC::subs_options::no_pattern);
+    const ex rhs = g.rhs.subs(fold, GiNaC::subs_options::no_pattern);
+    if ((lhs - rhs).expand().is_zero()) continue;
+    std::string tunables;
+    for (const auto& name : sc.tunable)
+      if (lhs.has(symbol(s, name)) || rhs.has(symbol(s, name))) tunables += (tunables.empty() ? "'" : ", '") + name + "'";
+    if (tunables.empty()) continue;  // rounding of given values, checked when the model was read
+    throw InputError(sc.tunable_where,
+                     fmt::format("tunable {} enters the geometry relation {} = {} of {}, but '{}' is given in the "
+                                 "model and would keep its value; leave '{}' out of the model so that it is derived, "
+                                 "or define it through the tunable, or do not tune a radius of this relation",
+                                 tunables, g.parameter, print_expression(g.rhs, Notation::ginac),
+                                 describe_mesh(d.topology, g.mesh), g.parameter, g.parameter));
+  }
+}
+
 }  // namespace
 
 OperationCount count_operations(const ex& e) {
@@ -167,6 +238,30 @@ OperationCount count_operations(const ex& e) {
   return c;
 }
 
+// E = x^T L x / 2, the energy stored in the specialized system's states, which a run is checked
+// against (the power balance bounds it; runtime/pogear/scene_runner.hpp): L = diag(J, K^-1) for the
+// elastic model, L1 = Q1^T J Q1 for the rigid one, folded like the equations (tunables stay symbols).
+GiNaC::matrix energy_matrix(const Scene& sc, Derivation& d, bool elastic) {
+  const GiNaC::exmap fold = folding(sc, d, true);
+  auto folded = [&](const ex& e) { return e.subs(fold, GiNaC::subs_options::no_pattern).expand(); };
+  const ElasticModel& e = d.elastic;
+  if (elastic) {
+    GiNaC::matrix L(e.L.rows(), e.L.cols());
+    for (unsigned i = 0; i < e.L.rows(); ++i)
+      for (unsigned j = 0; j < e.L.cols(); ++j) L(i, j) = folded(e.L(i, j));
+    return L;
+  }
+  const GiNaC::matrix& Q1 = d.rigid.Q1;
+  GiNaC::matrix L(Q1.cols(), Q1.cols());
+  for (unsigned i = 0; i < Q1.cols(); ++i)
+    for (unsigned j = 0; j <= i; ++j) {
+      ex sum = 0;
+      for (unsigned b = 0; b < Q1.rows(); ++b) sum += e.J(b, b) * Q1(b, i) * Q1(b, j);
+      L(i, j) = L(j, i) = folded(sum);
+    }
+  return L;
+}
+
 SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
   Symbols& s = d.symbols;
   const Topology& t = d.topology;
@@ -176,10 +271,7 @@ SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
   auto folded = [&](const ex& e) { return e.subs(fold, GiNaC::subs_options::no_pattern).expand(); };
   SimSystem sys;
   sys.kind = elastic ? "elastic" : "rigid";
-  for (const auto& name : sc.tunable) {
-    sys.params.push_back(name);
-    sys.param_values.push_back(d.radius.values.at(name));
-  }
+  for (const auto& name : sc.tunable) sys.params.push_back(tunable_parameter(t, name, d.radius.values.at(name)));
   inputs_of(sc, sys);
 
   // Names of temporaries must not shadow anything else in the generated function.
@@ -225,7 +317,15 @@ SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
                     "F from eq. (8)";
     for (int k : d.rigid.kept) sys.states.push_back(d.elastic.velocities[k]);
     const std::size_t k1 = sys.states.size();
-    if (sc.tunable.empty()) {
+    // Whether every inertia, friction and radius the rigid system reads is a number (tunables that
+    // are stiffnesses or dampings do not enter it).
+    bool numeric = true;
+    for (std::size_t b = 0; b < n; ++b)
+      numeric = numeric && GiNaC::is_a<GiNaC::numeric>(folded(d.elastic.J(b, b))) &&
+                GiNaC::is_a<GiNaC::numeric>(folded(d.elastic.B_J(b, b)));
+    for (std::size_t i = 0; i < m; ++i)
+      for (std::size_t b = 0; b < n; ++b) numeric = numeric && GiNaC::is_a<GiNaC::numeric>(folded(d.elastic.R(i, b)));
+    if (numeric) {
       // Every parameter is a number: x1' = L1^-1 (A1 x1 + B1 tau) exactly, and as A1 = -Q1^T B_J Q1
       // and B1 = Q1^T, that is L1^-1 Q1^T applied to the torques -B_J Q1 (one column per kept
       // velocity) and to the inputs' unit vectors: one sparse exact solve (exact_rigid_response),
@@ -249,22 +349,29 @@ SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
         sys.rhs.push_back(folded(GiNaC::add(f)));
       }
     } else {
-      GiNaC::matrix L1 = GiNaC::ex_to<GiNaC::matrix>(d.rigid.L1.subs(fold, GiNaC::subs_options::no_pattern));
-      GiNaC::matrix A1 = GiNaC::ex_to<GiNaC::matrix>(d.rigid.A1.subs(fold, GiNaC::subs_options::no_pattern));
-      const GiNaC::matrix L1inv = L1.inverse();
-      const GiNaC::matrix M1 = L1inv.mul(A1);
-      for (std::size_t j = 0; j < k1; ++j) {
-        ex f = 0;
-        for (std::size_t i = 0; i < k1; ++i) f += M1(j, i) * symbol(s, sys.states[i]);
-        for (std::size_t b = 0; b < n; ++b) {
-          const ex u = input_or_zero(s, sys, d.elastic.torques[b]);
-          if (u.is_zero()) continue;
-          ex coeff = 0;
-          for (std::size_t i = 0; i < k1; ++i) coeff += L1inv(j, i) * d.rigid.B1(i, b);
-          f += coeff * u;
+      // L1 = Q1^T J Q1, A1 = -Q1^T B_J Q1 and the inputs' columns of B1 = Q1^T, entry by entry from
+      // the folded Q1, J and B_J: short sums of monomials in the tunables. The generated code
+      // solves L1 x1' = A1 x1 + B1 tau numerically (see SimSystem::implicit).
+      GiNaC::matrix Q1(n, k1);
+      for (std::size_t b = 0; b < n; ++b)
+        for (std::size_t j = 0; j < k1; ++j) Q1(b, j) = folded(d.rigid.Q1(b, j));
+      ImplicitForm f{GiNaC::matrix(k1, k1), GiNaC::matrix(k1, k1), GiNaC::matrix(k1, sys.inputs.size())};
+      for (std::size_t i = 0; i < k1; ++i)
+        for (std::size_t j = 0; j < k1; ++j) {
+          ex l = 0, a = 0;
+          for (std::size_t b = 0; b < n; ++b) {
+            if (Q1(b, i).is_zero() || Q1(b, j).is_zero()) continue;
+            l += d.elastic.J(b, b) * Q1(b, i) * Q1(b, j);
+            a -= d.elastic.B_J(b, b) * Q1(b, i) * Q1(b, j);
+          }
+          f.L(i, j) = folded(l);
+          f.A(i, j) = folded(a);
         }
-        sys.rhs.push_back(folded(f.normal()));
+      for (std::size_t c = 0; c < sys.inputs.size(); ++c) {
+        const std::size_t b = static_cast<std::size_t>(find_body(t, sys.inputs[c].substr(4)));
+        for (std::size_t i = 0; i < k1; ++i) f.B(i, c) = Q1(b, i);
       }
+      sys.implicit = std::move(f);
     }
   }
   for (std::size_t i = 0; i < sys.states.size(); ++i) {
@@ -272,7 +379,7 @@ SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
     sys.x0.push_back(it == sc.initial.end() ? 0.0 : it->second);
     sys.state_units.push_back(unit_of(sys.states[i]));
   }
-  linear_form(s, sys);
+  if (!sys.implicit) linear_form(s, sys);
 
   // Outputs: only those asked for.
   const std::vector<std::string> wanted = requested_outputs(sc, d);
@@ -299,11 +406,17 @@ SimSystem specialize_system(const Scene& sc, Derivation& d, bool elastic) {
       need_derivatives = true;
     }
   }
-  if (need_derivatives)
+  if (need_derivatives && sys.implicit) sys.output_derivatives = true;
+  else if (need_derivatives)
     for (std::size_t j = 0; j < sys.states.size(); ++j)
       sys.output_temporaries.push_back({"d" + sys.states[j], sys.rhs[j]});
-  sys.rhs_ops = count_all(sys.rhs_temporaries, sys.rhs);
+  sys.rhs_ops = sys.implicit ? implicit_operations(*sys.implicit) : count_all(sys.rhs_temporaries, sys.rhs);
   sys.output_ops = count_all(sys.output_temporaries, sys.output_values);
+  if (sys.output_derivatives) {  // the outputs call rhs
+    sys.output_ops.multiplications += sys.rhs_ops.multiplications;
+    sys.output_ops.additions += sys.rhs_ops.additions;
+  }
+  sys.L = energy_matrix(sc, d, elastic);
   return sys;
 }
 
@@ -321,6 +434,7 @@ SimModel specialize(const Scene& scene) {
                      "this model has redundant meshes, whose rigid load split depends on every stiffness and "
                      "radius; it is computed at fixed values, so it cannot be combined with tunable parameters: "
                      "drop 'tunable' or 'mesh_forces'");
+  if (!scene.tunable.empty()) check_tunable_geometry(scene, model.derivation);
   model.main = specialize_system(scene, model.derivation, scene.effects.mesh_compliance);
   if (scene.compare_rigid) model.rigid = specialize_system(scene, model.derivation, false);
   return model;
@@ -354,6 +468,7 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
   };
   if (sys.kind == "elastic") {
     const GiNaC::matrix L = exact(e.L);
+    out.L = doubles(L);
     out.M = doubles(exact_solve(L, exact(e.A)));
     out.N = doubles(exact_solve(L, input_columns(exact(e.B))));
     for (std::size_t i = 0; i < ny; ++i) out.C(i, state_index(sys.outputs[i])) = 1;
@@ -362,6 +477,7 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
     const RigidValues v = exact_rigid_values(d.rigid, e, values);
     const GiNaC::matrix& Q1 = v.Q1;
     const GiNaC::matrix R = exact(e.R), J = exact(e.J), BJ = exact(e.B_J);
+    out.L = doubles(v.L1);
     out.M = doubles(exact_solve(v.L1, v.A1));
     out.N = doubles(exact_solve(v.L1, input_columns(Q1.transpose())));
     // Eq. (8) literally, F = (R R^T)^-1 R g with g = tau - J Q1 x1' - B_J Q1 x1; with redundant
@@ -401,14 +517,21 @@ NumericSystem numeric_system(const SimModel& model, const SimSystem& sys) {
   return out;
 }
 
+Eigen::MatrixXd state_matrix(const SimModel& model, const SimSystem& sys) {
+  Derivation d = model.derivation;
+  const GiNaC::exmap values = folding(model.scene, d, false);
+  if (!sys.implicit) return evaluate_matrix(sys.M, values);
+  return evaluate_matrix(sys.implicit->L, values).llt().solve(evaluate_matrix(sys.implicit->A, values));
+}
+
 Diagnostics system_diagnostics(const SimModel& model, const SimSystem& sys) {
   Derivation d = model.derivation;
   const GiNaC::exmap values = folding(model.scene, d, false);
   // The specialized system's own M, exact in the tunable parameters, at their values: the numbers
   // numeric_system computes by another formula (the tests compare them), without solving again.
   // L1 holds inertias and radii only, which the folding leaves at the model's values.
-  return diagnose(evaluate_matrix(sys.M, values), evaluate_matrix(d.rigid_values.L1, {}),
-                  evaluate_matrix(d.elastic.R, values));
+  return diagnose(state_matrix(model, sys), evaluate_matrix(d.rigid_values.L1, {}),
+                  evaluate_matrix(d.elastic.R, values), model.scene.sample);
 }
 
 }  // namespace pogear

@@ -1,5 +1,5 @@
-// Running scenes: the compiled path (generate, compile once per content hash, run) and the
-// interpreted path (the same runtime on Eigen dynamic matrices), plus gnuplot figures.
+// Running scenes: the compiled simulator (see simulator_cache.hpp for how it is built) and the
+// interpreted path (the same runtime on Eigen dynamic matrices).
 #pragma once
 
 #include <cstdint>
@@ -13,15 +13,20 @@ namespace pogear {
 // Writes the generated sources into `dir` (atomically, file by file).
 void write_sources(const GeneratedSources& sources, const std::string& dir);
 
-// The cache key of a simulator: a hash of its sources, the runtime headers under
-// `runtime_include`/pogear, the compiler (path, size, modification time), flags and version.
-std::uint64_t simulator_cache_key(const GeneratedSources& sources, const std::string& runtime_include);
+// CSV files are refused above this size unless the user opts in (`simulate --large-output`): a
+// sample period chosen by mistake would otherwise fill the disk before the run fails.
+inline constexpr std::uintmax_t max_csv_bytes = std::uintmax_t{1} << 30;
 
-// Compiles the scene's simulator unless a binary for the same sources is cached; returns its path.
-// The cache is $POGEAR_CACHE_DIR, else $XDG_CACHE_HOME/pogear, else ~/.cache/pogear.
-std::string build_simulator(const GeneratedSources& sources);
+// An upper bound of the bytes the scene's CSV files take: samples x columns x 25 (a double in its
+// shortest round-trip form has at most 24 characters, then a separator).
+std::uintmax_t csv_bytes_bound(const SimModel& model);
 
-// Runs the compiled simulator; returns its exit status (0 success, 3 failed run).
+// Throws an InputError at the scene's `sample` when csv_bytes_bound exceeds max_csv_bytes and
+// `allow_large` is false.
+void check_output_size(const SimModel& model, bool allow_large);
+
+// Runs the compiled simulator (no shell: the options are its arguments as they are); returns its
+// exit status (0 success, 3 failed run). Throws std::runtime_error when it dies of a signal.
 int run_compiled(const std::string& executable, const rt::SceneRun& run);
 
 // Runs the same scene from the numeric matrices of the derivation, without compiling.
@@ -34,9 +39,5 @@ struct Trajectory {
   rt::RunStatus status;
 };
 Trajectory interpret_trajectory(const SimModel& model, const SimSystem& system, const rt::SceneRun& run);
-
-// DIR/<scene>.velocities.svg and, with forces, DIR/<scene>.forces.svg: elastic solid, rigid
-// dashed on top, as in the paper's Figs. 8-9. Returns the files written.
-std::vector<std::string> plot_scene(const SimModel& model, const std::string& dir);
 
 }  // namespace pogear

@@ -2,6 +2,7 @@
 #include "toml_reader.hpp"
 
 #include <algorithm>
+#include <cctype>
 
 #include <fmt/format.h>
 
@@ -11,9 +12,64 @@ SourceLocation toml_location(const std::string& file, const toml::source_region&
   return SourceLocation{file, static_cast<int>(region.begin.line), static_cast<int>(region.begin.column)};
 }
 
+namespace {
+
+// toml++ parses a dotted key recursively, one call per part, and overflows the stack from about
+// 30,500 parts (`a.a.a...= 1`, or a `[a.a...]` header). No model or scene needs more than a few, so
+// the text is scanned before parsing: outside strings and comments, a run of key characters,
+// quoted parts and blanks joined by more than max_key_parts - 1 dots is refused. Numbers (one dot),
+// dates and values in lists (separated by commas) never come near the bound.
+void check_dotted_keys(const std::string& text, const std::string& path) {
+  int line = 1, column = 0, run_line = 1, run_column = 1;
+  std::size_t dots = 0;
+  auto key_char = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == ' ' || c == '\t';
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    ++column;
+    if (c == '\n') {
+      ++line;
+      column = 0;
+      dots = 0;
+      continue;
+    }
+    if (c == '#') {  // a comment runs to the end of the line
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+      continue;
+    }
+    if (c == '"' || c == '\'') {  // a string is one part of a key, or a value; skip it whole
+      const bool triple = text.compare(i, 3, std::string(3, c)) == 0;
+      const std::string close = triple ? std::string(3, c) : std::string(1, c);
+      std::size_t j = i + close.size();
+      while (j < text.size() && text.compare(j, close.size(), close) != 0 && (triple || text[j] != '\n')) {
+        if (c == '"' && text[j] == '\\') ++j;
+        if (j < text.size() && text[j] == '\n') ++line, column = 0;
+        ++j;
+      }
+      column += static_cast<int>(j + close.size() - 1 - i);
+      i = std::min(j + close.size() - 1, text.size() - 1);
+      continue;
+    }
+    if (c == '.') {
+      if (dots == 0) run_line = line, run_column = column;
+      if (++dots >= max_key_parts)
+        throw InputError(SourceLocation{path, run_line, run_column},
+                         fmt::format("a dotted key of more than {} parts; keys in pogear's files have at most a few "
+                                     "parts: write the key as its table and name",
+                                     max_key_parts));
+      continue;
+    }
+    if (!key_char(c)) dots = 0;
+  }
+}
+
+}  // namespace
+
 toml::table parse_toml_document(const std::string& text, const std::string& path, std::size_t max_bytes,
                                 const std::string& too_large) {
   if (text.size() > max_bytes) throw InputError(SourceLocation{path, 0, 0}, too_large);
+  check_dotted_keys(text, path);
   try {
     return toml::parse(text, path);
   } catch (const toml::parse_error& e) {

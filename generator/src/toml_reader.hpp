@@ -14,7 +14,11 @@ namespace pogear {
 
 SourceLocation toml_location(const std::string& file, const toml::source_region& region);
 
-// Parses `text` (read from `path`); a file larger than `max_bytes` is refused with `too_large`.
+// Dotted keys (`a.b.c = 1`, `[a.b.c]`) of more parts than this are refused before parsing.
+inline constexpr std::size_t max_key_parts = 64;
+
+// Parses `text` (read from `path`); a file larger than `max_bytes` is refused with `too_large`, one
+// with a dotted key of max_key_parts parts or more before the parser sees it.
 toml::table parse_toml_document(const std::string& text, const std::string& path, std::size_t max_bytes,
                                 const std::string& too_large);
 

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "pogear/input_file.hpp"
 #include "toml_reader.hpp"
 
 namespace pogear {
@@ -357,28 +358,23 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
 
 std::string read_input_file(const std::string& path, std::size_t limit, const std::string& what) {
   const SourceLocation where{path, 0, 0};
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(where, fmt::format("this is a directory; give the {} itself", what));
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError(where, fmt::format("cannot read the {} ({}); check the path", what,
-                                        errno ? std::strerror(errno) : "cannot open"));
-  // Chunks up to one byte past the limit: the size a file reports (0 for a FIFO or /dev/zero)
-  // says nothing about what reading it gives.
-  std::string text;
-  char chunk[1 << 16];
-  while (text.size() <= limit) {
-    in.read(chunk, sizeof chunk);
-    if (in.gcount() <= 0) break;
-    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+  rt::InputFile in = rt::read_regular_file(path, limit);
+  switch (in.status) {
+    case rt::InputFileStatus::ok: return std::move(in.text);
+    case rt::InputFileStatus::cannot_open:
+      throw InputError(where, fmt::format("cannot read the {} ({}); check the path", what, in.reason));
+    case rt::InputFileStatus::directory:
+      throw InputError(where, fmt::format("this is a directory; give the {} itself", what));
+    case rt::InputFileStatus::not_regular:
+      // A FIFO or a device would hang or never end; a model is a file on disk.
+      throw InputError(where, fmt::format("this is {}, not a regular file; give the path of the {} itself", in.reason,
+                                          what));
+    case rt::InputFileStatus::too_large:
+      throw InputError(where, fmt::format("the {} is larger than {} bytes; a model or scene file is a few kilobytes",
+                                          what, limit));
+    case rt::InputFileStatus::read_error: break;
   }
-  if (text.size() > limit)
-    throw InputError(where, fmt::format("the {} is larger than {} bytes; a model or scene file is a few kilobytes",
-                                        what, limit));
-  if (in.bad()) throw InputError(where, fmt::format("cannot read the {}: a read error; check the file", what));
-  return text;
+  throw InputError(where, fmt::format("cannot read the {}: a read error; check the file", what));
 }
 
 Topology parse_topology(const std::string& path) {

@@ -1,31 +1,26 @@
 // CSV output of simulation runs: numbers in std::to_chars' shortest round-trip form, buffered and
-// written to PATH.tmp, which replaces PATH only when the run is over (complete or marked incomplete).
+// written through an OutputFile, which puts them at PATH only when the run is over (complete or
+// marked incomplete).
 #pragma once
 
-#include <cerrno>
 #include <charconv>
-#include <cstdio>
-#include <cstring>
 #include <initializer_list>
 #include <string>
 #include <vector>
+
+#include "pogear/output_file.hpp"
 
 namespace pogear::rt {
 
 // Usage: CsvWriter w(path, {"t [s]", "omega_c [rad/s]", "F_ps [N]"}); check w.ok(); then w.row(t, x)
 // or field()...end_row() per sample; finally commit() or commit_incomplete(reason). Destroyed
-// without either, it removes PATH.tmp, so a crashed or abandoned run never leaves a half-written
-// file, and never touches an existing PATH. Errors (open, write, rename) end up in error().
+// without either, it drops what it wrote, so a crashed or abandoned run never leaves a half-written
+// file, and never touches an existing PATH (see OutputFile for what PATH may be). Errors (open,
+// write, rename) end up in error().
 class CsvWriter {
  public:
-  CsvWriter(std::string path, const std::vector<std::string>& columns)
-      : path_(std::move(path)), tmp_(path_ + ".tmp") {
-    file_ = std::fopen(tmp_.c_str(), "wb");
-    if (!file_) {
-      set_error("cannot open for writing");
-      return;
-    }
-    std::setvbuf(file_, nullptr, _IONBF, 0);  // rows are already buffered here, in large chunks
+  CsvWriter(std::string path, const std::vector<std::string>& columns) : file_(std::move(path)) {
+    if (!file_.ok()) return;
     buf_.reserve(kChunk + 4096);
     for (std::size_t i = 0; i < columns.size(); ++i) {
       if (i) buf_ += ',';
@@ -44,14 +39,10 @@ class CsvWriter {
   }
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
-  ~CsvWriter() {
-    if (file_) std::fclose(file_);
-    if (!committed_) std::remove(tmp_.c_str());
-  }
 
-  bool ok() const { return error_.empty(); }
-  const std::string& error() const { return error_; }
-  const std::string& path() const { return path_; }
+  bool ok() const { return file_.ok(); }
+  const std::string& error() const { return file_.error(); }
+  const std::string& path() const { return file_.path(); }
 
   void field(double v) {
     if (in_row_) buf_ += ',';
@@ -89,29 +80,18 @@ class CsvWriter {
  private:
   static constexpr std::size_t kChunk = std::size_t{1} << 20;
 
-  void set_error(const char* what) {
-    if (error_.empty()) error_ = tmp_ + ": " + what + ": " + std::strerror(errno);
-  }
   void write_buffer() {
-    if (file_ && ok() && !buf_.empty() && std::fwrite(buf_.data(), 1, buf_.size(), file_) != buf_.size())
-      set_error("write failed");
+    if (!buf_.empty()) file_.write(buf_);
     buf_.clear();
   }
   bool finish() {
-    if (!file_) return false;
     write_buffer();
-    if (std::fflush(file_) != 0) set_error("write failed");
-    if (std::fclose(file_) != 0) set_error("close failed");
-    file_ = nullptr;
-    // rename() replaces PATH atomically on POSIX file systems: readers see the old or the new file.
-    if (ok() && std::rename(tmp_.c_str(), path_.c_str()) != 0) set_error("cannot rename to final path");
-    committed_ = ok();
-    return committed_;
+    return file_.commit();
   }
 
-  std::string path_, tmp_, buf_, error_;
-  std::FILE* file_ = nullptr;
-  bool in_row_ = false, committed_ = false;
+  OutputFile file_;
+  std::string buf_;
+  bool in_row_ = false;
 };
 
 }  // namespace pogear::rt

@@ -3,10 +3,11 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <type_traits>
-#include <unsupported/Eigen/MatrixFunctions>
 
 // Lanes: the step kernels below compute W results at once as GCC/Clang vector extensions (W = 2 is
 // one SSE2 register, W = 4 one AVX register), and as plain doubles (W = 1) elsewhere. The arithmetic
@@ -47,70 +48,100 @@ namespace pogear::rt {
 // accumulate over thousands of steps, drops from ~1e-14 to ~1e-16 relative (on the one-stage paper
 // scene the sampled error of exact stepping falls from 6e-12 to ~1e-13).
 namespace detail {
-// e^A by Eigen's own method (MatrixExponential.h: Higham's scaling and squaring with the Pade
-// approximant its 1-norm calls for; the same coefficients and the same steps), with every product
-// a fixed-size lazy product: for the 12x12 augmented matrix of the 10-state paper model, Eigen's
-// blocked products (packing, kernels) made up half of the setup.
+// A B: a lazy product for fixed sizes up to 24 (for the 12x12 augmented matrix of the 10-state
+// paper model, Eigen's blocked products (packing, kernels) made up half of the setup), a blocked one
+// for larger and dynamic sizes.
 template <class Mat>
-Mat small_exp(const Mat& A) {
-  const Mat I = Mat::Identity();
+Mat mat_mul(const Mat& A, const Mat& B) {
+  if constexpr (Mat::RowsAtCompileTime != Eigen::Dynamic && Mat::RowsAtCompileTime <= 24)
+    return A.lazyProduct(B);
+  else
+    return A * B;
+}
+
+// e^A by Eigen's own method (MatrixExponential.h: Higham's scaling and squaring with the Pade
+// approximant its 1-norm calls for; the same coefficients and the same steps), with one change
+// in the squaring: it squares D = e^(A/2^s) - I as D <- 2 D + D^2 instead of E <- E^2. Squaring E
+// turns a rounding error of one ulp in an eigenvalue 1 of e^(A/2^s) into (1 - 2^-53)^(2^s): the
+// modes that do not move (a frictionless rotation, the input hold of the augmented matrix) lose
+// e^(-2^s eps) of their value, and 2^s ~ ||A||. At h = 1e14 s that made Gamma0 e^-4 times its value
+// (every velocity 54.6 times too small) and from h = 1e18 s zero. In D those eigenvalues are 0 and
+// stay 0. extra_squarings > 0 takes the degree-13 approximant with that many more squarings (the
+// independent evaluation ExactDiscretization checks against). Without squarings E is (V-U)^-1 (U+V),
+// as before: the same bits.
+template <class Mat>
+Mat small_exp(const Mat& A, int extra_squarings = 0) {
+  const Mat I = Mat::Identity(A.rows(), A.cols());
   Mat U, V;
   int squarings = 0;
   const double l1norm = A.cwiseAbs().colwise().sum().maxCoeff();
-  if (l1norm < 1.495585217958292e-002) {
+  if (extra_squarings > 0) {
+    // below: the degree-13 branch
+  } else if (l1norm < 1.495585217958292e-002) {
     const double b[] = {120., 60., 12., 1.};
-    const Mat A2 = A.lazyProduct(A);
+    const Mat A2 = mat_mul(A, A);
     const Mat tmp = b[3] * A2 + b[1] * I;
-    U = A.lazyProduct(tmp);
+    U = mat_mul(A, tmp);
     V = b[2] * A2 + b[0] * I;
   } else if (l1norm < 2.539398330063230e-001) {
     const double b[] = {30240., 15120., 3360., 420., 30., 1.};
-    const Mat A2 = A.lazyProduct(A), A4 = A2.lazyProduct(A2);
+    const Mat A2 = mat_mul(A, A), A4 = mat_mul(A2, A2);
     const Mat tmp = b[5] * A4 + b[3] * A2 + b[1] * I;
-    U = A.lazyProduct(tmp);
+    U = mat_mul(A, tmp);
     V = b[4] * A4 + b[2] * A2 + b[0] * I;
   } else if (l1norm < 9.504178996162932e-001) {
     const double b[] = {17297280., 8648640., 1995840., 277200., 25200., 1512., 56., 1.};
-    const Mat A2 = A.lazyProduct(A), A4 = A2.lazyProduct(A2), A6 = A4.lazyProduct(A2);
+    const Mat A2 = mat_mul(A, A), A4 = mat_mul(A2, A2), A6 = mat_mul(A4, A2);
     const Mat tmp = b[7] * A6 + b[5] * A4 + b[3] * A2 + b[1] * I;
-    U = A.lazyProduct(tmp);
+    U = mat_mul(A, tmp);
     V = b[6] * A6 + b[4] * A4 + b[2] * A2 + b[0] * I;
   } else if (l1norm < 2.097847961257068e+000) {
     const double b[] = {17643225600., 8821612800., 2075673600., 302702400., 30270240.,
                         2162160.,     110880.,     3960.,       90.,        1.};
-    const Mat A2 = A.lazyProduct(A), A4 = A2.lazyProduct(A2), A6 = A4.lazyProduct(A2), A8 = A6.lazyProduct(A2);
+    const Mat A2 = mat_mul(A, A), A4 = mat_mul(A2, A2), A6 = mat_mul(A4, A2), A8 = mat_mul(A6, A2);
     const Mat tmp = b[9] * A8 + b[7] * A6 + b[5] * A4 + b[3] * A2 + b[1] * I;
-    U = A.lazyProduct(tmp);
+    U = mat_mul(A, tmp);
     V = b[8] * A8 + b[6] * A6 + b[4] * A4 + b[2] * A2 + b[0] * I;
-  } else {
+  }
+  if (extra_squarings > 0 || !(l1norm < 2.097847961257068e+000)) {
     std::frexp(l1norm / 5.371920351148152, &squarings);
-    if (squarings < 0) squarings = 0;
+    squarings = std::max(squarings, 0) + extra_squarings;
     const Mat As = A * std::ldexp(1.0, -squarings);
     const double b[] = {64764752532480000., 32382376266240000., 7771770303897600., 1187353796428800.,
                         129060195264000.,   10559470521600.,    670442572800.,     33522128640.,
                         1323241920.,        40840800.,          960960.,           16380.,
                         182.,               1.};
-    const Mat A2 = As.lazyProduct(As), A4 = A2.lazyProduct(A2), A6 = A4.lazyProduct(A2);
+    const Mat A2 = mat_mul(As, As), A4 = mat_mul(A2, A2), A6 = mat_mul(A4, A2);
     V = b[13] * A6 + b[11] * A4 + b[9] * A2;
-    Mat tmp = A6.lazyProduct(V);
+    Mat tmp = mat_mul(A6, V);
     tmp += b[7] * A6 + b[5] * A4 + b[3] * A2 + b[1] * I;
-    U = As.lazyProduct(tmp);
+    U = mat_mul(As, tmp);
     tmp = b[12] * A6 + b[10] * A4 + b[8] * A2;
-    V = A6.lazyProduct(tmp);
+    V = mat_mul(A6, tmp);
     V += b[6] * A6 + b[4] * A4 + b[2] * A2 + b[0] * I;
   }
-  const Mat numer = U + V, denom = V - U;
-  Mat E = denom.partialPivLu().solve(numer);
-  for (int i = 0; i < squarings; ++i) E = E.lazyProduct(E).eval();
-  return E;
+  const Mat denom = V - U;
+  if (squarings == 0) return denom.partialPivLu().solve(U + V);
+  Mat D = 2 * denom.partialPivLu().solve(U);  // (V-U)^-1 (U+V) - I
+  for (int i = 0; i < squarings; ++i) D = (2 * D + mat_mul(D, D)).eval();
+  return D + I;
 }
 }  // namespace detail
 
-// Fixed-size matrices keep the setup off the heap, and up to 24x24 their products lazy (see
-// detail::small_exp): a sixth of a whole 2000-step run of the 10-state paper scene went into the
-// dynamic exponential.
+// Every size goes through detail::small_exp, dynamic ones too (the interpreted mode), so that both
+// square e^A - I. Fixed-size matrices keep the setup off the heap, and up to 24x24 their products
+// lazy: a sixth of a whole 2000-step run of the 10-state paper scene went into Eigen's dynamic
+// exponential.
+// With rounding given, it also receives an estimate of the relative error of e^C: the difference
+// of e^C' and a second evaluation with three more squarings (another scaled matrix, other roundings,
+// so errors that do not cancel), over max(1, ||e^C'||_1), both balanced so that velocities and
+// forces weigh alike. Scaling and squaring amplifies rounding by about 2^s ~ ||C||: a mode turning
+// by 1e13 rad per step carries phase errors of ~1e-3, and at 1e25 rad the computed e^C overflows.
+// The second evaluation, with 8 times the amplification, errs about as much as the first or more,
+// so the difference is the size of the error (measured over 100 steps of stiff undamped scenes
+// against 80-digit references: each step errs by 1 to 11 times it).
 template <class Mat>
-Mat balanced_exp(Mat C) {
+Mat balanced_exp(Mat C, double* rounding = nullptr) {
   const Eigen::Index n = C.rows();
   Eigen::Matrix<double, Mat::RowsAtCompileTime, 1> d = Eigen::Matrix<double, Mat::RowsAtCompileTime, 1>::Ones(n);
   // Bounded passes and factors (2^-64 ... 2^64 per pass): balancing converges in a few passes, and
@@ -133,11 +164,12 @@ Mat balanced_exp(Mat C) {
       }
     }
   }
-  Mat E;
-  if constexpr (Mat::RowsAtCompileTime != Eigen::Dynamic && Mat::RowsAtCompileTime <= 24)
-    E = detail::small_exp(C);
-  else
-    E = C.exp();
+  Mat E = detail::small_exp(C);
+  if (rounding) {
+    const double norm = E.cwiseAbs().colwise().sum().maxCoeff();
+    *rounding = (E - detail::small_exp(C, 3)).cwiseAbs().colwise().sum().maxCoeff() / std::max(1.0, norm);
+    if (!std::isfinite(norm)) *rounding = std::numeric_limits<double>::infinity();
+  }
   for (Eigen::Index j = 0; j < n; ++j)
     for (Eigen::Index i = 0; i < n; ++i) E(i, j) *= d(i) / d(j);
   return E;
@@ -299,6 +331,13 @@ POGEAR_RT_INLINE void exact_step_batch(const ExactKernel<NX, NU>& kern, const do
 
 }  // namespace detail
 
+// The largest estimated rounding error of one step (balanced_exp's estimate) that exact stepping
+// accepts; simulate_exact refuses a step size whose discretization exceeds it. Ordinary scenes are
+// near 1e-16 (the one-stage paper scene at 1 ms: 1.3e-16; K = 1e12 N/m: 2e-14). Above 1e-10 the
+// error of 100 steps measured against 80-digit references exceeds 1e-8 (K = 1e21 N/m at 1 ms:
+// 1e-10 per step, 7e-8 after 100 steps); a mode that turns by 1e13 rad per step is ~1e-3.
+inline constexpr double kExactMaxRounding = 1e-10;
+
 template <int NX, int NU>
 struct ExactDiscretization {
   using State = Eigen::Matrix<double, NX, 1>;
@@ -310,6 +349,7 @@ struct ExactDiscretization {
   InputMatrix Gamma0, Gamma1;
   InputMatrix GammaD;  // Gamma0 - Gamma1, the weight of u0 in step()
   double h = 0;
+  double rounding = 0;  // estimated relative error of Phi, Gamma0 and Gamma1 (see balanced_exp)
   // Phi, GammaD and Gamma1 again, laid out for the step kernel; the constructor fills it, so a
   // discretization whose matrices are changed afterwards must be rebuilt (or call pack()).
   [[no_unique_address]] detail::ExactKernel<NX, NU> kernel;
@@ -324,13 +364,16 @@ struct ExactDiscretization {
     C.topLeftCorner(n, n) = M * h;
     C.block(0, n, n, m) = N * h;
     C.block(n, n + m, m, m).setIdentity();
-    const Aug E = balanced_exp(C);
+    const Aug E = balanced_exp(C, &rounding);
     Phi = E.topLeftCorner(n, n);
     Gamma0 = E.block(0, n, n, m);
     Gamma1 = E.block(0, n + m, n, m);
     GammaD = Gamma0 - Gamma1;
     pack();
   }
+
+  // Whether the step can be trusted: NaN and overflow (an infinite estimate) count as not.
+  bool accurate() const { return rounding <= kExactMaxRounding; }
 
   void pack() {
     if constexpr (detail::ExactKernel<NX, NU>::enabled) {

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -13,6 +12,8 @@
 #include <string_view>
 #include <variant>
 #include <vector>
+
+#include "pogear/input_file.hpp"
 
 namespace pogear::rt {
 
@@ -109,35 +110,27 @@ inline std::optional<double> parse_double(std::string_view s) {
 inline constexpr std::size_t max_table_rows = 100000;
 inline constexpr std::size_t max_table_bytes = std::size_t{16} << 20;  // 1e5 rows of ~50 characters, with room
 
-// Reads a two-column CSV "t,value". The first line may be a header (its first field is not a number);
+// Reads a two-column CSV "t,value". The first line may be a header (none of its fields is a number);
 // blank lines and lines starting with '#' are skipped. On failure returns nullopt and sets `error` to
 // "PATH:LINE: what is wrong" (or "PATH: what is wrong" when no line is concerned). Never throws for
 // bad input; only std::bad_alloc can escape.
 inline std::optional<Table> load_table_csv(const std::string& path, std::string& error) {
   error.clear();
-  std::ifstream in(path);
-  if (!in) {
-    error = path + ": cannot open file";
-    return std::nullopt;
+  InputFile in = read_regular_file(path, max_table_bytes);
+  switch (in.status) {
+    case InputFileStatus::ok: break;
+    case InputFileStatus::cannot_open: error = path + ": cannot open file (" + in.reason + ")"; return std::nullopt;
+    case InputFileStatus::directory:
+    case InputFileStatus::not_regular: error = path + ": " + in.reason + ", not a regular file"; return std::nullopt;
+    case InputFileStatus::too_large:
+      error = path + ": larger than " + std::to_string(max_table_bytes) + " bytes; a table has at most " +
+              std::to_string(max_table_rows) + " rows";
+      return std::nullopt;
+    case InputFileStatus::read_error: error = path + ": read error"; return std::nullopt;
   }
-  // Read in chunks, at most one past the bound: what a file's size says (0 for a FIFO or
-  // /dev/zero) does not bound what reading it gives.
-  std::string content;
-  char chunk[1 << 16];
-  while (content.size() <= max_table_bytes) {
-    in.read(chunk, sizeof chunk);
-    if (in.gcount() <= 0) break;
-    content.append(chunk, static_cast<std::size_t>(in.gcount()));
-  }
-  if (in.bad()) {
-    error = path + ": read error";
-    return std::nullopt;
-  }
-  if (content.size() > max_table_bytes) {
-    error = path + ": larger than " + std::to_string(max_table_bytes) + " bytes; a table has at most " +
-            std::to_string(max_table_rows) + " rows";
-    return std::nullopt;
-  }
+  std::string& content = in.text;
+  // A byte order mark (spreadsheets write one) is not part of the first field.
+  if (content.rfind("\xEF\xBB\xBF", 0) == 0) content.erase(0, 3);
   std::istringstream lines(content);
   Table tab;
   std::string line;
@@ -160,10 +153,12 @@ inline std::optional<Table> load_table_csv(const std::string& path, std::string&
       return fail("expected 2 columns 't,value', found more");
     const std::string_view f1 = detail::trim(l.substr(0, comma));
     const auto t = detail::parse_double(f1);
-    if (first && !t) continue;  // header line
-    if (comma == std::string_view::npos) return fail("expected 2 columns 't,value', found 1");
-    const std::string_view f2 = detail::trim(l.substr(comma + 1));
+    const std::string_view f2 = comma == std::string_view::npos ? std::string_view{} : detail::trim(l.substr(comma + 1));
     const auto v = detail::parse_double(f2);
+    // A header names the columns: no field of it is a number. A first line with one number in it
+    // is a data row with a mistake, reported as such rather than dropped.
+    if (first && !t && !v) continue;
+    if (comma == std::string_view::npos) return fail("expected 2 columns 't,value', found 1");
     if (!t) return fail("bad number '" + shown(f1) + "' in column 1 (time)");
     if (!v) return fail("bad number '" + shown(f2) + "' in column 2 (value)");
     if (!std::isfinite(*t) || !std::isfinite(*v)) return fail("non-finite number");

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -76,6 +77,8 @@ struct Run {
     if (!(opt.h > 0) || !(opt.h_max > 0)) return refuse("invalid step size h = " + num(opt.h));
     if (!x.allFinite()) return refuse("non-finite initial state at t = " + num(t0));
     const double n = (t_end - t0) / dt;
+    // llround is undefined beyond a long long; far fewer samples than that could ever be written.
+    if (!(n < 0x1p62)) return refuse("too many samples: (t_end - t0) / dt = " + num(n));
     auto steps = std::llround(n);
     if (std::abs(n - static_cast<double>(steps)) > 1e-9 * std::max(1.0, n)) steps = std::llround(std::ceil(n));
     grid = {t0, dt, t_end, static_cast<long>(steps) + 1};
@@ -142,7 +145,16 @@ POGEAR_RT_INLINE RunStatus run_fixed(const char* name, Advance&& advance, X& x, 
     const double te = brk ? breaks[next_break++] : ts;
     const double len = te - t;
     if (!(std::abs(len - last_len) <= 1e-9 * last_len)) {
-      n = std::max(1L, static_cast<long>(std::ceil(len / h_max - 1e-9)));
+      // Counted in double and checked before the conversion: a count beyond a long's range used to
+      // wrap to 1, so a 1e-30 s step became one 10 ms step per sample, past rk4's stability check.
+      const double count = std::ceil(len / h_max - 1e-9);
+      if (!(count <= static_cast<double>(std::min(max_steps, 1L << 62)))) {
+        finish();
+        return run.fail(std::string(name) + " cannot reach t = " + num(te) + ": steps of at most " + num(h_max) +
+                        " s need " + num(count) + " steps over " + num(len) + " s, more than max_steps = " +
+                        std::to_string(max_steps) + "; raise the step or max_steps");
+      }
+      n = std::max(1L, static_cast<long>(count));
       last_len = len;
     }
     const double hs = n == 1 ? len : len / static_cast<double>(n);
@@ -201,7 +213,11 @@ RunStatus run_adaptive(const char* name, const char* advice, S& s, X& x, double 
     const bool brk = clipped && before_break;
     if (++attempts > opt.max_steps) return stalled("max_steps = " + std::to_string(opt.max_steps) + " reached");
     const double err = s.attempt(t, x, hs, brk);
-    const double hmin = 1e-14 * std::max(std::abs(t), t_end - t0);
+    // A stall is a step that t can barely represent: a few ulps of t (or, at t = 0, an underflowing
+    // one). Relative to the time reached, not to the horizon: 1e-14 of a 1e8 s horizon (1e-6 s) was
+    // above the steps an honest transient at t = 0 needs, so long horizons stalled at once.
+    const double hmin = std::max(16 * std::numeric_limits<double>::epsilon() * std::abs(t),
+                                 std::numeric_limits<double>::min());
     if (!(err <= 1)) {
       h = std::min(s.next_h(err, hs), opt.h_max);
       if (h < hmin) {
@@ -292,13 +308,41 @@ namespace detail {
 // Step lengths within 1e-9 of each other differ by rounding of the grid times only.
 inline bool same_step(double a, double b) { return std::abs(a - b) <= 1e-9 * b; }
 
+// The refusal of a step size whose discretization cannot be trusted (ExactDiscretization::accurate):
+// its fastest modes turn so far per step that scaling and squaring loses them, and with them, through
+// rounding, the slow motion too (every velocity 0, or 17 % off).
+template <class D>
+std::string inaccurate_exact_step(const D& disc) {
+  char err[32];
+  std::snprintf(err, sizeof err, "%.2g", disc.rounding);
+  return "exact stepping lost accuracy: with steps of " + num(disc.h) +
+         " s the scene's fastest modes turn too far per step for double precision (" +
+         (std::isfinite(disc.rounding) ? "estimated error per step " + std::string(err) + ", limit " +
+                                             num(kExactMaxRounding)
+                                       : std::string("the matrix exponential overflows")) +
+         "); shorten the sample, or check stiffnesses and inertias (without mesh_compliance the rigid model is "
+         "the limit of stiff meshes)";
+}
+
 template <class D>
 RunStatus check_nominal(const D& nominal, double dt, const SolverOptions& opt) {
   if (!(dt > 0) || !(opt.h > 0)) return Run{}.fail("invalid step: dt = " + num(dt));
   if (!same_step(nominal.h, exact_nominal_step(dt, opt.h)))
     return Run{}.fail("the discretization's step " + num(nominal.h) + " is not the nominal step " +
                       num(exact_nominal_step(dt, opt.h)) + " of dt and h");
+  if (!nominal.accurate()) return Run{}.fail(inaccurate_exact_step(nominal));
   return {};
+}
+
+// The discretization of a step other than the nominal one, built when the step size changes. When
+// it cannot be trusted the state becomes NaN, which stops run_fixed at once; the driver then reports
+// inaccurate_exact_step instead of a non-finite state. Out of line: it runs next to breakpoints and
+// at the last sample only, and keeps the step loop as small as it was.
+template <class D, class MatM, class MatN, class X>
+[[gnu::noinline]] void refresh_odd(D& odd, const MatM& M, const MatN& N, double h, X& xs) {
+  if (same_step(h, odd.h)) return;
+  odd = D(M, N, h);
+  if (!odd.accurate()) xs.setConstant(std::numeric_limits<double>::quiet_NaN());
 }
 
 // simulate_exact's body; W is the step kernel's lane width (exact.hpp).
@@ -317,7 +361,7 @@ POGEAR_RT_INLINE RunStatus simulate_exact_lanes(const ExactDiscretization<NX, NU
   auto advance = [&](double t, double h, bool brk, typename D::State& xs) POGEAR_RT_LAMBDA_INLINE {
     const D* disc = &nominal;
     if (!(std::abs(h - h_nom) <= tol_nom)) {  // same_step(h, h_nom)
-      if (!same_step(h, odd.h)) odd = D(M, N, h);
+      refresh_odd(odd, M, N, h, xs);
       disc = &odd;
     }
     if (!u0_valid) u(t, u0);
@@ -331,7 +375,9 @@ POGEAR_RT_INLINE RunStatus simulate_exact_lanes(const ExactDiscretization<NX, NU
     u0 = u1;
     u0_valid = !brk;  // after a breakpoint the input restarts from its new (right) value
   };
-  return run_fixed("exact", advance, x, t0, t_end, dt, opt, obs, breaks);
+  RunStatus st = run_fixed("exact", advance, x, t0, t_end, dt, opt, obs, breaks);
+  if (!st.ok && odd.h > 0 && !odd.accurate()) st.message = inaccurate_exact_step(odd);
+  return st;
 }
 
 #if defined(POGEAR_RT_AVX2_DISPATCH)

@@ -178,7 +178,7 @@ POGEAR_RT_INLINE RunStatus simulate_exact_batch_lanes(const ExactDiscretization<
   auto advance = [&](double t, double h, bool brk, BatchState<NX, B>& xs) POGEAR_RT_LAMBDA_INLINE {
     const D* disc = &nominal;
     if (!(std::abs(h - h_nom) <= tol_nom)) {
-      if (!same_step(h, odd.h)) odd = D(M, N, h);
+      refresh_odd(odd, M, N, h, xs);
       disc = &odd;
     }
     if (!u0_valid) u(t, *U0);
@@ -187,8 +187,13 @@ POGEAR_RT_INLINE RunStatus simulate_exact_batch_lanes(const ExactDiscretization<
     std::swap(U0, U1);
     u0_valid = !brk;  // after a breakpoint the input restarts from its new (right) value
   };
+  // A step size whose discretization cannot be trusted stops the run (refresh_odd): say so.
+  auto reported = [&](RunStatus st) {
+    if (!st.ok && odd.h > 0 && !odd.accurate()) st.message = inaccurate_exact_step(odd);
+    return st;
+  };
   if constexpr (std::is_same_v<Lo, std::nullptr_t>) {
-    return run_fixed("exact", advance, X, t0, t_end, dt, opt, obs, breaks);
+    return reported(run_fixed("exact", advance, X, t0, t_end, dt, opt, obs, breaks));
   } else if constexpr (is_peak_outputs<Lo>) {
     auto peaks = [&](double t, const BatchState<NX, B>& xs) POGEAR_RT_LAMBDA_INLINE {
       if (!u0_valid) {
@@ -197,7 +202,7 @@ POGEAR_RT_INLINE RunStatus simulate_exact_batch_lanes(const ExactDiscretization<
       }
       batch_outputs_lanes<W, B, true>(*lo.lo, xs.data(), U0->data(), lo.peak->data());
     };
-    return run_fixed("exact", advance, X, t0, t_end, dt, opt, peaks, breaks);
+    return reported(run_fixed("exact", advance, X, t0, t_end, dt, opt, peaks, breaks));
   } else {
     constexpr int NY = std::remove_cvref_t<decltype(lo.C)>::RowsAtCompileTime;
     BatchOutput<NY, B> Y;
@@ -212,7 +217,7 @@ POGEAR_RT_INLINE RunStatus simulate_exact_batch_lanes(const ExactDiscretization<
       batch_outputs_lanes<W, B>(lo, xs.data(), U0->data(), Y.data());
       return obs(t, xs, static_cast<const BatchOutput<NY, B>&>(Y));
     };
-    return run_fixed("exact", advance, X, t0, t_end, dt, opt, with_outputs, breaks);
+    return reported(run_fixed("exact", advance, X, t0, t_end, dt, opt, with_outputs, breaks));
   }
 }
 

@@ -2,12 +2,14 @@
 // of docs/errors.md, edits of them, and the check that an error's exact text is documented.
 #pragma once
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -97,6 +99,56 @@ inline Command run_in(const fs::path& dir, const std::string& command) {
   return c;
 }
 
+// Starts `command` with sh in its own process group (exec'd, so the pid is the command's own), so
+// that a test can signal it alone or with its group.
+inline pid_t start(const std::string& command) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::setpgid(0, 0);
+    ::execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::setpgid(pid, pid);  // also here, so that the group exists before we signal it
+  return pid;
+}
+
+// Polls `ready` every 10 ms for up to `limit` (a loaded machine may be slow to get there).
+template <class F>
+bool eventually(F ready, std::chrono::milliseconds limit = std::chrono::seconds(60)) {
+  using namespace std::chrono_literals;
+  for (auto waited = 0ms; waited < limit; waited += 10ms) {
+    if (ready()) return true;
+    std::this_thread::sleep_for(10ms);
+  }
+  return false;
+}
+
+// The parent of process `pid` from /proc/PID/stat; 0 when it is gone.
+inline pid_t parent_of(pid_t pid) {
+  const std::string stat = read_text("/proc/" + std::to_string(pid) + "/stat");
+  const auto paren = stat.rfind(')');
+  if (paren == std::string::npos || paren + 4 >= stat.size()) return 0;
+  return static_cast<pid_t>(std::atoi(stat.c_str() + paren + 4));  // after ") S "
+}
+
+// True once `pid` has ended (gone, or a zombie nobody has reaped yet).
+inline bool ended(pid_t pid) {
+  const std::string stat = read_text("/proc/" + std::to_string(pid) + "/stat");
+  const auto paren = stat.rfind(')');
+  return paren == std::string::npos || paren + 2 >= stat.size() || stat[paren + 2] == 'Z';
+}
+
+// The children of `pid`.
+inline std::vector<pid_t> children_of(pid_t pid) {
+  std::vector<pid_t> kids;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") == std::string::npos && parent_of(std::stoi(name)) == pid)
+      kids.push_back(std::stoi(name));
+  }
+  return kids;
+}
+
 // A fresh scratch directory as the working directory, with gear.toml and scene.toml in it, so
 // that messages name files as a user running pogear beside them sees them.
 class ErrorTest : public ::testing::Test {
@@ -155,9 +207,34 @@ class ErrorTest : public ::testing::Test {
     expect_documented(scene_error(edited(base_scene(), edits)), expected);
   }
   Command run(const std::string& command) const { return run_in(dir_, command); }
+  // Runs pogear with `args` in the scratch directory; checks the exit status and that standard
+  // error is exactly `expected` (plus a newline), as docs/errors.md shows it.
+  void expect_pogear_error(const std::string& args, int status, const std::string& expected,
+                           const std::string& prefix = "") const {
+    const Command c = run(prefix + pogear() + " " + args);
+    EXPECT_EQ(c.status, status) << c.err;
+    expect_documented(c.err, expected + "\n");
+  }
   static std::string pogear() { return std::string("'") + POGEAR_EXECUTABLE + "'"; }
 
   fs::path dir_, previous_;
+};
+
+// The paper's one-stage simulator (built by CMake from generated/) as ./paper_one_stage in the
+// scratch directory, as a user types it.
+class SimulatorTest : public ErrorTest {
+ protected:
+  void SetUp() override {
+    ErrorTest::SetUp();
+    fs::create_symlink(POGEAR_SIM_ONE_STAGE, "paper_one_stage");
+  }
+  // Runs it with `args`; checks the exit status and that standard error is exactly `expected`.
+  void expect_simulator_error(const std::string& args, int status, const std::string& expected,
+                              const std::string& prefix = "") const {
+    const Command c = run(prefix + "./paper_one_stage " + args);
+    EXPECT_EQ(c.status, status) << c.err;
+    expect_documented(c.err, expected + "\n");
+  }
 };
 
 }  // namespace pogear::test

@@ -1,7 +1,8 @@
-// Tests of the CSV writer: exact round trip of doubles, temp-file-then-rename protocol, incomplete
-// runs, chunked writing and open errors.
+// Tests of the CSV writer: exact round trip of doubles, nothing at PATH before the commit and no
+// temporary name left behind, incomplete runs, chunked writing and open errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -17,12 +18,21 @@ namespace rt = pogear::rt;
 
 namespace {
 
+// out.csv in an empty directory of the test's own.
 fs::path temp_path() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path p = fs::temp_directory_path() / (std::string("pogear_rt_") + info->name() + ".csv");
-  fs::remove(p);
-  fs::remove(p.string() + ".tmp");
-  return p;
+  const fs::path dir = fs::temp_directory_path() / (std::string("pogear_rt_csv_") + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir / "out.csv";
+}
+
+// The names in the directory of `p`: a temporary file would show up here.
+std::vector<std::string> names_beside(const fs::path& p) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(p.parent_path())) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 std::vector<std::string> read_lines(const fs::path& p) {
@@ -42,11 +52,10 @@ TEST(CsvWriter, RoundTripsDoublesExactly) {
     rt::CsvWriter w(path.string(), {"t [s]", "omega_c [rad/s]", "F_ps [N]"});
     ASSERT_TRUE(w.ok()) << w.error();
     for (std::size_t i = 0; i + 1 < values.size(); i += 2) w.row(values[i], std::vector<double>{values[i + 1], 1.0});
-    EXPECT_TRUE(fs::exists(path.string() + ".tmp"));
-    EXPECT_FALSE(fs::exists(path));  // nothing at PATH before commit
+    EXPECT_TRUE(names_beside(path).empty());  // nothing at PATH, nor anywhere by name, before commit
     ASSERT_TRUE(w.commit()) << w.error();
   }
-  EXPECT_FALSE(fs::exists(path.string() + ".tmp"));
+  EXPECT_EQ(names_beside(path), std::vector<std::string>{"out.csv"});
   const std::vector<std::string> lines = read_lines(path);
   ASSERT_EQ(lines.size(), 1 + values.size() / 2);
   EXPECT_EQ(lines[0], "t [s],omega_c [rad/s],F_ps [N]");
@@ -73,9 +82,8 @@ TEST(CsvWriter, UncommittedRunLeavesNoFile) {
     std::ofstream(path) << "previous good result\n";
     rt::CsvWriter w(path.string(), {"t [s]"});
     w.row({0.5});
-    EXPECT_TRUE(fs::exists(path.string() + ".tmp"));
   }
-  EXPECT_FALSE(fs::exists(path.string() + ".tmp"));
+  EXPECT_EQ(names_beside(path), std::vector<std::string>{"out.csv"});
   EXPECT_EQ(read_lines(path), std::vector<std::string>{"previous good result"});  // untouched
   fs::remove(path);
 }
@@ -88,7 +96,7 @@ TEST(CsvWriter, IncompleteRunIsKeptAndMarked) {
     w.field(0.1);  // a row cut short by the failure
     ASSERT_TRUE(w.commit_incomplete("non-finite state at t = 0.1;\nlast finite sample at t = 0"));
   }
-  EXPECT_FALSE(fs::exists(path.string() + ".tmp"));
+  EXPECT_EQ(names_beside(path), std::vector<std::string>{"out.csv"});
   EXPECT_EQ(read_lines(path), (std::vector<std::string>{
                                   "t [s],x [m]", "0,1", "0.1",
                                   "# incomplete: non-finite state at t = 0.1; last finite sample at t = 0"}));
@@ -122,7 +130,8 @@ TEST(CsvWriter, QuotesColumnNamesWithCommas) {
 TEST(CsvWriter, OpenErrorIsReported) {
   rt::CsvWriter w("/nonexistent/dir/out.csv", {"t [s]"});
   EXPECT_FALSE(w.ok());
-  EXPECT_EQ(w.error().rfind("/nonexistent/dir/out.csv.tmp: cannot open for writing", 0), 0u) << w.error();
+  EXPECT_EQ(w.error(), "cannot write /nonexistent/dir/out.csv: No such file or directory; check that the output "
+                      "directory exists and is writable");
   w.row({1.0});
   EXPECT_FALSE(w.commit());
 }

@@ -6,6 +6,8 @@
 #include <pogear/signals.hpp>
 #include <string>
 
+#include <sys/stat.h>
+
 namespace rt = pogear::rt;
 
 namespace {
@@ -84,7 +86,7 @@ TEST(TableCsv, LoadsWithoutHeader) {
 TEST(TableCsv, MissingFile) {
   std::string error;
   EXPECT_FALSE(rt::load_table_csv("/nonexistent/dir/table.csv", error));
-  EXPECT_EQ(error, "/nonexistent/dir/table.csv: cannot open file");
+  EXPECT_EQ(error, "/nonexistent/dir/table.csv: cannot open file (No such file or directory)");
 }
 
 TEST(TableCsv, ErrorsCarryLineNumbers) {
@@ -108,5 +110,43 @@ TEST(TableCsv, ErrorsCarryLineNumbers) {
   std::string error;
   EXPECT_FALSE(rt::load_table_csv(path, error));
   EXPECT_EQ(error, path + ": no data rows");
+  std::filesystem::remove(path);
+}
+
+// A spreadsheet's byte order mark must not turn the first data row into a header: with it dropped,
+// 100 N m would hold from t = 0 instead of ramping from 0 at t = 0 to 100 at t = 1.
+TEST(TableCsv, ByteOrderMarkIsNotPartOfTheFirstRow) {
+  const std::string path = write_temp("\xEF\xBB\xBF" "0,0\n1,100\n");
+  std::string error;
+  const auto tab = rt::load_table_csv(path, error);
+  ASSERT_TRUE(tab) << error;
+  EXPECT_EQ(tab->t, (std::vector<double>{0, 1}));
+  EXPECT_EQ(tab->v, (std::vector<double>{0, 100}));
+  EXPECT_EQ(tab->value(0.5), 50);
+  std::filesystem::remove(path);
+}
+
+// The header is told by its content: a first line with a number in one of its fields is a data row
+// with a mistake, not a header to skip.
+TEST(TableCsv, FirstLineWithANumberIsData) {
+  for (const auto& [content, what] : std::vector<std::pair<std::string, std::string>>{
+           {"x0,0\n1,100\n", ":1: bad number 'x0' in column 1 (time)"},
+           {"0,y\n1,100\n", ":1: bad number 'y' in column 2 (value)"}}) {
+    const std::string path = write_temp(content);
+    std::string error;
+    EXPECT_FALSE(rt::load_table_csv(path, error)) << content;
+    EXPECT_EQ(error, path + what) << content;
+    std::filesystem::remove(path);
+  }
+}
+
+// A FIFO with no writer would block a reader forever; it is refused at once.
+TEST(TableCsv, FifoIsRefused) {
+  const std::string path = write_temp("");
+  std::filesystem::remove(path);
+  ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+  std::string error;
+  EXPECT_FALSE(rt::load_table_csv(path, error));
+  EXPECT_EQ(error, path + ": a FIFO, not a regular file");
   std::filesystem::remove(path);
 }

@@ -6,6 +6,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "sim_support.hpp"
+#include "simulator_cache.hpp"
 
 namespace pogear::test {
 namespace {
@@ -25,15 +26,8 @@ TEST_P(PaperScenes, CompiledAgreesWithInterpretedTo1em12) {
   const SimModel model = scene_model(scene_text(p.name));
   for (const SimSystem* sys : {&model.main, &*model.rigid}) {
     const Csv csv = read_csv((dir / (p.name + (sys->kind == "rigid" ? ".rigid" : "") + ".csv")).string());
-    const Trajectory tr = interpret_trajectory(model, *sys, run_settings(model));
-    ASSERT_TRUE(tr.status.ok) << tr.status.message;
-    ASSERT_EQ(csv.rows.size(), tr.t.size());
-    std::vector<std::vector<double>> interpreted;
-    for (std::size_t i = 0; i < tr.t.size(); ++i) {
-      std::vector<double> row{tr.t[i]};
-      for (Eigen::Index j = 0; j < tr.y[i].size(); ++j) row.push_back(tr.y[i](j));
-      interpreted.push_back(row);
-    }
+    const std::vector<std::vector<double>> interpreted = interpreted_rows(model, *sys);
+    ASSERT_EQ(csv.rows.size(), interpreted.size());
     for (std::size_t col = 1; col < csv.header.size(); ++col) {
       // Both step with exp(M h) of the same M, computed once from folded symbolic expressions and
       // once from L^-1 A in doubles: entries differ by rounding (~1e-16), which 2000 contracting

@@ -84,4 +84,17 @@ inline double column_error(const std::vector<std::vector<double>>& a, const std:
   return scale > 0 ? err / scale : err;
 }
 
+// An interpreted run of `sys` as CSV rows (t, then the outputs), to compare with a simulator's CSV.
+inline std::vector<std::vector<double>> interpreted_rows(const SimModel& model, const SimSystem& sys) {
+  const Trajectory tr = interpret_trajectory(model, sys, run_settings(model));
+  EXPECT_TRUE(tr.status.ok) << tr.status.message;
+  std::vector<std::vector<double>> rows;
+  for (std::size_t i = 0; i < tr.t.size(); ++i) {
+    std::vector<double> row{tr.t[i]};
+    for (Eigen::Index j = 0; j < tr.y[i].size(); ++j) row.push_back(tr.y[i](j));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 }  // namespace pogear::test

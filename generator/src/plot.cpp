@@ -1,0 +1,160 @@
+// gnuplot reads the script, data included, from a memory file on its standard input and writes
+// the SVG to its standard output; pogear checks its exit status and that the SVG is whole before
+// the file is written, so a failed or cut-short drawing never replaces a good figure.
+#include "plot.hpp"
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <sys/stat.h>
+
+#include "child_process.hpp"
+#include "output_file.hpp"
+
+namespace pogear {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string gnuplot_label(const std::string& name) {
+  // omega_c -> {/Symbol w}_{c}, F_ps -> F_{ps}
+  const auto us = name.find('_');
+  std::string base = name.substr(0, us), sub = us == std::string::npos ? "" : name.substr(us + 1);
+  if (base == "omega") base = "{/Symbol w}";
+  return sub.empty() ? base : base + "_{" + sub + "}";
+}
+
+// One CSV line of numbers, or nothing for the header, a comment or a row cut short.
+bool parse_row(const std::string& line, std::size_t width, std::vector<double>& row) {
+  row.clear();
+  const char* p = line.data();
+  const char* end = p + line.size();
+  while (p < end) {
+    double v = 0;
+    const auto [next, ec] = std::from_chars(p, end, v);
+    if (ec != std::errc()) return false;
+    row.push_back(v);
+    p = next;
+    if (p < end && *p != ',') return false;
+    if (p < end) ++p;
+  }
+  return width == 0 || row.size() == width;
+}
+
+std::string datablock(const std::string& name, const std::vector<std::vector<double>>& rows) {
+  std::string s = "$" + name + " << EOD\n";
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) s += fmt::format("{}{}", i ? "," : "", row[i]);
+    s += '\n';
+  }
+  return s + "EOD\n";
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> thinned_csv_rows(const std::string& path, double horizon) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    throw std::runtime_error(fmt::format("the simulation wrote no {}; run the simulator by hand to see why", path));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("cannot read {} for the figures; check its permissions", path));
+  std::vector<std::vector<double>> kept, bucket;
+  std::vector<std::size_t> lo, hi;  // per column: the bucket rows of the smallest and largest value
+  long current = -1;
+  auto flush = [&] {
+    if (bucket.empty()) return;
+    std::vector<bool> keep(bucket.size(), false);
+    keep.front() = keep.back() = true;
+    for (std::size_t c = 1; c < lo.size(); ++c) keep[lo[c]] = keep[hi[c]] = true;
+    for (std::size_t i = 0; i < bucket.size(); ++i)
+      if (keep[i]) kept.push_back(std::move(bucket[i]));
+    bucket.clear();
+  };
+  std::string line;
+  std::vector<double> row;
+  std::size_t width = 0;
+  while (std::getline(in, line)) {
+    if (!parse_row(line, width, row) || row.empty()) continue;
+    width = row.size();
+    const long b = horizon > 0 ? static_cast<long>(row[0] / horizon * static_cast<double>(plot_buckets)) : 0;
+    if (b != current) {
+      flush();
+      current = b;
+      lo.assign(width, 0);
+      hi.assign(width, 0);
+    }
+    const std::size_t i = bucket.size();
+    bucket.push_back(row);
+    for (std::size_t c = 1; c < width; ++c) {
+      if (bucket[i][c] < bucket[lo[c]][c]) lo[c] = i;
+      if (bucket[i][c] > bucket[hi[c]][c]) hi[c] = i;
+    }
+  }
+  flush();
+  if (kept.empty()) throw std::runtime_error(fmt::format("{} holds no rows to plot", path));
+  return kept;
+}
+
+std::vector<std::string> plot_scene(const SimModel& model, const std::string& dir) {
+  const std::optional<std::string> gnuplot = find_program("gnuplot");
+  if (!gnuplot)
+    throw std::runtime_error("gnuplot is not installed, so no figures were drawn (the CSV files are written); "
+                             "install gnuplot-nox (scripts/install-deps.sh)");
+  std::vector<std::string> written;
+  const std::string name = model.scene.name;
+  const auto elastic = thinned_csv_rows((fs::path(dir) / (name + ".csv")).string(), model.scene.horizon);
+  std::vector<std::vector<double>> rigid;
+  if (model.rigid) rigid = thinned_csv_rows((fs::path(dir) / (name + ".rigid.csv")).string(), model.scene.horizon);
+  for (const std::string kind : {"velocities", "forces"}) {
+    const std::string prefix = kind == "velocities" ? "omega_" : "F_";
+    std::vector<int> columns;  // 1-based gnuplot columns; column 1 is t
+    for (std::size_t i = 0; i < model.main.outputs.size(); ++i)
+      if (model.main.outputs[i].rfind(prefix, 0) == 0) columns.push_back(static_cast<int>(i) + 2);
+    if (columns.empty()) continue;
+    // Every word of the script is pogear's own or a validated name: the scene's name and the
+    // outputs' names are identifiers (checked when the files are read), and the data are numbers.
+    std::string script;
+    script += "set terminal svg size 900,560 dynamic enhanced font 'Helvetica,13' background rgb 'white'\n";
+    script += "set datafile separator ','\n";
+    script += datablock("elastic", elastic);
+    if (model.rigid) script += datablock("rigid", rigid);
+    script += "set grid\nset key outside right top\n";
+    script += fmt::format("set title '{}: {}{}' noenhanced\n", name, kind == "velocities" ? "angular velocities" : "mesh forces",
+                          model.rigid ? " (rigid model dashed)" : "");
+    script += "set xlabel 't [s]'\n";
+    script += fmt::format("set ylabel '{}'\n", kind == "velocities" ? "{/Symbol w} [rad/s]" : "F [N]");
+    script += "plot ";
+    bool first = true;
+    for (int c : columns) {
+      script += fmt::format("{}$elastic using 1:{} with lines lw 2 title '{}'", first ? "" : ", \\\n     ", c,
+                            gnuplot_label(model.main.outputs[c - 2]));
+      first = false;
+    }
+    if (model.rigid)
+      for (std::size_t k = 0; k < columns.size(); ++k)
+        script += fmt::format(", \\\n     $rigid using 1:{} with lines dt 2 lw 1.5 lc rgb 'red' {}", columns[k],
+                              k == 0 ? "title 'rigid'" : "notitle");
+    script += "\n";
+
+    ChildRequest request;
+    request.argv = {*gnuplot};
+    request.input = script;
+    request.capture_stdout = true;
+    request.capture_stderr = true;
+    const ChildResult result = run_child(request);
+    const fs::path svg = fs::path(dir) / fmt::format("{}.{}.svg", name, kind);
+    const std::size_t end = result.out.rfind("</svg>");
+    if (!result.ok() || end == std::string::npos || result.out.find_first_not_of(" \n", end + 6) != std::string::npos)
+      throw std::runtime_error(fmt::format("gnuplot failed drawing {} ({}){}{}; the CSV files are written", svg.string(),
+                                           result.describe(), result.err.empty() ? "" : ": ",
+                                           result.err.substr(0, 2000)));
+    write_file_atomically(svg.string(), result.out);
+    written.push_back(svg.string());
+  }
+  return written;
+}
+
+}  // namespace pogear

@@ -1,0 +1,26 @@
+// Figures of a simulated scene, drawn by gnuplot from the CSV files the run wrote: the data reach
+// gnuplot inside its script (no path is ever part of gnuplot syntax), and its SVG comes back on its
+// standard output and is written by pogear like any other output.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sim_model.hpp"
+
+namespace pogear {
+
+// At most this many time buckets per figure; each keeps the first, last, smallest and largest
+// value of every curve, so that no peak of a long run is lost to the thinning.
+inline constexpr std::size_t plot_buckets = 2000;
+
+// Rows of a CSV as numbers (the header and "# incomplete" marks skipped), thinned to plot_buckets
+// buckets over [t_first, t_last] by the rule above. Throws std::runtime_error when `path` cannot be
+// read or holds no row.
+std::vector<std::vector<double>> thinned_csv_rows(const std::string& path, double horizon);
+
+// DIR/<scene>.velocities.svg and, with forces, DIR/<scene>.forces.svg: elastic solid, rigid dashed
+// on top, as in the paper's Figs. 8-9. Returns the files written.
+std::vector<std::string> plot_scene(const SimModel& model, const std::string& dir);
+
+}  // namespace pogear

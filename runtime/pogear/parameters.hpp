@@ -1,0 +1,74 @@
+// Sets a generated system's tunable parameters from `--param NAME=VALUE` options: the part of every
+// generated main that resolves names and reads values with units.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "pogear/scene_runner.hpp"
+
+namespace pogear::rt {
+
+// A unit `--param` accepts for a parameter: VALUE*UNIT means VALUE times `si`.
+struct ParameterUnit {
+  std::string_view unit;
+  double si = 1;
+};
+
+// One tunable of a generated system's Params, as the generated main lists it.
+struct ParameterField {
+  std::string_view name;
+  double* value = nullptr;
+  std::vector<ParameterUnit> units;  // besides a plain number, which is SI
+  std::string_view sign;             // "positive", "non-negative" or "" (any finite value)
+};
+
+// The SI value of `text`: a number, or NUMBER*UNIT with one of the field's units exactly as listed.
+inline std::optional<double> parameter_value(std::string_view text, const ParameterField& field) {
+  if (auto v = detail::parse_finite(text)) return v;
+  for (const ParameterUnit& u : field.units) {
+    if (text.size() <= u.unit.size() + 1) continue;
+    const std::string_view number = text.substr(0, text.size() - u.unit.size() - 1);
+    if (text[number.size()] != '*' || text.substr(number.size() + 1) != u.unit) continue;
+    if (auto v = detail::parse_finite(number); v && std::isfinite(*v * u.si)) return *v * u.si;
+  }
+  return std::nullopt;
+}
+
+// Applies every NAME=VALUE in order (a later one wins). On an unknown name or a bad value prints
+// `PROGRAM: error: what; what to do` and returns false (the caller exits with 1).
+inline bool set_parameters(const std::vector<std::pair<std::string, std::string>>& given,
+                           const std::vector<ParameterField>& fields, const char* program) {
+  auto fail = [&](const std::string& message) {
+    std::fprintf(stderr, "%s: error: %s\n", program, message.c_str());
+    return false;
+  };
+  std::string names;
+  for (const ParameterField& f : fields) names += (names.empty() ? "" : ", ") + std::string(f.name);
+  for (const auto& [name, text] : given) {
+    const ParameterField* field = nullptr;
+    for (const ParameterField& f : fields)
+      if (f.name == name) field = &f;
+    if (!field)
+      return fail(fields.empty()
+                      ? "--param " + name + ": this simulator has no tunable parameters; list the parameters to set "
+                            "at run time in the scene's tunable = [...] and generate it again"
+                      : "--param " + name + ": no tunable parameter has this name; the tunable parameters are " + names);
+    std::string accepted = "a number in SI units";
+    for (const ParameterUnit& u : field->units) accepted += ", or NUMBER*" + std::string(u.unit);
+    const std::optional<double> v = parameter_value(text, *field);
+    if (!v) return fail("--param " + name + "=" + text + " is not a value; give " + accepted);
+    if ((field->sign == "positive" && !(*v > 0)) || (field->sign == "non-negative" && !(*v >= 0)))
+      return fail("--param " + name + "=" + text + ": " + name + " must be " + std::string(field->sign) +
+                  "; give " + accepted);
+    *field->value = *v;
+  }
+  return true;
+}
+
+}  // namespace pogear::rt

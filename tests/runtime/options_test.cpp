@@ -1,0 +1,157 @@
+// The generated simulators' command line (parse_command_line) read strictly, against the ranges of
+// run_limits.hpp, and the drivers' step counting: no option value is read by its prefix, no count
+// wraps around, no step longer than the one asked for is taken.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "pogear/scene_runner.hpp"
+
+namespace rt = pogear::rt;
+namespace fs = std::filesystem;
+
+namespace {
+
+// parse_command_line on `args` (argv[0] is "sim"); the SceneRun it filled in.
+struct Parsed {
+  bool ok = false;
+  rt::SceneRun run;
+};
+
+Parsed parse(std::vector<std::string> args) {
+  args.insert(args.begin(), "sim");
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  Parsed p;
+  p.run.csv = false;  // no directory is created unless a test asks for one
+  p.ok = rt::parse_command_line(static_cast<int>(argv.size()), argv.data(), p.run);
+  return p;
+}
+
+TEST(Options, NumbersMustBeTheWholeArgument) {
+  // atof/atoi read a prefix: 1e6 steps were 1, 0.05ms was 0.05 s, 1e-6x passed as 1e-6.
+  EXPECT_FALSE(parse({"--step", "0.05ms"}).ok);
+  EXPECT_FALSE(parse({"--tolerance", "1e-6x"}).ok);
+  EXPECT_FALSE(parse({"--tolerance", ""}).ok);
+  EXPECT_FALSE(parse({"--repeat", "3x"}).ok);
+  EXPECT_FALSE(parse({"--max-steps", "12 "}).ok);
+  const Parsed p = parse({"--max-steps", "1e6", "--step", "5e-05", "--tolerance", "1e-6", "--repeat", "7"});
+  ASSERT_TRUE(p.ok);
+  EXPECT_EQ(p.run.options.max_steps, 1000000);
+  EXPECT_EQ(p.run.options.h, 5e-05);
+  EXPECT_EQ(p.run.options.rtol, 1e-6);
+  EXPECT_EQ(p.run.options.atol, 1e-8);
+  EXPECT_EQ(p.run.repeat, 7);
+}
+
+TEST(Options, NumbersMustBeFiniteAndInRange) {
+  EXPECT_FALSE(parse({"--tolerance", "inf"}).ok);
+  EXPECT_FALSE(parse({"--tolerance", "nan"}).ok);
+  EXPECT_FALSE(parse({"--tolerance", "0.2"}).ok);  // dopri5 diverged there
+  EXPECT_FALSE(parse({"--tolerance", "1e-15"}).ok);
+  EXPECT_TRUE(parse({"--tolerance", std::to_string(rt::limits::max_tolerance)}).ok);
+  EXPECT_FALSE(parse({"--step", "0"}).ok);
+  EXPECT_FALSE(parse({"--step", "-1e-3"}).ok);
+  EXPECT_FALSE(parse({"--repeat", "0"}).ok);
+  EXPECT_FALSE(parse({"--repeat", "99999999999"}).ok);  // overflowed an int and ran for ever
+  EXPECT_FALSE(parse({"--repeat", "2.5"}).ok);
+  EXPECT_TRUE(parse({"--repeat", std::to_string(rt::limits::max_repeat)}).ok);
+  EXPECT_FALSE(parse({"--repeat", std::to_string(rt::limits::max_repeat + 1)}).ok);
+  EXPECT_FALSE(parse({"--max-steps", "0"}).ok);
+  EXPECT_FALSE(parse({"--max-steps", "1e300"}).ok);
+  EXPECT_TRUE(parse({"--max-steps", std::to_string(rt::limits::max_max_steps)}).ok);
+}
+
+TEST(Options, OutMustNameADirectoryAndIsCreated) {
+  EXPECT_FALSE(parse({"--out", ""}).ok);  // wrote into "/" + name.csv
+  const fs::path dir = fs::temp_directory_path() / ("pogear_options_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  std::vector<std::string> args{"sim", "--out", (dir / "a" / "b").string()};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  rt::SceneRun run;
+  EXPECT_TRUE(rt::parse_command_line(static_cast<int>(argv.size()), argv.data(), run));
+  EXPECT_TRUE(fs::is_directory(dir / "a" / "b"));
+  fs::remove_all(dir);
+}
+
+TEST(Options, ParamsAreCollectedAsGiven) {
+  const Parsed p = parse({"--param", "J_c=0.5", "--param", "K_ps=2e6*Newton/m", "--param", "r_s="});
+  ASSERT_TRUE(p.ok);
+  const std::vector<std::pair<std::string, std::string>> expected{
+      {"J_c", "0.5"}, {"K_ps", "2e6*Newton/m"}, {"r_s", ""}};
+  EXPECT_EQ(p.run.params, expected);
+  EXPECT_FALSE(parse({"--param", "J_c"}).ok);
+  EXPECT_FALSE(parse({"--param", "=1"}).ok);
+  EXPECT_FALSE(parse({"--param"}).ok);
+}
+
+using V1 = Eigen::Matrix<double, 1, 1>;
+
+TEST(FixedSteps, AStepCountBeyondMaxStepsFailsBeforeStepping) {
+  // 10 ms samples with h = 1e-30 s: ceil(len / h) = 1e28 overflowed the long to one 10 ms step.
+  auto f = [](double, const V1& x, V1& dx) { dx = -x; };
+  rt::SolverOptions opt;
+  opt.h = 1e-30;
+  long samples = 0;
+  const rt::RunStatus st = rt::simulate_rk4(f, V1(1.0), 0.0, 1.0, 0.01, opt, [&](double, const V1&) { ++samples; });
+  EXPECT_FALSE(st.ok);
+  EXPECT_EQ(st.steps, 0);
+  EXPECT_EQ(samples, 1);  // t = 0 only
+  EXPECT_EQ(st.message, "rk4 cannot reach t = 0.01: steps of at most 1e-30 s need 1e+28 steps over 0.01 s, more "
+                        "than max_steps = 100000000; raise the step or max_steps");
+}
+
+TEST(FixedSteps, ASampleCountBeyondALongIsRefused) {
+  // (t_end - t0) / dt = 1e300 samples: llround is undefined there; the run is refused up front.
+  auto f = [](double, const V1& x, V1& dx) { dx = -x; };
+  long samples = 0;
+  const rt::RunStatus st =
+      rt::simulate_rk4(f, V1(1.0), 0.0, 1e100, 1e-200, rt::SolverOptions{}, [&](double, const V1&) { ++samples; });
+  EXPECT_FALSE(st.ok);
+  EXPECT_EQ(samples, 0);
+  EXPECT_EQ(st.message, "too many samples: (t_end - t0) / dt = 1e+300");
+}
+
+TEST(FixedSteps, NoStepIsLongerThanAskedFor) {
+  // Every step of rk4 and of exact stepping is at most h (up to the rounding of len / n).
+  for (double h : {0.3, 1e-3, 7e-4}) {
+    double longest = 0;
+    auto advance = [&](double, double hs, bool, V1&) { longest = std::max(longest, hs); };
+    V1 x(1.0);
+    rt::SolverOptions opt;
+    opt.h = h;
+    auto obs = [](double, const V1&) {};
+    const rt::RunStatus st = rt::detail::run_fixed("rk4", advance, x, 0.0, 1.0, 0.01, opt, obs, {0.005, 0.5});
+    ASSERT_TRUE(st.ok) << st.message;
+    EXPECT_LE(longest, h * (1 + 1e-8)) << h;
+  }
+}
+
+TEST(AdaptiveSteps, MinimumStepFollowsTheTimeReachedNotTheHorizon) {
+  // A fast transient at t = 0 (time constant 1e-7 s) on a horizon of 1e9 s: the minimum step was
+  // 1e-14 of the horizon (1e-5 s), above the 1e-8 s steps the transient needs, so both adaptive
+  // methods stalled at once.
+  auto f = [](double, const V1& x, V1& dx) { dx(0) = -1e7 * (x(0) - 1); };
+  auto jac = [](double, const V1&, Eigen::Matrix<double, 1, 1>& J) { J(0, 0) = -1e7; };
+  rt::SolverOptions opt;
+  opt.rtol = 1e-6;
+  opt.atol = 1e-8;
+  opt.h = 1e-9;
+  V1 last(0.0);
+  auto obs = [&](double, const V1& x) { last = x; };
+  const rt::RunStatus imp = rt::simulate_implicit(f, jac, true, V1(0.0), 0.0, 1e9, 1e8, opt, obs);
+  ASSERT_TRUE(imp.ok) << imp.message;
+  // x -> 1 within the tolerance; the implicit method damps the stiff mode (L-stable).
+  EXPECT_NEAR(last(0), 1.0, 1e-6);
+  opt.max_steps = 1000;  // dopri5 cannot finish a stiff 1e9 s run; it must stop, not stall at t = 0
+  const rt::RunStatus dp = rt::simulate_dopri5(f, V1(0.0), 0.0, 1e9, 1e8, opt, obs);
+  EXPECT_FALSE(dp.ok);
+  EXPECT_EQ(dp.message.find("below the minimum"), std::string::npos) << dp.message;
+  EXPECT_GT(dp.t_reached, 1e-6);  // past the transient
+}
+
+}  // namespace
