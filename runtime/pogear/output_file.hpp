@@ -11,6 +11,8 @@
 #include <utility>
 
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -62,6 +64,9 @@ class OutputFile {
       fd_ = -1;
       return closed || fail_errno("cannot write", "check the output device");
     }
+    // From the link to the rename the file has a name only this object knows: a signal there
+    // would leave it behind, so signals wait until the rename is done (SIGKILL cannot wait).
+    const BlockSignals quiet;
     if (temp_name_.empty() && !link_unnamed()) return false;
     const int closed = ::close(fd_);
     fd_ = -1;
@@ -81,6 +86,18 @@ class OutputFile {
   }
 
  private:
+  struct BlockSignals {
+    sigset_t old;
+    BlockSignals() {
+      sigset_t all;
+      sigfillset(&all);
+      ::pthread_sigmask(SIG_BLOCK, &all, &old);
+    }
+    ~BlockSignals() { ::pthread_sigmask(SIG_SETMASK, &old, nullptr); }
+    BlockSignals(const BlockSignals&) = delete;
+    BlockSignals& operator=(const BlockSignals&) = delete;
+  };
+
   bool fail(std::string message) {
     if (error_.empty()) error_ = std::move(message);
     abandon();
