@@ -20,10 +20,16 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <pogear/signals.hpp>
+#include <pogear/solver.hpp>
 
 namespace bench {
 
 namespace rt = pogear::rt;
+
+// The input of every scene the benchmarks run (models/scenes/paper_*.toml and their variants): one
+// constant torque of 100 N m. The generated headers leave the signals to the generated main.
+inline std::vector<rt::Signal> paper_scene_signals() { return {rt::Constant{100.0}}; }
+
 inline constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
 
 // ---------------------------------------------------------------------------------------------
@@ -350,6 +356,59 @@ inline void expect_error_within(Checker& chk, const std::string& label, const Ro
                                 double bound) {
   chk.expect(ok && r.error <= bound, label + ": " + r.method + " rtol " + fmt_double(rtol) + ": error " +
                                          fmt_double(r.error) + " <= " + fmt_double(bound));
+}
+
+// The tolerances of the work-precision curves over rtol (two in --quick mode).
+inline std::vector<double> wp_tolerances(const Options& o) {
+  return o.quick ? std::vector<double>{1e-4, 1e-8}
+                 : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
+}
+
+// What another library's integrator reports of one run.
+struct IntegratorRun {
+  bool ok = true;
+  std::string message;
+  long steps = 0, rhs_evals = 0;
+};
+
+// The work-precision rows of another library's `method` over wp_tolerances: run(rtol) simulates
+// into `s` and returns its IntegratorRun. Once a tolerance takes longer than --max-run the tighter
+// ones are skipped. These codes' global error tracks the tolerance like dopri5's does: each run is
+// checked against adaptive_bound.
+template <class P, class Run>
+void integrator_rows(const P& pb, const std::string& family, const std::string& method, const Samples& s,
+                     const Options& o, Results& res, Checker& chk, Run run) {
+  bool slow = false;
+  for (double rtol : wp_tolerances(o)) {
+    Row r;
+    r.scene = pb.scene;
+    r.model = pb.model;
+    r.family = family;
+    r.method = method;
+    r.knob = "rtol";
+    r.value = rtol;
+    r.horizon = pb.horizon;
+    if (slow) {
+      r.status = "skipped";
+      r.note = "a looser tolerance already took longer than " + fmt_double(o.max_run) + " s";
+      write_row(res, r);
+      continue;
+    }
+    IntegratorRun ir;
+    auto once = [&] { ir = run(rtol); };
+    once();
+    r.error = max_rel_error(s, pb.ref);
+    r.steps = ir.steps;
+    r.rhs_evals = ir.rhs_evals;
+    if (!ir.ok) {
+      r.status = "failed";
+      r.note = ir.message;
+    }
+    r.time = measure(once, o);
+    slow = r.time.median > o.max_run;
+    write_row(res, r);
+    expect_error_within(chk, pb.label(), r, ir.ok, rtol, adaptive_bound(rtol));
+  }
 }
 
 }  // namespace bench

@@ -7,7 +7,7 @@
 
 #include <pogear/csv.hpp>
 #include <pogear/exact.hpp>
-#include <pogear/simulate.hpp>
+#include <pogear/drivers.hpp>
 
 #include "paper_scenes.hpp"
 

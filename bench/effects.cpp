@@ -2,7 +2,7 @@
 // the operation counts `pogear generate` printed and what they cost in time — per call of the
 // generated rhs and outputs, and per simulated second with rk4 (fixed steps: time follows the op
 // count), dopri5 (adaptive: time also follows the dynamics) and exact (time follows the state count).
-#include <pogear/simulate.hpp>
+#include <pogear/drivers.hpp>
 
 #include "bench_common.hpp"
 #include "variants.hpp"
@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
 #define BENCH_RUN_VARIANT(ns, System, scene, variant, effects)                                                    \
   {                                                                                                               \
     namespace g = pogear_generated::ns;                                                                           \
-    const auto pb = make_problem<g::System>(scene, #System, g::System##_signals(), g::System::initial_state(),    \
+    const auto pb = make_problem<g::System>(scene, #System, bench::paper_scene_signals(), g::System::initial_state(),    \
                                             g::horizon, g::sample_period, g::default_step);                       \
     bench_variant(pb, #ns, variant, #System, effects, o, res, chk);                                                        \
   }

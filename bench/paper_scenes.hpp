@@ -10,9 +10,9 @@ namespace bench {
 
 // The elastic and the rigid system of a generated scene namespace.
 #define BENCH_SCENE_PROBLEMS(ns)                                                                               \
-  make_problem<ns::Elastic>(ns::scene_name, "elastic", ns::Elastic_signals(), ns::Elastic::initial_state(),   \
-                            ns::horizon, ns::sample_period, ns::default_step),                               \
-      make_problem<ns::Rigid>(ns::scene_name, "rigid", ns::Rigid_signals(), ns::Rigid::initial_state(),       \
+  make_problem<ns::Elastic>(ns::scene_name, "elastic", paper_scene_signals(), ns::Elastic::initial_state(),    \
+                            ns::horizon, ns::sample_period, ns::default_step),                                 \
+      make_problem<ns::Rigid>(ns::scene_name, "rigid", paper_scene_signals(), ns::Rigid::initial_state(),      \
                               ns::horizon, ns::sample_period, ns::default_step)
 
 // Calls f(elastic_problem, rigid_problem) for the one-stage, then the two-stage scene.

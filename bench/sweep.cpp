@@ -103,8 +103,6 @@ template <class Sys>
 void bench_sweep(const Problem<Sys>& pb, const Options& o, Results& res, Checker& chk) {
   const rt::ExactDiscretization<Sys::nx, Sys::nu> disc(pb.M, pb.N, rt::exact_nominal_step(pb.dt, pb.dt));
   const auto lo = rt::linear_outputs(Sys{}, pb.params);
-  chk.expect(lo.probe_error <= 1e-14, pb.label() + ": the outputs are linear (probe error " +
-                                          fmt_double(lo.probe_error) + ")");
   std::vector<double> out(2048, 0.0);
   // The sweep reproduces the scene at scale 1 (scenario 50): its peaks must match the reference's.
   // One run at a time calls the generated outputs; the batch computes C x + D u, which groups the

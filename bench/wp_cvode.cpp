@@ -34,17 +34,11 @@ int cv_jac(sunrealtype, N_Vector, N_Vector, SUNMatrix J, void* data, N_Vector, N
   return 0;
 }
 
-struct CvodeRun {
-  bool ok = true;
-  std::string message;
-  long steps = 0, rhs_evals = 0;
-};
-
 // One whole simulation: CVODE's memory, vectors and solvers are created and freed inside (as a
 // program simulating one scene would), the SUNDIALS context once per process.
 template <class Sys>
-CvodeRun run_cvode(const Problem<Sys>& pb, bool bdf, double rtol, SUNContext ctx, Samples& s) {
-  CvodeRun r;
+IntegratorRun run_cvode(const Problem<Sys>& pb, bool bdf, double rtol, SUNContext ctx, Samples& s) {
+  IntegratorRun r;
   N_Vector y = N_VNew_Serial(Sys::nx, ctx);
   Eigen::Map<typename Sys::State>(N_VGetArrayPointer(y)) = pb.x0;
   void* mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
@@ -53,7 +47,7 @@ CvodeRun run_cvode(const Problem<Sys>& pb, bool bdf, double rtol, SUNContext ctx
   SUNNonlinearSolver nls = nullptr;
   int flag = CVodeInit(mem, cv_rhs<Sys>, 0.0, y);
   flag |= CVodeSetUserData(mem, const_cast<Problem<Sys>*>(&pb));
-  flag |= CVodeSStolerances(mem, rtol, 1e-2 * rtol);  // pogear's atol = 1e-2 rtol
+  flag |= CVodeSStolerances(mem, rtol, rt::absolute_per_relative_tolerance * rtol);  // as pogear's runs
   flag |= CVodeSetMaxNumSteps(mem, 100000000);
   if (bdf) {
     A = SUNDenseMatrix(Sys::nx, Sys::nx, ctx);
@@ -92,54 +86,19 @@ CvodeRun run_cvode(const Problem<Sys>& pb, bool bdf, double rtol, SUNContext ctx
 
 template <class Sys>
 void bench_cvode(const Problem<Sys>& pb, SUNContext ctx, const Options& o, Results& res, Checker& chk) {
-  const std::vector<double> tolerances =
-      o.quick ? std::vector<double>{1e-4, 1e-8}
-              : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
   Samples s;
   s.reset(Sys::nx, pb.count);
-  for (const bool bdf : {true, false}) {
-    bool slow = false;
-    for (double rtol : tolerances) {
-      Row r;
-      r.scene = pb.scene;
-      r.model = pb.model;
-      r.family = "cvode";
-      r.method = bdf ? "cvode_bdf" : "cvode_adams";
-      r.knob = "rtol";
-      r.value = rtol;
-      r.horizon = pb.horizon;
-      if (slow) {
-        r.status = "skipped";
-        r.note = "a looser tolerance already took longer than " + fmt_double(o.max_run) + " s";
-        write_row(res, r);
-        continue;
-      }
-      CvodeRun cr;
-      auto run = [&] { cr = run_cvode(pb, bdf, rtol, ctx, s); };
-      run();
-      r.error = max_rel_error(s, pb.ref);
-      r.steps = cr.steps;
-      r.rhs_evals = cr.rhs_evals;
-      if (!cr.ok) {
-        r.status = "failed";
-        r.note = cr.message;
-      }
-      r.time = measure(run, o);
-      slow = r.time.median > o.max_run;
-      write_row(res, r);
-      // CVODE is a variable-order code (BDF 1-5, Adams 1-12) whose global error tracks the tolerance
-      // like dopri5's does: the same bound.
-      expect_error_within(chk, pb.label(), r, cr.ok, rtol, adaptive_bound(rtol));
-    }
-  }
+  // CVODE is a variable-order code (BDF 1-5, Adams 1-12).
+  for (const bool bdf : {true, false})
+    integrator_rows(pb, "cvode", bdf ? "cvode_bdf" : "cvode_adams", s, o, res, chk,
+                    [&](double rtol) { return run_cvode(pb, bdf, rtol, ctx, s); });
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   const Options o = parse_options(argc, argv);
-  Checker chk;
-  chk.enabled = o.check;
+  Checker chk{o.check};
   Results res(o.out + "/wp_cvode.csv", kWpHeader);
   SUNContext ctx = nullptr;
   if (SUNContext_Create(nullptr, &ctx) != 0) {

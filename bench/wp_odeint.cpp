@@ -13,18 +13,12 @@ namespace {
 using namespace bench;
 namespace odeint = boost::numeric::odeint;
 
-struct OdeintRun {
-  bool ok = true;
-  std::string message;
-  long steps = 0, rhs_evals = 0;
-};
-
 // runge_kutta_dopri5 on the generated fixed-size Eigen State itself (odeint's Eigen support, vector
 // space algebra): no copies between odeint and the generated code.
 template <class Sys>
-OdeintRun run_dopri5(const Problem<Sys>& pb, double rtol, const std::vector<double>& times, Samples& s) {
+IntegratorRun run_dopri5(const Problem<Sys>& pb, double rtol, const std::vector<double>& times, Samples& s) {
   using State = typename Sys::State;
-  OdeintRun r;
+  IntegratorRun r;
   auto sys = [&](const State& x, State& dx, double t) {
     pb.rhs(t, x, dx);
     ++r.rhs_evals;
@@ -32,8 +26,9 @@ OdeintRun run_dopri5(const Problem<Sys>& pb, double rtol, const std::vector<doub
   auto obs = [&](const State& x, double) { s.push(x); };
   s.restart();
   State x = pb.x0;
-  auto stepper = odeint::make_dense_output(1e-2 * rtol, rtol, odeint::runge_kutta_dopri5<State, double, State, double,
-                                                                                           odeint::vector_space_algebra>());
+  const double atol = rt::absolute_per_relative_tolerance * rtol;  // as pogear's runs
+  auto stepper = odeint::make_dense_output(atol, rtol, odeint::runge_kutta_dopri5<State, double, State, double,
+                                                                                 odeint::vector_space_algebra>());
   try {
     r.steps = static_cast<long>(odeint::integrate_times(stepper, sys, x, times.begin(), times.end(), pb.first_step, obs));
   } catch (const std::exception& e) {  // odeint throws when it exceeds its step limits
@@ -46,7 +41,7 @@ OdeintRun run_dopri5(const Problem<Sys>& pb, double rtol, const std::vector<doub
 // rosenbrock4 runs behind a C++17 boundary (odeint_rosenbrock4.hpp); the generated rhs is called
 // through a function pointer on the uBLAS vectors' storage.
 template <class Sys>
-OdeintRun run_rosenbrock4(const Problem<Sys>& pb, double rtol, const std::vector<double>& times, Samples& s) {
+IntegratorRun run_rosenbrock4(const Problem<Sys>& pb, double rtol, const std::vector<double>& times, Samples& s) {
   using State = typename Sys::State;
   struct Context {
     const Problem<Sys>* pb;
@@ -69,8 +64,9 @@ OdeintRun run_rosenbrock4(const Problem<Sys>& pb, double rtol, const std::vector
     static_cast<Context*>(p)->s->push(Eigen::Map<const State>(x));
   };
   s.restart();
-  const Rosenbrock4Result rr = integrate_rosenbrock4(ode, pb.x0.data(), times, 1e-2 * rtol, rtol, pb.first_step);
-  OdeintRun r;
+  const Rosenbrock4Result rr = integrate_rosenbrock4(ode, pb.x0.data(), times,
+                                                     rt::absolute_per_relative_tolerance * rtol, rtol, pb.first_step);
+  IntegratorRun r;
   r.ok = rr.ok;
   r.message = rr.message;
   r.steps = rr.steps;
@@ -80,56 +76,22 @@ OdeintRun run_rosenbrock4(const Problem<Sys>& pb, double rtol, const std::vector
 
 template <class Sys>
 void bench_odeint(const Problem<Sys>& pb, const Options& o, Results& res, Checker& chk) {
-  const std::vector<double> tolerances =
-      o.quick ? std::vector<double>{1e-4, 1e-8}
-              : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
   std::vector<double> times(static_cast<std::size_t>(pb.count));
   for (long k = 0; k < pb.count; ++k) times[static_cast<std::size_t>(k)] = pb.time(k);
   Samples s;
   s.reset(Sys::nx, pb.count);
-  for (const char* method : {"odeint_dopri5", "odeint_rosenbrock4"}) {
-    const bool rosenbrock = std::string_view(method) == "odeint_rosenbrock4";
-    bool slow = false;
-    for (double rtol : tolerances) {
-      Row r;
-      r.scene = pb.scene;
-      r.model = pb.model;
-      r.family = "odeint";
-      r.method = method;
-      r.knob = "rtol";
-      r.value = rtol;
-      r.horizon = pb.horizon;
-      if (slow) {
-        r.status = "skipped";
-        r.note = "a looser tolerance already took longer than " + fmt_double(o.max_run) + " s";
-        write_row(res, r);
-        continue;
-      }
-      OdeintRun orun;
-      auto run = [&] { orun = rosenbrock ? run_rosenbrock4(pb, rtol, times, s) : run_dopri5(pb, rtol, times, s); };
-      run();
-      r.error = max_rel_error(s, pb.ref);
-      r.steps = orun.steps;
-      r.rhs_evals = orun.rhs_evals;
-      if (!orun.ok) {
-        r.status = "failed";
-        r.note = orun.message;
-      }
-      r.time = measure(run, o);
-      slow = r.time.median > o.max_run;
-      write_row(res, r);
-      // odeint's error test uses the max norm (stricter than an RMS norm); rosenbrock4 is 4th order.
-      expect_error_within(chk, pb.label(), r, orun.ok, rtol, adaptive_bound(rtol));
-    }
-  }
+  // odeint's error test uses the max norm (stricter than an RMS norm); rosenbrock4 is 4th order.
+  integrator_rows(pb, "odeint", "odeint_dopri5", s, o, res, chk,
+                  [&](double rtol) { return run_dopri5(pb, rtol, times, s); });
+  integrator_rows(pb, "odeint", "odeint_rosenbrock4", s, o, res, chk,
+                  [&](double rtol) { return run_rosenbrock4(pb, rtol, times, s); });
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   const Options o = parse_options(argc, argv);
-  Checker chk;
-  chk.enabled = o.check;
+  Checker chk{o.check};
   Results res(o.out + "/wp_odeint.csv", kWpHeader);
   std::printf("Boost.Odeint (Boost %d.%d)\n", BOOST_VERSION / 100000, BOOST_VERSION / 100 % 1000);
   for_each_paper_scene([&](const auto& elastic, const auto& rigid) {

@@ -1,8 +1,8 @@
 // Work-precision of pogear's own methods (exact, rk4, dopri5, implicit) on the checked-in generated
 // simulators of the two paper scenes, plus the rigid-vs-elastic comparison, the cost of one exact
 // step, and the problem files (matrices, inputs, exact reference) that the SciPy script reads.
-#include <pogear/scene_runner.hpp>
-#include <pogear/simulate.hpp>
+#include <pogear/drivers.hpp>
+#include <pogear/run_system.hpp>
 
 #include "paper_scenes.hpp"
 
@@ -74,7 +74,7 @@ Kept bench_methods(const Problem<Sys>& pb, const Options& o, Results& res, Check
     // the one-stage gear accumulate over 2000 steps to a few 1e-12; hence 1e-11, not eps.
     chk.expect(st.ok && r.error <= 1e-11, pb.label() + ": exact error " + fmt_double(r.error) + " <= 1e-11");
 
-    // The same through the generated main's path (scene_runner::run_system), computing the outputs at
+    // The same through the generated main's path (run_system.hpp's run_system), computing the outputs at
     // every sample, without and with writing the CSV: the cost of formatting shows.
     for (const bool csv : {false, true}) {
       Row rc = row(csv ? "exact_csv" : "exact_outputs", "", NaN);
@@ -82,7 +82,7 @@ Kept bench_methods(const Problem<Sys>& pb, const Options& o, Results& res, Check
       sr.name = pb.scene;
       sr.horizon = pb.horizon;
       sr.sample = pb.dt;
-      sr.solver = "exact";
+      sr.solver = rt::Solver::exact;
       sr.options.h = pb.first_step;
       sr.out_dir = o.out + "/csv";
       sr.csv = csv;
@@ -145,12 +145,9 @@ Kept bench_methods(const Problem<Sys>& pb, const Options& o, Results& res, Check
   }
 
   // dopri5 and implicit (TR-BDF2) over tolerances; atol = 1e-2 rtol as the generated main sets it.
-  const std::vector<double> tolerances =
-      o.quick ? std::vector<double>{1e-4, 1e-8}
-              : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
   for (const char* method : {"dopri5", "implicit"}) {
     bool slow = false;
-    for (double rtol : tolerances) {
+    for (double rtol : wp_tolerances(o)) {
       Row r = row(method, "rtol", rtol);
       if (slow) {
         r.status = "skipped";
@@ -160,8 +157,7 @@ Kept bench_methods(const Problem<Sys>& pb, const Options& o, Results& res, Check
       }
       rt::RunStatus st;
       rt::SolverOptions opt;
-      opt.rtol = rtol;
-      opt.atol = 1e-2 * rtol;
+      rt::set_tolerance(opt, rtol);
       opt.h = pb.first_step;
       auto run = [&] {
         s.restart();
@@ -361,8 +357,7 @@ void bench_scene(const Problem<E>& pe, const Problem<R>& pr, const Options& o, R
 
 int main(int argc, char** argv) {
   const Options o = parse_options(argc, argv);
-  Checker chk;
-  chk.enabled = o.check;
+  Checker chk{o.check};
   Results res(o.out + "/wp_pogear.csv", kWpHeader);
   Results rve_err(o.out + "/rigid_vs_elastic_error.csv", "scene,output,window,max_rel_error,elastic_scale");
   Results rve_time(o.out + "/rigid_vs_elastic_time.csv",

@@ -5,6 +5,9 @@
 # `include(${PROJECT_SOURCE_DIR}/cmake/pogear_add_simulator.cmake)`.
 include_guard(GLOBAL)
 
+# Run at build time by the commands below (cmake -P), installed next to this file.
+set(_pogear_generate_script "${CMAKE_CURRENT_LIST_DIR}/pogear_generate_simulator.cmake")
+
 function(pogear_add_simulator target scene)
   if(ARGN)
     message(FATAL_ERROR "pogear_add_simulator(${target} ${scene}): unexpected arguments: ${ARGN}")
@@ -26,49 +29,31 @@ function(pogear_add_simulator target scene)
   if(NOT EXISTS "${scene}")
     message(FATAL_ERROR "pogear_add_simulator(${target}): scene file '${scene}' does not exist")
   endif()
-  get_filename_component(scene_dir "${scene}" DIRECTORY)
 
-  # The generated files are named after the scene, and their names must be known now to declare
-  # them as outputs; pogear takes the top-level `name` key, else the file stem. Only lines before
-  # the first [table] header are top-level keys, so a `name` inside a table is not mistaken for it.
-  file(STRINGS "${scene}" lines REGEX "^[ \t]*(\\[|(name|model)[ \t]*=)")
-  get_filename_component(scene_name "${scene}" NAME_WE)
-  set(model "")
-  foreach(line IN LISTS lines)
-    if(line MATCHES "^[ \t]*\\[")
-      break()
-    elseif(line MATCHES "^[ \t]*name[ \t]*=[ \t]*[\"']([^\"']*)[\"']")
-      set(scene_name "${CMAKE_MATCH_1}")
-    elseif(line MATCHES "^[ \t]*model[ \t]*=[ \t]*[\"']([^\"']*)[\"']")
-      get_filename_component(model "${CMAKE_MATCH_1}" ABSOLUTE BASE_DIR "${scene_dir}")
-    endif()
-  endforeach()
-  # Editing the scene may rename it or point it at another model: re-read it then.
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${scene}")
-
-  # Regenerate when the scene, its model (when found and present; pogear reports a missing one)
-  # or the generator itself changes. A target name in DEPENDS resolves to its file.
-  set(depends "${scene}" ${generator})
-  if(model AND EXISTS "${model}")
-    list(APPEND depends "${model}")
+  # What the scene writes (file names after the scene's name) and what it reads (its model, its
+  # tables) are pogear's to know: at every build a script asks it (`generate --list-outputs`),
+  # generates into a staging directory and copies only what changed, so that an edit of the scene,
+  # its model or a table rebuilds the simulator and nothing else does. The executable's source is a
+  # file of a fixed name that includes the generated main. Generating costs a few ten milliseconds.
+  set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/pogear_${target}")
+  set(main "${out_dir}/pogear_simulator_main.cpp")
+  add_custom_target(pogear_${target}_sources
+    COMMAND "${CMAKE_COMMAND}" "-DPOGEAR=$<TARGET_FILE:${generator}>" "-DSCENE=${scene}" "-DOUT_DIR=${out_dir}"
+            "-DMAIN=${main}" -P "${_pogear_generate_script}"
+    BYPRODUCTS "${main}"
+    COMMENT "pogear: generating the simulator of ${scene} for ${target}"
+    VERBATIM)
+  if(generator STREQUAL "pogear")
+    add_dependencies(pogear_${target}_sources pogear)
   endif()
 
-  set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/pogear_${target}")
-  set(generated "${out_dir}/${scene_name}.hpp" "${out_dir}/${scene_name}_main.cpp")
-  add_custom_command(
-    OUTPUT ${generated}
-    COMMAND ${generator} generate "${scene}" -o "${out_dir}"
-    DEPENDS ${depends}
-    COMMENT "pogear: generating the simulator of scene '${scene_name}' for ${target}"
-    VERBATIM)
-
-  add_executable(${target} "${out_dir}/${scene_name}_main.cpp")
-  target_sources(${target} PRIVATE "${out_dir}/${scene_name}.hpp")
+  add_executable(${target} "${main}")
+  add_dependencies(${target} pogear_${target}_sources)
   target_include_directories(${target} PRIVATE "${out_dir}")
   target_link_libraries(${target} PRIVATE ${runtime})
   target_compile_features(${target} PRIVATE cxx_std_20)
   # Where the header is, for a program of one's own (which then depends on TARGET, whose build
-  # generates it): one custom command must not feed several independent targets.
+  # generates it).
   set_target_properties(${target} PROPERTIES POGEAR_GENERATED_DIR "${out_dir}")
   # Generated code is held to warning-free; a warning here is a generator bug worth failing on.
   if(MSVC)

@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const pogear::Scene scene = pogear::parse_scene_text(text, POGEAR_SOURCE_DIR "/fuzz/scene_dir/fuzz.toml");
     // Overrides, keep and effects are checked against the derivation only here.
-    const pogear::SimModel model = pogear::specialize(scene);
+    const pogear::SpecializedScene model = pogear::specialize(scene);
     const pogear::GeneratedSources sources = pogear::generate_sources(model);
     if (sources.header.empty() || sources.main.empty()) __builtin_trap();
   } catch (const pogear::InputError&) {

@@ -1,10 +1,11 @@
-// Emits the specialized C++ simulator of a scene: a header with one struct per system (sizes,
-// names and units as constexpr metadata, tunable parameters, rhs, outputs, (M, N)), and a main.
+// Emits the specialized C++ simulator of a scene: a header that needs Eigen alone (the parameter
+// table, one struct per system: sizes, names and units, tunables, rhs, outputs, (M, N), (C, D)),
+// and a main with the input signals that runs them.
 #pragma once
 
 #include <string>
 
-#include "sim_model.hpp"
+#include "specialization.hpp"
 
 namespace pogear {
 
@@ -13,9 +14,9 @@ struct GeneratedSources {
   std::string main_name, main;      // <scene>_main.cpp
 };
 
-GeneratedSources generate_sources(const SimModel& model);
+GeneratedSources generate_sources(const SpecializedScene& model);
 
 // "rhs: 38 operations (24 multiplications, 14 additions); outputs: ..." for each system.
-std::string operation_summary(const SimModel& model);
+std::string operation_summary(const SpecializedScene& model);
 
 }  // namespace pogear

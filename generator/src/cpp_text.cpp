@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "exact_algebra.hpp"
 #include "printer.hpp"
 
 namespace pogear {
@@ -113,6 +114,12 @@ CppText number_code(double v) {
 }
 
 CppText integer_code(long long v) { return cpp_text_detail::Maker::make(fmt::format("{}", v)); }
+
+CppText join(const std::vector<CppText>& parts, const CppText& separator) {
+  CppText s;
+  for (std::size_t i = 0; i < parts.size(); ++i) s += (i ? separator : CppText{}) + parts[i];
+  return s;
+}
 
 CppText expression_code(const GiNaC::ex& e) {
   check_symbols(e);

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 #include <fmt/format.h>
 #include <ginac/ginac.h>
@@ -82,5 +83,8 @@ CppText code(fmt::format_string<Args...> pattern, Args&&... args)
 
 // An integer (a size, an index) as code.
 CppText integer_code(long long v);
+
+// The parts with `separator` between them (a list, lines).
+CppText join(const std::vector<CppText>& parts, const CppText& separator);
 
 }  // namespace pogear

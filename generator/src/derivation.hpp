@@ -12,8 +12,9 @@ namespace pogear {
 
 struct Derivation {
   Topology topology;
-  Symbols symbols;
+  SymbolTable symbols;  // made once from the topology; no stage adds to it
   RadiusMatrix radius;
+  GiNaC::exmap values;  // every parameter (the derived radii included) as an exact number
   ElasticModel elastic;
   RigidModel rigid;
   std::vector<std::string> keep;

@@ -3,7 +3,7 @@
 
 namespace pogear {
 
-ElasticModel assemble_elastic_model(const Topology& t, const RadiusMatrix& rm, Symbols& s) {
+ElasticModel assemble_elastic_model(const Topology& t, const RadiusMatrix& rm, const SymbolTable& s) {
   const unsigned n = t.bodies.size();
   const unsigned m = t.meshes.size();
   ElasticModel e;
@@ -12,15 +12,15 @@ ElasticModel assemble_elastic_model(const Topology& t, const RadiusMatrix& rm, S
   e.K = GiNaC::matrix(m, m);
   e.B_K = GiNaC::matrix(m, m);
   for (unsigned k = 0; k < n; ++k) {
-    e.velocities.push_back("omega_" + t.bodies[k].name);
-    e.torques.push_back("tau_" + t.bodies[k].name);
-    e.J(k, k) = symbol(s, t.bodies[k].inertia);
-    e.B_J(k, k) = symbol(s, t.bodies[k].friction);
+    e.velocities.push_back(variable_name(t, {VariableKind::velocity, static_cast<int>(k)}));
+    e.torques.push_back(variable_name(t, {VariableKind::torque, static_cast<int>(k)}));
+    e.J(k, k) = parameter_symbol(s, t.bodies[k].inertia_parameter);
+    e.B_J(k, k) = parameter_symbol(s, t.bodies[k].friction_parameter);
   }
   for (unsigned i = 0; i < m; ++i) {
-    e.forces.push_back("F_" + t.meshes[i].name);
-    e.K(i, i) = symbol(s, t.meshes[i].stiffness);
-    e.B_K(i, i) = symbol(s, t.meshes[i].damping);
+    e.forces.push_back(variable_name(t, {VariableKind::force, static_cast<int>(i)}));
+    e.K(i, i) = parameter_symbol(s, t.meshes[i].stiffness_parameter);
+    e.B_K(i, i) = parameter_symbol(s, t.meshes[i].damping_parameter);
   }
   e.R = rm.R;
   const GiNaC::matrix Rt = e.R.transpose();

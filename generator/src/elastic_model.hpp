@@ -20,6 +20,6 @@ struct ElasticModel {
   GiNaC::matrix L, A, B; // (n+m) x (n+m), (n+m) x (n+m), (n+m) x n
 };
 
-ElasticModel assemble_elastic_model(const Topology& topology, const RadiusMatrix& radius, Symbols& symbols);
+ElasticModel assemble_elastic_model(const Topology& topology, const RadiusMatrix& radius, const SymbolTable& symbols);
 
 }  // namespace pogear

@@ -9,13 +9,13 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "build_config.hpp"
 #include "derivation.hpp"
 #include "interrupts.hpp"
 #include "output_file.hpp"
-#include "plot.hpp"
 #include "pogear/run_limits.hpp"
 #include "report.hpp"
-#include "simulation.hpp"
+#include "simulate_scene.hpp"
 #include "simulator_cache.hpp"
 
 namespace {
@@ -48,7 +48,7 @@ CLI::Validator non_empty_path() {
 int main(int argc, char** argv) {
   CLI::App app{"pogear: planetary gear models by the Power-Oriented Graphs method"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "pogear 0.1.0");
+  app.set_version_flag("--version", std::string("pogear ") + pogear::build_config::version);
 
   std::string model, keep, format = "text";
   std::optional<std::string> output;
@@ -60,20 +60,24 @@ int main(int argc, char** argv) {
   derive->add_option("-o,--output", output, "Write the report to FILE instead of standard output")
       ->check(non_empty_path());
 
-  std::string scene_file, generate_dir = ".", simulate_dir = "out", solver;
-  bool interpreted = false, large_output = false;
+  std::string scene_file, generate_dir = ".", solver;
+  bool list_outputs = false;
+  pogear::SimulateOptions simulate_options;
   long repeat = 1;
   CLI::App* generate = app.add_subcommand("generate", "Write the specialized C++ simulator of a scene");
   generate->add_option("SCENE", scene_file, "Scene file (TOML)")->required();
   generate->add_option("-o,--output", generate_dir, "Directory for <scene>.hpp and <scene>_main.cpp")
       ->check(non_empty_path());
+  generate->add_flag("--list-outputs", list_outputs, "Print the files it would write, one per line; write nothing");
 
   CLI::App* simulate = app.add_subcommand("simulate", "Generate, compile and run a scene; write CSV and plots");
   simulate->add_option("SCENE", scene_file, "Scene file (TOML)")->required();
-  simulate->add_option("-o,--output", simulate_dir, "Directory for the CSV files and plots")->check(non_empty_path());
-  simulate->add_option("--solver", solver, "Override the scene's solver")
-      ->check(CLI::IsMember({"exact", "rk4", "dopri5", "implicit"}));
-  simulate->add_flag("--interpreted", interpreted, "Run from the numeric matrices, without compiling");
+  simulate->add_option("-o,--output", simulate_options.out_dir, "Directory for the CSV files and plots")
+      ->check(non_empty_path());
+  std::vector<std::string> solver_names;
+  for (pogear::rt::Solver s : pogear::rt::all_solvers) solver_names.emplace_back(pogear::rt::solver_name(s));
+  simulate->add_option("--solver", solver, "Override the scene's solver")->check(CLI::IsMember(solver_names));
+  simulate->add_flag("--interpreted", simulate_options.interpreted, "Run from the numeric matrices, without compiling");
   simulate->add_option("--repeat", repeat, "Run N times and report the median time")
       ->check(CLI::Validator(
           [](std::string& value) {
@@ -85,7 +89,7 @@ int main(int argc, char** argv) {
                                value, pogear::rt::limits::max_repeat);
           },
           "N"));
-  simulate->add_flag("--large-output", large_output,
+  simulate->add_flag("--large-output", simulate_options.large_output,
                      fmt::format("Write CSV files even when they may exceed {} GB", pogear::max_csv_bytes >> 30));
 
   try {
@@ -108,38 +112,22 @@ int main(int argc, char** argv) {
       else text = pogear::report_text(d);
       emit(text, output);
     } else if (*generate) {
-      const pogear::SimModel model = pogear::specialize(pogear::parse_scene(scene_file));
+      const pogear::SpecializedScene model = pogear::specialize(pogear::parse_scene(scene_file));
       const pogear::GeneratedSources sources = pogear::generate_sources(model);
+      if (list_outputs) {
+        for (const std::string& path : pogear::source_paths(sources, generate_dir)) std::cout << path << "\n";
+        return 0;
+      }
       pogear::ensure_directory(generate_dir);
       pogear::write_sources(sources, generate_dir);
       std::cout << "wrote " << generate_dir << "/" << sources.header_name << " and " << generate_dir << "/"
                 << sources.main_name << "\n"
                 << pogear::operation_summary(model);
     } else if (*simulate) {
-      const pogear::SimModel model = pogear::specialize(pogear::parse_scene(scene_file));
-      pogear::check_output_size(model, large_output);
-      pogear::rt::SceneRun run;
-      run.name = model.scene.name;
-      run.horizon = model.scene.horizon;
-      run.sample = model.scene.sample;
-      run.solver = solver.empty() ? pogear::solver_name(model.scene.solver) : solver;
-      run.options.rtol = model.scene.tolerance;
-      run.options.atol = model.scene.tolerance * 1e-2;
-      run.options.h = model.scene.step;
-      run.options.max_steps = model.scene.max_steps;
-      run.out_dir = simulate_dir;
-      run.repeat = static_cast<int>(repeat);
-      pogear::ensure_directory(simulate_dir);
-      std::cout << pogear::operation_summary(model);
-      int status = 0;
-      if (interpreted) {
-        status = pogear::run_interpreted(model, run);
-      } else {
-        const pogear::CompiledSimulator simulator = pogear::build_simulator(pogear::generate_sources(model));
-        status = pogear::run_compiled(simulator.executable(), run);
-      }
-      if (status != 0) return status;
-      for (const auto& svg : pogear::plot_scene(model, simulate_dir)) std::cout << "wrote " << svg << "\n";
+      if (!solver.empty()) simulate_options.solver = pogear::rt::parse_solver(solver);
+      simulate_options.repeat = static_cast<int>(repeat);
+      const pogear::SpecializedScene model = pogear::specialize(pogear::parse_scene(scene_file));
+      return pogear::simulate_scene(model, simulate_options, std::cout);
     }
   } catch (const pogear::InputError& e) {
     std::cerr << e.what() << "\n";

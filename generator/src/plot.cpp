@@ -98,7 +98,7 @@ std::vector<std::vector<double>> thinned_csv_rows(const std::string& path, doubl
   return kept;
 }
 
-std::vector<std::string> plot_scene(const SimModel& model, const std::string& dir) {
+std::vector<std::string> plot_scene(const SpecializedScene& model, const std::string& dir) {
   const std::optional<std::string> gnuplot = find_program("gnuplot");
   if (!gnuplot)
     throw std::runtime_error("gnuplot is not installed, so no figures were drawn (the CSV files are written); "
@@ -109,10 +109,10 @@ std::vector<std::string> plot_scene(const SimModel& model, const std::string& di
   std::vector<std::vector<double>> rigid;
   if (model.rigid) rigid = thinned_csv_rows((fs::path(dir) / (name + ".rigid.csv")).string(), model.scene.horizon);
   for (const std::string kind : {"velocities", "forces"}) {
-    const std::string prefix = kind == "velocities" ? "omega_" : "F_";
+    const VariableKind shown = kind == "velocities" ? VariableKind::velocity : VariableKind::force;
     std::vector<int> columns;  // 1-based gnuplot columns; column 1 is t
     for (std::size_t i = 0; i < model.main.outputs.size(); ++i)
-      if (model.main.outputs[i].rfind(prefix, 0) == 0) columns.push_back(static_cast<int>(i) + 2);
+      if (model.main.output_variables[i].kind == shown) columns.push_back(static_cast<int>(i) + 2);
     if (columns.empty()) continue;
     // Every word of the script is pogear's own or a validated name: the scene's name and the
     // outputs' names are identifiers (checked when the files are read), and the data are numbers.

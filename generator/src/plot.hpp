@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sim_model.hpp"
+#include "specialization.hpp"
 
 namespace pogear {
 
@@ -21,6 +21,6 @@ std::vector<std::vector<double>> thinned_csv_rows(const std::string& path, doubl
 
 // DIR/<scene>.velocities.svg and, with forces, DIR/<scene>.forces.svg: elastic solid, rigid dashed
 // on top, as in the paper's Figs. 8-9. Returns the files written.
-std::vector<std::string> plot_scene(const SimModel& model, const std::string& dir);
+std::vector<std::string> plot_scene(const SpecializedScene& model, const std::string& dir);
 
 }  // namespace pogear

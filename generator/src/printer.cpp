@@ -12,6 +12,8 @@
 
 #include <fmt/format.h>
 
+#include "exact_algebra.hpp"
+
 namespace pogear {
 namespace {
 

@@ -130,20 +130,26 @@ class Parser {
       fail(pos_, fmt::format("expression nested deeper than {} levels; simplify it", max_expression_depth));
   }
 
-  Quantity expression(int depth) {
-    enter(depth);
-    Quantity q = term(depth + 1);
+  // The left-associative chain `q (op operand)*` over the operators `ops`: `combine` reads
+  // the operand after `op` (at `at`) and gives the result so far.
+  template <class Combine>
+  Quantity chain(Quantity q, std::string_view ops, Combine combine) {
     for (;;) {
       skip_space();
       const std::size_t at = pos_;
-      if (accept('+')) {
-        q = checked(add(q, term(depth + 1), at, +1), at);
-      } else if (accept('-')) {
-        q = checked(add(q, term(depth + 1), at, -1), at);
-      } else {
-        return q;
-      }
+      char op = 0;
+      for (char c : ops)
+        if (op == 0 && accept(c)) op = c;
+      if (op == 0) return q;
+      q = combine(q, op, at);
     }
+  }
+
+  Quantity expression(int depth) {
+    enter(depth);
+    return chain(term(depth + 1), "+-", [&](const Quantity& q, char op, std::size_t at) {
+      return checked(add(q, term(depth + 1), at, op == '+' ? +1 : -1), at);
+    });
   }
 
   Quantity add(const Quantity& a, const Quantity& b, std::size_t at, int sign) const {
@@ -160,22 +166,16 @@ class Parser {
 
   Quantity term(int depth) {
     enter(depth);
-    Quantity q = unary(depth + 1);
-    for (;;) {
-      skip_space();
-      const std::size_t at = pos_;
-      if (accept('*')) {
+    return chain(unary(depth + 1), "*/", [&](const Quantity& q, char op, std::size_t at) {
+      if (op == '*') {
         if (pos_ < text_.size() && text_[pos_] == '*') fail(pos_, "'**' is not a power; write '^'");
         Quantity b = unary(depth + 1);
-        q = checked(Quantity{q.si * b.si, q.dimension + b.dimension, q.has_unit || b.has_unit}, at);
-      } else if (accept('/')) {
-        Quantity b = unary(depth + 1);
-        if (b.si == 0.0) fail(at, "division by zero: the divisor is 0; check the value or the parameter it names");
-        q = checked(Quantity{q.si / b.si, q.dimension - b.dimension, q.has_unit || b.has_unit}, at);
-      } else {
-        return q;
+        return checked(Quantity{q.si * b.si, q.dimension + b.dimension, q.has_unit || b.has_unit}, at);
       }
-    }
+      Quantity b = unary(depth + 1);
+      if (b.si == 0.0) fail(at, "division by zero: the divisor is 0; check the value or the parameter it names");
+      return checked(Quantity{q.si / b.si, q.dimension - b.dimension, q.has_unit || b.has_unit}, at);
+    });
   }
 
   Quantity unary(int depth) {

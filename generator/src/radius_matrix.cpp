@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "exact_algebra.hpp"
+#include "model_parameters.hpp"
 #include "printer.hpp"
 
 namespace pogear {
@@ -16,11 +18,17 @@ namespace {
 
 using GiNaC::ex;
 
-// Axis heights in the side view. A fixed axis has an unknown height until a mesh places it.
+// Axis heights in the side view. A fixed axis has an unknown height until a mesh places it: a
+// symbol of this stage alone, never in the model's symbol table.
 struct Heights {
   std::vector<ex> symbolic;                  // per body
   std::vector<std::optional<double>> value;  // per body, numeric when known
+  std::vector<ex> unknowns;                  // the fixed axes' height symbols
 };
+
+bool is_height(const Heights& h, const ex& e) {
+  return std::any_of(h.unknowns.begin(), h.unknowns.end(), [&](const ex& u) { return u.is_equal(e); });
+}
 
 // `values`: numeric_substitutions of the parameters known so far, built once (a chain of 40
 // stages has 500 of them, and every axis and mesh asks).
@@ -30,15 +38,9 @@ std::optional<double> value_of(const ex& e, const GiNaC::exmap& values) {
   return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
 }
 
-std::map<std::string, double> given_values(const Topology& t) {
-  std::map<std::string, double> v;
-  for (const auto& p : t.parameters) v[p.name] = p.value.si;
-  return v;
-}
-
-Heights axis_heights(const Topology& t, Symbols& s, const GiNaC::exmap& values) {
+Heights axis_heights(const Topology& t, const SymbolTable& s, const GiNaC::exmap& values) {
   const std::size_t n = t.bodies.size();
-  Heights h{std::vector<ex>(n), std::vector<std::optional<double>>(n)};
+  Heights h{std::vector<ex>(n), std::vector<std::optional<double>>(n), {}};
   std::vector<bool> placed(n, false);
   // Carriers may themselves be carried; resolve in dependency order (no cycles: checked on parse).
   std::function<void(int)> place = [&](int k) {
@@ -50,12 +52,15 @@ Heights axis_heights(const Topology& t, Symbols& s, const GiNaC::exmap& values) 
         h.symbolic[k] = 0;
         break;
       case AxisKind::fixed:
-        h.symbolic[k] = symbol(s, "__height_" + b.name);
+        // Named so that it sorts among the radii as it always has (the solver below takes
+        // unknowns in name order); the name never leaves this stage.
+        h.symbolic[k] = GiNaC::realsymbol("__height_" + b.name);
+        h.unknowns.push_back(h.symbolic[k]);
         break;
       case AxisKind::carried: {
         const int c = find_body(t, b.carrier);
         place(c);
-        h.symbolic[k] = h.symbolic[c] + b.side * symbol(s, b.distance);
+        h.symbolic[k] = h.symbolic[c] + b.side * parameter_symbol(s, b.distance_parameter);
         break;
       }
     }
@@ -87,7 +92,7 @@ std::optional<int> sign_of(const ex& diff, const GiNaC::exmap& values) {
   return sign;
 }
 
-ContactSides contact_sides(const Topology& t, int mi, Heights& h, Symbols& s, const GiNaC::exmap& values) {
+ContactSides contact_sides(const Topology& t, int mi, Heights& h, const SymbolTable& s, const GiNaC::exmap& values) {
   const Mesh& m = t.meshes[mi];
   const int bi = m.first.body;
   const int bj = m.second.body;
@@ -125,7 +130,7 @@ ContactSides contact_sides(const Topology& t, int mi, Heights& h, Symbols& s, co
   }
   // A fixed axis is placed by its first mesh: contact heights must agree.
   auto place = [&](int fixed_body, int other_body, int side_fixed, int side_other, const Wheel& wf, const Wheel& wo) {
-    h.symbolic[fixed_body] = h.symbolic[other_body] + side_other * symbol(s, wo.radius) - side_fixed * symbol(s, wf.radius);
+    h.symbolic[fixed_body] = h.symbolic[other_body] + side_other * parameter_symbol(s, wo.radius_parameter) - side_fixed * parameter_symbol(s, wf.radius_parameter);
     h.value[fixed_body] = value_of(h.symbolic[fixed_body], values);
   };
   if (fi) place(bi, bj, c.first, c.second, wi, wj);
@@ -134,13 +139,13 @@ ContactSides contact_sides(const Topology& t, int mi, Heights& h, Symbols& s, co
 }
 
 // Velocity of body k's material point at `offset` from its own axis, as coefficients of omega.
-void add_point_velocity(const Topology& t, Symbols& s, int k, const ex& offset, const ex& factor,
+void add_point_velocity(const Topology& t, const SymbolTable& s, int k, const ex& offset, const ex& factor,
                         std::vector<ex>& row) {
   const Body& b = t.bodies[k];
   row[k] += factor * b.arrow * offset;
   if (b.axis == AxisKind::carried) {
     const int c = find_body(t, b.carrier);
-    add_point_velocity(t, s, c, b.side * symbol(s, b.distance), factor, row);
+    add_point_velocity(t, s, c, b.side * parameter_symbol(s, b.distance_parameter), factor, row);
   }
 }
 
@@ -149,9 +154,9 @@ int unknown_rank(const Topology& t, const std::string& name, int& order) {
   for (int k = static_cast<int>(t.bodies.size()) - 1; k >= 0; --k) {
     const Body& b = t.bodies[k];
     order = k;
-    if (b.axis == AxisKind::carried && b.distance == name) return 2;
+    if (b.axis == AxisKind::carried && b.distance_parameter == name) return 2;
     for (const auto& w : b.wheels)
-      if (w.radius == name) return w.internal ? 1 : 0;
+      if (w.radius_parameter == name) return w.internal ? 1 : 0;
   }
   order = -1;
   return -1;
@@ -164,12 +169,13 @@ std::string describe_mesh(const Topology& t, int mesh) {
   return fmt::format("mesh {} ({} with {})", m.name, wheel_label(t, m.first), wheel_label(t, m.second));
 }
 
-RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
+RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
   const auto n = t.bodies.size();
   const auto m = t.meshes.size();
   RadiusMatrix rm;
-  rm.values = given_values(t);
-  GiNaC::exmap known = numeric_substitutions(s, rm.values);
+  std::map<std::string, double> given;
+  for (const auto& p : t.parameters) given[p.name] = p.value.si;
+  GiNaC::exmap known = numeric_substitutions(s, given);
   Heights h = axis_heights(t, s, known);
 
   rm.R = GiNaC::matrix(m, n);
@@ -178,8 +184,8 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
     const Mesh& mesh = t.meshes[mi];
     const ContactSides c = contact_sides(t, static_cast<int>(mi), h, s, known);
     rm.sides.push_back(c);
-    const ex ri = symbol(s, wheel(t, mesh.first).radius);
-    const ex rj = symbol(s, wheel(t, mesh.second).radius);
+    const ex ri = parameter_symbol(s, wheel(t, mesh.first).radius_parameter);
+    const ex rj = parameter_symbol(s, wheel(t, mesh.second).radius_parameter);
     std::vector<ex> row(n, ex(0));
     add_point_velocity(t, s, mesh.first.body, c.first * ri, +1, row);
     add_point_velocity(t, s, mesh.second.body, c.second * rj, -1, row);
@@ -194,19 +200,19 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
   for (std::size_t mi = 0; mi < m; ++mi) {
     const ex e = contact_equations[mi].subs(solved).expand();
     if (e.is_zero()) continue;
-    std::optional<GiNaC::realsymbol> best;
+    std::optional<ex> best;
     int best_rank = -2;
     int best_order = -2;
     // The symbols of e, in the order of their names (as a walk over every symbol would meet them).
-    std::map<std::string, GiNaC::realsymbol> in_e;
+    std::map<std::string, ex> in_e;
     for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
       if (GiNaC::is_a<GiNaC::symbol>(*it)) {
         const std::string& name = GiNaC::ex_to<GiNaC::symbol>(*it).get_name();
-        in_e.emplace(name, symbol(s, name));
+        in_e.emplace(name, *it);
       }
     for (const auto& [name, sym] : in_e) {
       int order = -1;
-      const int r = name.rfind("__height_", 0) == 0 ? 3 : unknown_rank(t, name, order);
+      const int r = is_height(h, sym) ? 3 : unknown_rank(t, name, order);
       if (std::tie(r, order) > std::tie(best_rank, best_order)) {
         best = sym;
         best_rank = r;
@@ -224,8 +230,8 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
   }
 
   for (const auto& [sym, rhs] : solved) {
+    if (is_height(h, sym)) continue;
     const std::string name = GiNaC::ex_to<GiNaC::symbol>(sym).get_name();
-    if (name.rfind("__height_", 0) == 0) continue;
     rm.relations.push_back(GeometryRelation{name, rhs, solved_by[name]});
   }
   // Report relations in mesh order, which follows the drawing.
@@ -235,20 +241,20 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
   // Every radius the relations leave free must be given; the dependent ones may be omitted.
   for (std::size_t mi = 0; mi < m; ++mi)
     for (WheelRef w : {t.meshes[mi].first, t.meshes[mi].second}) {
-      const std::string& r = wheel(t, w).radius;
+      const std::string& r = wheel(t, w).radius_parameter;
       const bool dependent = std::any_of(rm.relations.begin(), rm.relations.end(),
                                          [&](const GeometryRelation& g) { return g.parameter == r; });
-      if (!dependent && !rm.values.count(r))
+      if (!dependent && !given.count(r))
         throw InputError(t.meshes[mi].where, fmt::format("missing parameter '{}' (the radius of {}); add it under "
                                                          "[parameters], e.g. {} = \"10*cm\"",
                                                          r, wheel_label(t, w), r));
     }
   for (const auto& b : t.bodies)
-    if (b.axis == AxisKind::carried && !rm.values.count(b.distance) &&
+    if (b.axis == AxisKind::carried && !given.count(b.distance_parameter) &&
         std::none_of(rm.relations.begin(), rm.relations.end(),
-                     [&](const GeometryRelation& g) { return g.parameter == b.distance; }))
+                     [&](const GeometryRelation& g) { return g.parameter == b.distance_parameter; }))
       throw InputError(b.where, fmt::format("missing parameter '{}' (the axis distance of {}); add it under "
-                                            "[parameters]", b.distance, b.name));
+                                            "[parameters]", b.distance_parameter, b.name));
 
   for (const auto& g : rm.relations) {
     const auto implied = value_of(g.rhs, known);
@@ -259,9 +265,8 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
         throw InputError(t.meshes[g.mesh].where,
                          fmt::format("{} makes '{}' = {:.6g} m, which is not positive; check the layout",
                                      describe_mesh(t, g.mesh), g.parameter, *implied));
-      rm.values[g.parameter] = *implied;
-      known[symbol(s, g.parameter)] = exact_number(*implied);
-      rm.derived.push_back(g.parameter);
+      known[parameter_symbol(s, g.parameter)] = exact_number(*implied);
+      rm.derived.push_back({g.parameter, *implied});
       continue;
     }
     const double given = p->value.si;
@@ -279,10 +284,17 @@ RadiusMatrix derive_radius_matrix(const Topology& t, Symbols& s) {
   return rm;
 }
 
-GiNaC::exmap geometry_substitutions(const RadiusMatrix& rm, Symbols& s) {
+GiNaC::exmap geometry_substitutions(const RadiusMatrix& rm, const SymbolTable& s) {
   GiNaC::exmap m;
-  for (const auto& g : rm.relations) m[symbol(s, g.parameter)] = g.rhs;
+  for (const auto& g : rm.relations) m[parameter_symbol(s, g.parameter)] = g.rhs;
   return m;
+}
+
+std::map<std::string, double> parameter_values(const Topology& t, const RadiusMatrix& rm) {
+  std::map<std::string, double> v;
+  for (const auto& p : t.parameters) v[p.name] = p.value.si;
+  for (const auto& d : rm.derived) v[d.parameter] = d.value;
+  return v;
 }
 
 }  // namespace pogear

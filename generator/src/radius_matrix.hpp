@@ -1,4 +1,4 @@
-// The radius matrix R from the side-view contact velocities (DESIGN.md §2, the paper's Sec. III-A),
+// The radius matrix R from the side-view contact velocities (docs/design.md §2, the paper's Sec. III-A),
 // and the geometry relations the layout imposes on the radii (r_c = r_p + r_s1, ...).
 #pragma once
 
@@ -26,20 +26,28 @@ struct ContactSides {
   int second = +1;
 };
 
+// A radius or axis distance the model leaves out, with the value its relation gives.
+struct DerivedRadius {
+  std::string parameter;
+  double value = 0;  // SI
+};
+
 struct RadiusMatrix {
   GiNaC::matrix R;  // meshes x bodies, entries in the model's named radii
   std::vector<GeometryRelation> relations;
   std::vector<ContactSides> sides;  // per mesh
-  std::map<std::string, double> values;  // every parameter in SI, the derived radii included
-  std::vector<std::string> derived;      // radii not in the file, computed from the relations
+  std::vector<DerivedRadius> derived;  // radii not in the file, computed from the relations
 };
+
+// Every parameter of the model in SI: the file's (its parameter table) and the derived radii.
+std::map<std::string, double> parameter_values(const Topology& topology, const RadiusMatrix& radius);
 
 // Derives R and the geometry relations, and checks the numeric radii against them.
 // Throws InputError naming the parameter, both values and the mesh for an inconsistency.
-RadiusMatrix derive_radius_matrix(const Topology& topology, Symbols& symbols);
+RadiusMatrix derive_radius_matrix(const Topology& topology, const SymbolTable& symbols);
 
 // lhs == rhs substitutions for every relation, to take ranks and simplify "under the geometry".
-GiNaC::exmap geometry_substitutions(const RadiusMatrix& rm, Symbols& symbols);
+GiNaC::exmap geometry_substitutions(const RadiusMatrix& rm, const SymbolTable& symbols);
 
 std::string describe_mesh(const Topology& t, int mesh);  // "mesh ps (p with s1 of body s)"
 

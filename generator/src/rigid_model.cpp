@@ -2,189 +2,22 @@
 // parameter values (which satisfy the geometry relations); the algebra itself is symbolic.
 #include "rigid_model.hpp"
 
-#include <algorithm>
-#include <numeric>
 #include <stdexcept>
+#include <utility>
 
 #include <cln/integer.h>
 #include <cln/rational.h>
-#include <fmt/format.h>
 
-#include "printer.hpp"
+#include "block_triangular_solve.hpp"
+#include "exact_algebra.hpp"
+#include "force_recovery.hpp"
+#include "kept_velocities.hpp"
+#include "numeric_rank.hpp"
 
 namespace pogear {
 namespace {
 
 using GiNaC::ex;
-
-// Relative threshold for numeric rank: R's entries are radii of one scale, and a genuine
-// dependency cancels to rounding (~1e-16 relative), far below 1e-9.
-int numeric_rank(const Eigen::MatrixXd& m) {
-  if (m.size() == 0) return 0;
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(m);
-  qr.setThreshold(1e-9);
-  return static_cast<int>(qr.rank());
-}
-
-Eigen::MatrixXd columns(const Eigen::MatrixXd& m, const std::vector<int>& cols) {
-  Eigen::MatrixXd out(m.rows(), cols.size());
-  for (std::size_t j = 0; j < cols.size(); ++j) out.col(j) = m.col(cols[j]);
-  return out;
-}
-
-// Rows of R that are independent on the eliminated columns, as many as there are eliminated.
-std::vector<int> independent_rows(const Eigen::MatrixXd& Rn, const std::vector<int>& elim) {
-  const Eigen::MatrixXd sub = columns(Rn, elim);
-  std::vector<int> rows;
-  Eigen::MatrixXd picked(0, sub.cols());
-  for (int i = 0; i < sub.rows() && rows.size() < elim.size(); ++i) {
-    Eigen::MatrixXd trial(picked.rows() + 1, sub.cols());
-    trial << picked, sub.row(i);
-    if (numeric_rank(trial) == trial.rows()) {
-      picked = trial;
-      rows.push_back(i);
-    }
-  }
-  return rows;
-}
-
-// A X = B for a nonsingular symbolic A, block by block in A's block triangular form: equations
-// matched to unknowns along A's nonzeros, and the strongly connected components of "equation
-// uses the unknown another one is matched to" (Tarjan), which come out dependencies first. Each
-// diagonal block is nonsingular (their determinants multiply to det A) and small: 2 x 2 for a
-// chain of stages, where solving all of A at once worked on e x e rational functions.
-GiNaC::matrix block_triangular_solve(const GiNaC::matrix& A, const GiNaC::matrix& B) {
-  const int e = static_cast<int>(A.rows()), k = static_cast<int>(B.cols());
-  std::vector<std::vector<int>> uses(e);
-  for (int i = 0; i < e; ++i)
-    for (int j = 0; j < e; ++j)
-      if (!A(i, j).is_zero()) uses[i].push_back(j);
-  // Maximum matching by augmenting paths; nonsingular A has a perfect one.
-  std::vector<int> row_of(e, -1), col_of(e, -1);
-  std::vector<char> seen;
-  auto augment = [&](auto& self, int i) -> bool {
-    for (int j : uses[i]) {
-      if (seen[j]) continue;
-      seen[j] = 1;
-      if (row_of[j] < 0 || self(self, row_of[j])) {
-        row_of[j] = i;
-        col_of[i] = j;
-        return true;
-      }
-    }
-    return false;
-  };
-  for (int i = 0; i < e; ++i) {
-    seen.assign(e, 0);
-    if (!augment(augment, i)) throw std::domain_error("block_triangular_solve: singular matrix");
-  }
-  // Tarjan's strongly connected components over the equations.
-  std::vector<int> index(e, -1), low(e, 0), stack;
-  std::vector<char> on_stack(e, 0);
-  std::vector<std::vector<int>> blocks;
-  int counter = 0;
-  auto connect = [&](auto& self, int i) -> void {
-    index[i] = low[i] = counter++;
-    stack.push_back(i);
-    on_stack[i] = 1;
-    for (int j : uses[i]) {
-      const int next = row_of[j];
-      if (next == i) continue;
-      if (index[next] < 0) {
-        self(self, next);
-        low[i] = std::min(low[i], low[next]);
-      } else if (on_stack[next]) {
-        low[i] = std::min(low[i], index[next]);
-      }
-    }
-    if (low[i] != index[i]) return;
-    blocks.emplace_back();
-    int top;
-    do {
-      top = stack.back();
-      stack.pop_back();
-      on_stack[top] = 0;
-      blocks.back().push_back(top);
-    } while (top != i);
-    std::sort(blocks.back().begin(), blocks.back().end());
-  };
-  for (int i = 0; i < e; ++i)
-    if (index[i] < 0) connect(connect, i);
-
-  // Each block's inverse once (its entries are radii), then one normal() per entry of X: solving
-  // for all k columns at once normalized every intermediate rational function.
-  GiNaC::matrix X(e, k);
-  std::vector<char> solved(e, 0);
-  for (const auto& rows : blocks) {
-    const unsigned size = rows.size();
-    GiNaC::matrix Ab(size, size);
-    for (unsigned a = 0; a < size; ++a)
-      for (unsigned b = 0; b < size; ++b) Ab(a, b) = A(rows[a], col_of[rows[b]]);
-    GiNaC::matrix inverse = Ab.inverse();
-    for (unsigned a = 0; a < size; ++a)
-      for (unsigned b = 0; b < size; ++b) inverse(a, b) = inverse(a, b).normal();
-    for (int c = 0; c < k; ++c) {
-      std::vector<ex> rhs(size);
-      for (unsigned a = 0; a < size; ++a) {
-        const int i = rows[a];
-        GiNaC::exvector terms{B(i, c)};
-        for (int j : uses[i])
-          if (solved[j] && !X(j, c).is_zero()) terms.push_back(-A(i, j) * X(j, c));
-        rhs[a] = GiNaC::add(terms);
-      }
-      for (unsigned a = 0; a < size; ++a) {
-        GiNaC::exvector terms;
-        for (unsigned b = 0; b < size; ++b)
-          if (!inverse(a, b).is_zero() && !rhs[b].is_zero()) terms.push_back(inverse(a, b) * rhs[b]);
-        X(col_of[rows[a]], c) = ex(GiNaC::add(terms)).normal();
-      }
-    }
-    for (int i : rows) solved[col_of[i]] = 1;
-  }
-  return X;
-}
-
-// Q with R_rows Q = 0 and identity rows at the kept velocities; `rows` are independent on the
-// eliminated columns (independent_rows), so this is ker R.
-GiNaC::matrix kernel_basis(const GiNaC::matrix& R, const std::vector<int>& rows, const std::vector<int>& kept,
-                           const std::vector<int>& elim) {
-  const unsigned n = R.cols();
-  const unsigned k = kept.size();
-  GiNaC::matrix Q(n, k);
-  for (unsigned j = 0; j < k; ++j) Q(kept[j], j) = 1;
-  if (elim.empty()) return Q;
-  const unsigned e = elim.size();
-  GiNaC::matrix A(e, e), B(e, k);
-  for (unsigned i = 0; i < e; ++i) {
-    for (unsigned j = 0; j < e; ++j) A(i, j) = R(rows[i], elim[j]);
-    for (unsigned j = 0; j < k; ++j) B(i, j) = -R(rows[i], kept[j]);
-  }
-  const GiNaC::matrix X = block_triangular_solve(A, B);
-  for (unsigned i = 0; i < e; ++i)
-    for (unsigned j = 0; j < k; ++j) Q(elim[i], j) = X(i, j).normal();
-  return Q;
-}
-
-// No sum anywhere in e: a product of powers of symbols, whose products GiNaC keeps in lowest
-// terms by itself.
-bool is_monomial(const ex& e) {
-  if (GiNaC::is_a<GiNaC::numeric>(e) || GiNaC::is_a<GiNaC::symbol>(e)) return true;
-  if (GiNaC::is_exactly_a<GiNaC::power>(e))
-    return GiNaC::is_a<GiNaC::symbol>(e.op(0)) && GiNaC::is_a<GiNaC::numeric>(e.op(1)) &&
-           GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer();
-  if (!GiNaC::is_exactly_a<GiNaC::mul>(e)) return false;
-  for (const ex& f : e)
-    if (!is_monomial(f)) return false;
-  return true;
-}
-
-// normal(a b), without normal's polynomial gcds when both are monomials (every entry of Q1 for
-// a chain of stages is one): their product is already in lowest terms.
-ex normal_product(const ex& a, const ex& b) {
-  if (a.is_zero() || b.is_zero()) return 0;
-  if (is_monomial(a) && is_monomial(b)) return a * b;
-  return (a * b).normal();
-}
 
 cln::cl_RA rational_value(const ex& x) {
   const GiNaC::numeric v = as_number(x);
@@ -192,131 +25,19 @@ cln::cl_RA rational_value(const ex& x) {
   return cln::the<cln::cl_RA>(v.to_cl_N());
 }
 
-std::string names_of(const Topology& t, const std::vector<int>& bodies, const char* sep = ",") {
-  std::string s;
-  for (int b : bodies) s += (s.empty() ? "" : sep) + t.bodies[b].name;
-  return s;
-}
-
-[[noreturn]] void fail_tied(const Topology& t, const GiNaC::matrix& R, const Eigen::MatrixXd& Rn,
-                            const std::vector<int>& kept, const std::vector<std::vector<int>>& valid,
-                            const SourceLocation& where, const GiNaC::exmap& values, Symbols& s) {
-  std::string valid_list;
-  for (const auto& v : valid) valid_list += (valid_list.empty() ? "" : "; ") + names_of(t, v);
-  std::string tie = names_of(t, kept, ", ") + " are tied together";
-  if (!valid.empty()) {
-    // Name the smallest group of kept velocities that every rigid motion ties together.
-    std::vector<int> other;
-    for (int b = 0; b < static_cast<int>(t.bodies.size()); ++b)
-      if (std::find(valid[0].begin(), valid[0].end(), b) == valid[0].end()) other.push_back(b);
-    const GiNaC::matrix Q = kernel_basis(R, independent_rows(Rn, other), valid[0], other);
-    const Eigen::MatrixXd Qn = evaluate_matrix(Q, values);
-    bool found = false;
-    for (std::size_t a = 0; a < kept.size() && !found; ++a)
-      for (std::size_t b = a + 1; b < kept.size() && !found; ++b) {
-        Eigen::MatrixXd pair(2, Qn.cols());
-        pair << Qn.row(kept[a]), Qn.row(kept[b]);
-        if (numeric_rank(pair) == 2) continue;
-        found = true;
-        int j = 0;
-        while (j < Qn.cols() && Qn(kept[a], j) == 0.0) ++j;
-        const std::string na = t.bodies[kept[a]].name, nb = t.bodies[kept[b]].name;
-        if (j == Qn.cols()) {
-          tie = fmt::format("omega_{} is 0 in every rigid motion", na);
-        } else {
-          const ex ratio = (Q(kept[b], j) / Q(kept[a], j)).normal();
-          tie = fmt::format("{} and {} are tied: {} in every rigid motion", na, nb,
-                            print_expression(symbol(s, "omega_" + nb) == ratio * symbol(s, "omega_" + na),
-                                             Notation::text));
-        }
-      }
-  }
-  throw InputError(where, fmt::format("the kept velocities {} do not parametrize the rigid motions: {}; valid "
-                                      "choices are {}",
-                                      names_of(t, kept), tie, valid_list));
-}
-
 }  // namespace
 
-std::vector<int> force_recovery_bodies(const Eigen::MatrixXd& Rn) {
-  std::vector<int> order(Rn.cols());
-  std::iota(order.begin(), order.end(), 0);
-  auto nonzeros = [&](int j) { return (Rn.col(j).array() != 0.0).count(); };
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return nonzeros(a) < nonzeros(b); });
-  std::vector<int> picked;
-  for (int j : order) {
-    picked.push_back(j);
-    if (numeric_rank(columns(Rn, picked)) < static_cast<int>(picked.size())) picked.pop_back();
-    if (picked.size() == static_cast<std::size_t>(Rn.rows())) break;
-  }
-  std::sort(picked.begin(), picked.end());
-  return picked;
-}
-
-std::vector<std::vector<int>> valid_keep_sets(const Eigen::MatrixXd& Rn, std::size_t limit) {
-  const int n = static_cast<int>(Rn.cols());
-  const int rank = numeric_rank(Rn);
-  const int k = n - rank;
-  if (k == 0) return {{}};
-  // Depth first over the bodies in order, keeping before eliminating, yields the sets in
-  // lexicographic order. A branch is entered only if it can still be completed: its eliminated
-  // columns independent and, with the undecided ones, spanning R's columns (then they extend to
-  // a basis). So each set costs O(n) ranks; walking all C(n, k) subsets instead took minutes for
-  // gears of 25 bodies whose valid sets are rare.
-  std::vector<std::vector<int>> out;
-  std::vector<int> kept, elim;
-  auto completable = [&](int next) {
-    if (numeric_rank(columns(Rn, elim)) != static_cast<int>(elim.size())) return false;
-    std::vector<int> reach = elim;
-    for (int b = next; b < n; ++b) reach.push_back(b);
-    return numeric_rank(columns(Rn, reach)) == rank;
-  };
-  auto visit = [&](auto& self, int b) -> void {
-    if (out.size() >= limit) return;
-    if (b == n) {
-      out.push_back(kept);
-      return;
-    }
-    kept.push_back(b);
-    if (static_cast<int>(kept.size()) <= k && completable(b + 1)) self(self, b + 1);
-    kept.pop_back();
-    elim.push_back(b);
-    if (static_cast<int>(elim.size()) <= rank && completable(b + 1)) self(self, b + 1);
-    elim.pop_back();
-  };
-  visit(visit, 0);
-  return out;
-}
-
-RigidModel reduce_to_rigid(const Topology& t, const RadiusMatrix& rm, const ElasticModel& e,
-                           const std::vector<std::string>& keep, const SourceLocation& where, Symbols& s,
+RigidModel reduce_to_rigid(const Topology& t, const ElasticModel& e, const GiNaC::exmap& values,
+                           const std::vector<std::string>& keep, const SourceLocation& where, const SymbolTable& s,
                            bool closed_forms) {
   const int n = static_cast<int>(t.bodies.size());
-  const GiNaC::exmap values = numeric_substitutions(s, rm.values);
   const Eigen::MatrixXd Rn = evaluate_matrix(e.R, values);
   RigidModel r;
   r.rank = numeric_rank(Rn);
-  const int dof = n - r.rank;
 
-  for (const auto& name : keep) {
-    const int b = find_body(t, name);
-    if (b < 0) throw InputError(where, fmt::format("cannot keep '{}': there is no such body", name));
-    if (std::find(r.kept.begin(), r.kept.end(), b) != r.kept.end())
-      throw InputError(where, fmt::format("'{}' is kept twice", name));
-    r.kept.push_back(b);
-  }
-  const auto valid = valid_keep_sets(Rn, 12);
-  if (static_cast<int>(r.kept.size()) != dof) {
-    throw InputError(where, fmt::format("{} {} kept, but this gear has {} degrees of freedom ({} bodies, "
-                                        "rank of R {}); keep {}, e.g. {}",
-                                        r.kept.size(), r.kept.size() == 1 ? "velocity" : "velocities", dof, n,
-                                        r.rank, dof,
-                                        valid.empty() ? "" : names_of(t, valid[0])));
-  }
-  for (int b = 0; b < n; ++b)
-    if (std::find(r.kept.begin(), r.kept.end(), b) == r.kept.end()) r.eliminated.push_back(b);
-  if (numeric_rank(columns(Rn, r.eliminated)) != static_cast<int>(r.eliminated.size()))
-    fail_tied(t, e.R, Rn, r.kept, valid, where, values, s);
+  const KeptVelocities chosen = choose_kept_velocities(t, e.R, Rn, r.rank, keep, where, values, s);
+  r.kept = chosen.kept;
+  r.eliminated = chosen.eliminated;
 
   r.constraint_rows = independent_rows(Rn, r.eliminated);
   r.Q1 = kernel_basis(e.R, r.constraint_rows, r.kept, r.eliminated);
@@ -342,65 +63,10 @@ RigidModel reduce_to_rigid(const Topology& t, const RadiusMatrix& rm, const Elas
       r.A1(i, j) = r.A1(j, i) = GiNaC::add(a);
     }
 
-  // Eq. (8) needs R R^T invertible; with redundant meshes it is not (DESIGN.md §4).
-  const int m = static_cast<int>(t.meshes.size());
-  r.redundant_meshes = r.rank < m;
-  if (r.redundant_meshes) {
-    // DESIGN.md §4: the elastic model's limit splits the load as F = K R (R^T K R)^+ g. On the
-    // rigid model g is orthogonal to ker R = span Q1, and on that subspace (R^T K R)^+ equals
-    // (R^T K R + Q1 Q1^T)^-1, an ordinary inverse. The split depends on stiffness ratios, so
-    // its weights are numbers at the model's values, computed exactly and then rounded.
-    const GiNaC::matrix Kx = exact_matrix(e.K, values);
-    const GiNaC::matrix Rx = exact_matrix(e.R, values);
-    const GiNaC::matrix Qx = exact_matrix(r.Q1, values);
-    const GiNaC::matrix S = Rx.transpose().mul(Kx).mul(Rx).add(Qx.mul(Qx.transpose()));
-    const GiNaC::matrix W = Kx.mul(Rx).mul(S.inverse());  // m x n
-    for (int i = 0; i < m; ++i) {
-      ex f = 0;
-      for (int b = 0; b < n; ++b) {
-        const ex w = GiNaC::ex_to<GiNaC::numeric>(W(i, b)).evalf();
-        if (W(i, b).is_zero()) continue;
-        ex g = symbol(s, e.torques[b]);
-        for (unsigned j = 0; j < k; ++j) {
-          const std::string& kept_name = t.bodies[r.kept[j]].name;
-          g -= e.J(b, b) * r.Q1(b, j) * symbol(s, "domega_" + kept_name) +
-               e.B_J(b, b) * r.Q1(b, j) * symbol(s, "omega_" + kept_name);
-        }
-        f += w * g;
-      }
-      r.force_recovery.push_back(f);
-    }
-  } else {
-    r.force_bodies = force_recovery_bodies(Rn);
-    // On the rigid model g = tau - J Q1 x1' - B_J Q1 x1 lies in range(R^T), so eq. (8)'s
-    // (R R^T)^-1 R g equals (R_S^T)^-1 g_S for any m bodies S with independent columns of R.
-    // The sparsest S gives the shortest expressions, e.g. F_sg = -g_g/r_g.
-    GiNaC::matrix RSt(m, m);
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j) RSt(i, j) = e.R(j, r.force_bodies[i]);
-    // (R_S^T)^-1; R_S^T is as sparse as R (block triangular along a chain).
-    const GiNaC::matrix P = block_triangular_solve(RSt, GiNaC::ex_to<GiNaC::matrix>(GiNaC::unit_matrix(m)));
-    for (int i = 0; i < m; ++i) {
-      ex f = 0;
-      std::vector<ex> inertial(k, 0), friction(k, 0);
-      for (int a = 0; a < m; ++a) {
-        const int b = r.force_bodies[a];
-        const ex p = P(i, a).normal();
-        if (p.is_zero()) continue;
-        f += p * symbol(s, e.torques[b]);
-        for (unsigned j = 0; j < k; ++j) {
-          inertial[j] += p * e.J(b, b) * r.Q1(b, j);
-          friction[j] += p * e.B_J(b, b) * r.Q1(b, j);
-        }
-      }
-      for (unsigned j = 0; j < k; ++j) {
-        const std::string& kept_name = t.bodies[r.kept[j]].name;
-        f -= inertial[j].normal() * symbol(s, "domega_" + kept_name);
-        f -= friction[j].normal() * symbol(s, "omega_" + kept_name);
-      }
-      r.force_recovery.push_back(f);
-    }
-  }
+  ForceRecovery forces = recover_mesh_forces(t, e, r.Q1, r.kept, r.rank, Rn, values, s);
+  r.force_recovery = std::move(forces.forces);
+  r.force_bodies = std::move(forces.force_bodies);
+  r.redundant_meshes = forces.redundant_meshes;
   return r;
 }
 

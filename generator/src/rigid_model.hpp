@@ -8,6 +8,8 @@
 #include <ginac/ginac.h>
 
 #include "elastic_model.hpp"
+#include "force_recovery.hpp"
+#include "kept_velocities.hpp"
 
 namespace pogear {
 
@@ -22,19 +24,23 @@ struct RigidModel {
   // (on every rigid motion) F = (R_S^T)^-1 g_S over the bodies S = force_bodies: one expression
   // per mesh in tau_<body>, omega_<kept> and domega_<kept> (= d omega/dt). When R R^T is
   // singular (redundant meshes) eq. (8) does not exist; then F = K R (R^T K R)^+ g, the
-  // stiffness-weighted split of DESIGN.md §4, with its weights as numbers.
+  // stiffness-weighted split of docs/design.md §4, with its weights as numbers.
   std::vector<GiNaC::ex> force_recovery;
   std::vector<int> force_bodies;
   bool redundant_meshes = false;
 };
 
-// Throws InputError (at `keep_where`) when the number kept is not n - rank(R) or the kept set
-// does not parametrize ker R; the message names the tied velocities and lists valid sets.
-// Without `closed_forms` L1, A1 and B1 are left empty: a simulator with every parameter a number
-// needs only Q1 (exact_rigid_response), and for a long chain they are most of the work.
-RigidModel reduce_to_rigid(const Topology& topology, const RadiusMatrix& radius, const ElasticModel& elastic,
+// The reduction for one set of kept velocities; `values` are the model's parameters as exact
+// numbers (Derivation::values), for ranks and valid sets. It reads the elastic model and the
+// symbol table and changes neither, so another set of constraints costs one more call, sharing R
+// and the elastic model. Throws InputError (at `keep_where`) when the number kept is not
+// n - rank(R) or the kept set does not parametrize ker R; the message names the tied velocities
+// and lists valid sets. Without `closed_forms` L1, A1 and B1 are left empty: a simulator with
+// every parameter a number needs only Q1 (exact_rigid_response), and for a long chain they are
+// most of the work.
+RigidModel reduce_to_rigid(const Topology& topology, const ElasticModel& elastic, const GiNaC::exmap& values,
                            const std::vector<std::string>& keep, const SourceLocation& keep_where,
-                           Symbols& symbols, bool closed_forms = true);
+                           const SymbolTable& symbols, bool closed_forms = true);
 
 // Q1, L1 and A1 with `values` (symbol -> exact number, every parameter they hold) put in: the
 // numbers the closed forms give, computed from Q1's entries instead of the closed forms, which
@@ -49,11 +55,5 @@ RigidValues exact_rigid_values(const RigidModel& rigid, const ElasticModel& elas
 // sparse saddle-point system [J R_c^T; R_c 0] of the constraint rows, not through L1.
 GiNaC::matrix exact_rigid_response(const RigidModel& rigid, const ElasticModel& elastic, const GiNaC::exmap& values,
                                    const GiNaC::matrix& torques);
-
-// m bodies whose columns of R are independent, preferring sparse columns (short expressions).
-std::vector<int> force_recovery_bodies(const Eigen::MatrixXd& R_numeric);
-
-// Sets of velocities that can be kept, in body order, at most `limit` of them.
-std::vector<std::vector<int>> valid_keep_sets(const Eigen::MatrixXd& R_numeric, std::size_t limit);
 
 }  // namespace pogear

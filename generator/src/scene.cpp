@@ -17,6 +17,8 @@
 #include "pogear/run_limits.hpp"
 #include "cpp_text.hpp"
 #include "pogear/signals.hpp"
+#include "model_parameters.hpp"
+#include "model_variables.hpp"
 #include "toml_reader.hpp"
 
 namespace pogear {
@@ -56,94 +58,80 @@ struct Reader : TomlReader {
   }
 };
 
-SignalSpec read_signal(const Reader& r, const toml::node& n, const fs::path& scene_dir) {
-  SignalSpec s;
-  s.where = r.loc(n);
-  const Dimension torque = torque_dimension();
-  if (!n.is_table()) {
-    s.kind = SignalKind::constant;
-    s.value = r.quantity(n, torque, "an input torque");
-    return s;
+// A table signal from its CSV file; `at` is the `table =` value, where complaints about the whole
+// file point (a complaint about one line points into the table).
+rt::Signal read_table_signal(const Reader& r, const toml::node& at, const std::string& table_file) {
+  rt::TableError error;
+  const auto table = rt::load_table_csv(table_file, error);
+  if (!table) {
+    // A row's complaint points into the table; one about the whole file (missing, empty, too
+    // large) points at this `table =`.
+    const std::string layout = "the table needs two columns: time [s], torque [N m]";
+    if (error.line > 0)
+      throw InputError(SourceLocation{table_file, static_cast<int>(error.line), 0}, error.message + "; " + layout);
+    std::string advice;
+    if (error.kind == rt::TableErrorKind::cannot_open) advice = "; give its path relative to the scene file";
+    else if (error.kind == rt::TableErrorKind::no_data_rows) advice = "; " + layout;
+    throw InputError(r.loc(at), fmt::format("table '{}': {}{}", table_file, error.message, advice));
   }
+  return rt::Table{table->t, table->v};
+}
+
+rt::Signal read_signal(const Reader& r, const toml::node& n, const fs::path& scene_dir) {
+  const Dimension torque = torque_dimension();
+  if (!n.is_table()) return rt::Constant{r.quantity(n, torque, "an input torque")};
   const toml::table& t = *n.as_table();
   auto get = [&](std::string_view key) { return t.get(key); };
   if (const toml::node* v = get("constant")) {
     r.only_keys(t, {"constant"}, "a constant signal");
-    s.kind = SignalKind::constant;
-    s.value = r.quantity(*v, torque, "constant");
-  } else if (const toml::node* v = get("step")) {
+    return rt::Constant{r.quantity(*v, torque, "constant")};
+  }
+  if (const toml::node* v = get("step")) {
     r.only_keys(t, {"step", "at", "before"}, "a step signal");
-    s.kind = SignalKind::step;
-    s.value = r.quantity(*v, torque, "step");
+    rt::Step s;
+    s.after = r.quantity(*v, torque, "step");
     if (!get("at")) r.fail(n, "a step needs at = \"<time>\", e.g. at = \"0.5*s\"");
     s.time = r.quantity(*get("at"), time_dimension(), "at");
     if (get("before")) s.before = r.quantity(*get("before"), torque, "before");
-  } else if (const toml::node* v = get("ramp")) {
+    return s;
+  }
+  if (const toml::node* v = get("ramp")) {
     r.only_keys(t, {"ramp", "start", "initial"}, "a ramp signal");
-    s.kind = SignalKind::ramp;
+    rt::Ramp s;
     Dimension slope = torque;
     slope.exponent[2] -= 1;
-    s.value = r.quantity(*v, slope, "ramp (a slope, e.g. \"50*Nm/s\")");
-    if (get("start")) s.time = r.quantity(*get("start"), time_dimension(), "start");
-    if (get("initial")) s.before = r.quantity(*get("initial"), torque, "initial");
-  } else if (const toml::node* v = get("sine")) {
+    s.slope = r.quantity(*v, slope, "ramp (a slope, e.g. \"50*Nm/s\")");
+    if (get("start")) s.start_time = r.quantity(*get("start"), time_dimension(), "start");
+    if (get("initial")) s.initial = r.quantity(*get("initial"), torque, "initial");
+    return s;
+  }
+  if (const toml::node* v = get("sine")) {
     r.only_keys(t, {"sine", "frequency", "phase", "offset"}, "a sine signal");
-    s.kind = SignalKind::sine;
-    s.value = r.quantity(*v, torque, "sine (its amplitude)");
+    rt::Sine s;
+    s.amplitude = r.quantity(*v, torque, "sine (its amplitude)");
     if (!get("frequency")) r.fail(n, "a sine needs frequency = \"<f>*Hz\"");
     Dimension hz;
     hz.exponent[2] = -1;
-    s.frequency = r.quantity(*get("frequency"), hz, "frequency");
-    if (get("phase")) s.phase = r.quantity(*get("phase"), Dimension{}, "phase");
+    s.frequency_hz = r.quantity(*get("frequency"), hz, "frequency");
+    if (get("phase")) s.phase_rad = r.quantity(*get("phase"), Dimension{}, "phase");
     if (get("offset")) s.offset = r.quantity(*get("offset"), torque, "offset");
-  } else if (const toml::node* v = get("table")) {
+    return s;
+  }
+  if (const toml::node* v = get("table")) {
     r.only_keys(t, {"table"}, "a table signal");
-    s.kind = SignalKind::table;
     const std::string file = r.string(*v, "table");
     const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : scene_dir / file;
-    s.table_file = path.lexically_normal().string();
-    std::string error;
-    const auto table = rt::load_table_csv(s.table_file, error);
-    if (!table) {
-      // The runtime reports "PATH:LINE: what" or "PATH: what". A line points into the table; a
-      // complaint about the whole file (missing, empty, too large) points at this `table =`.
-      std::string rest = error.rfind(s.table_file, 0) == 0 ? error.substr(s.table_file.size()) : ": " + error;
-      int line = 0;
-      if (rest.size() > 1 && rest[0] == ':' && std::isdigit(static_cast<unsigned char>(rest[1]))) {
-        std::size_t end = 1;
-        while (end < rest.size() && std::isdigit(static_cast<unsigned char>(rest[end]))) ++end;
-        line = std::atoi(rest.c_str() + 1);
-        rest = rest.substr(end);
-      }
-      const std::string what = rest.rfind(": ", 0) == 0 ? rest.substr(2) : rest;
-      const std::string layout = "the table needs two columns: time [s], torque [N m]";
-      if (line > 0) throw InputError(SourceLocation{s.table_file, line, 0}, what + "; " + layout);
-      std::string advice;
-      if (what.rfind("cannot open", 0) == 0) advice = "; give its path relative to the scene file";
-      else if (what.rfind("no data rows", 0) == 0) advice = "; " + layout;
-      throw InputError(r.loc(*v), fmt::format("table '{}': {}{}", s.table_file, what, advice));
-    }
-    s.table_t = table->t;
-    s.table_v = table->v;
-  } else {
-    r.fail(n, "a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., "
-              "frequency = ... } or { table = \"file.csv\" }");
+    return read_table_signal(r, *v, path.lexically_normal().string());
   }
-  return s;
+  r.fail(n, "a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., "
+            "frequency = ... } or { table = \"file.csv\" }");
 }
 
 // Tunable parameters become variables of the generated C++, beside the states, inputs and the
 // functions' own arguments; these names would not compile there.
 bool clashes_with_generated_code(const std::string& name, const Topology& t) {
   static const std::set<std::string> arguments{"p", "x", "u", "dx", "y", "M", "N"};  // of rhs, outputs, matrices
-  if (is_cpp_reserved(name) || arguments.count(name)) return true;
-  for (const auto& b : t.bodies)
-    for (const char* prefix : {"omega_", "tau_", "domega_"})
-      if (name == prefix + b.name) return true;
-  for (const auto& m : t.meshes)
-    for (const char* prefix : {"F_", "v_", "w_", "dF_"})
-      if (name == prefix + m.name) return true;
-  return false;
+  return is_cpp_reserved(name) || arguments.count(name) || find_variable(t, name).has_value();
 }
 
 Effects read_effects(const Reader& r, const toml::node& n) {
@@ -163,36 +151,53 @@ Effects read_effects(const Reader& r, const toml::node& n) {
   return e;
 }
 
+// The scene's [parameters] replace the model's texts, and every parameter is evaluated again (a
+// parameter defined through an overridden one follows it).
+void apply_overrides(const Reader& r, const toml::node& n, Topology& t) {
+  if (!n.is_table()) r.fail(n, "[parameters] must be a table");
+  for (const auto& [key, value] : *n.as_table()) {
+    const std::string name(key.str());
+    const auto p = std::find_if(t.parameters.begin(), t.parameters.end(), [&](const Parameter& q) { return q.name == name; });
+    if (p == t.parameters.end())
+      throw InputError(toml_location(r.file, key.source()), fmt::format("'{}' is not a parameter of the model {}", name, t.name));
+    p->where = r.loc(value);
+    p->column_offset = 1;
+    if (value.is_string()) {
+      p->text = *value.value<std::string>();
+    } else if (value.is_integer() || value.is_floating_point()) {
+      if (!std::isfinite(*value.value<double>())) r.fail(value, fmt::format("parameter '{}' is not finite", name));
+      p->text = fmt::format("{}", *value.value<double>());
+      p->column_offset = 0;
+    } else {
+      r.fail(value, "a parameter override is a number (SI) or a string such as \"2000*Newton/mm\"");
+    }
+  }
+  evaluate_parameters(t.parameters);
+  // An override of 0 for an inertia or a length for a stiffness would reach the algebra as a
+  // singular matrix; it is the scene's mistake, and the location is the override's.
+  check_parameter_roles(t);
+}
+
 }  // namespace
 
-bool SignalSpec::identically_zero() const {
-  switch (kind) {
-    case SignalKind::constant: return value == 0;
-    case SignalKind::step: return value == 0 && before == 0;
-    case SignalKind::ramp: return value == 0 && before == 0;
-    case SignalKind::sine: return (value == 0 || frequency == 0) && offset == 0 && (value == 0 || std::sin(phase) == 0);
-    case SignalKind::table:
-      return std::all_of(table_v.begin(), table_v.end(), [](double v) { return v == 0; });
-  }
-  return false;
+bool identically_zero(const rt::Signal& signal) {
+  struct Zero {
+    bool operator()(const rt::Constant& c) const { return c.v == 0; }
+    bool operator()(const rt::Step& s) const { return s.after == 0 && s.before == 0; }
+    bool operator()(const rt::Ramp& r) const { return r.slope == 0 && r.initial == 0; }
+    bool operator()(const rt::Sine& s) const {
+      return (s.amplitude == 0 || s.frequency_hz == 0) && s.offset == 0 && (s.amplitude == 0 || std::sin(s.phase_rad) == 0);
+    }
+    bool operator()(const rt::Table& t) const {
+      return std::all_of(t.v.begin(), t.v.end(), [](double v) { return v == 0; });
+    }
+  };
+  return std::visit(Zero{}, signal);
 }
 
 Solver parse_solver(const std::string& name, const SourceLocation& where) {
-  if (name == "exact") return Solver::exact;
-  if (name == "rk4") return Solver::rk4;
-  if (name == "dopri5") return Solver::dopri5;
-  if (name == "implicit") return Solver::implicit;
-  throw InputError(where, fmt::format("unknown solver '{}'; the solvers are exact, rk4, dopri5, implicit", name));
-}
-
-const char* solver_name(Solver s) {
-  switch (s) {
-    case Solver::exact: return "exact";
-    case Solver::rk4: return "rk4";
-    case Solver::dopri5: return "dopri5";
-    case Solver::implicit: return "implicit";
-  }
-  return "?";
+  if (const std::optional<Solver> solver = rt::parse_solver(name)) return *solver;
+  throw InputError(where, fmt::format("unknown solver '{}'; the solvers are {}", name, rt::solver_names(", ")));
 }
 
 Scene parse_scene_text(const std::string& text, const std::string& path) {
@@ -206,6 +211,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
               "the scene file");
   Scene s;
   s.file = path;
+  s.digest = text_digest(text);
   s.name = fs::path(path).stem().string();
   if (const toml::node* n = root.get("name")) s.name = r.string(*n, "name");
   const bool name_ok = !s.name.empty() && std::isalpha(static_cast<unsigned char>(s.name[0])) &&
@@ -242,8 +248,11 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     r.fail(*model, fmt::format("model file '{}' cannot be opened ({}); check the path and its links", s.model_file,
                                std::strerror(errno)));
   }
-  const Topology topology = parse_topology(s.model_file);
+  s.model = parse_topology(s.model_file);
+  const Topology& topology = s.model;
   r.model = &topology;
+  // Before anything that evaluates a quantity: [initial] and [inputs] may name parameters.
+  if (const toml::node* n = root.get("parameters")) apply_overrides(r, *n, s.model);
 
   if (const toml::node* n = root.get("effects")) s.effects = read_effects(r, *n);
   if (const toml::node* n = root.get("keep")) {
@@ -264,27 +273,6 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
 
   std::set<std::string> parameter_names;
   for (const auto& p : topology.parameters) parameter_names.insert(p.name);
-  if (const toml::node* n = root.get("parameters")) {
-    if (!n->is_table()) r.fail(*n, "[parameters] must be a table");
-    for (const auto& [key, value] : *n->as_table()) {
-      const std::string name(key.str());
-      if (!parameter_names.count(name))
-        throw InputError(toml_location(path, key.source()), fmt::format("'{}' is not a parameter of the model {}", name, topology.name));
-      Parameter p;
-      p.name = name;
-      p.where = r.loc(value);
-      if (value.is_string()) {
-        p.text = *value.value<std::string>();
-      } else if (value.is_integer() || value.is_floating_point()) {
-        if (!std::isfinite(*value.value<double>())) r.fail(value, fmt::format("parameter '{}' is not finite", name));
-        p.text = fmt::format("{}", *value.value<double>());
-        p.column_offset = 0;
-      } else {
-        r.fail(value, "a parameter override is a number (SI) or a string such as \"2000*Newton/mm\"");
-      }
-      s.overrides.push_back(std::move(p));
-    }
-  }
   if (const toml::node* n = root.get("tunable")) {
     s.tunable = r.strings(*n, "tunable");
     s.tunable_where = r.loc(*n);
@@ -298,57 +286,51 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     }
   }
 
-  std::set<std::string> driven;
   if (const toml::node* n = root.get("inputs")) {
     if (!n->is_table()) r.fail(*n, "[inputs] must be a table of tau_<body> = signal");
     for (const auto& [key, value] : *n->as_table()) {
       const std::string name(key.str());
-      const std::string body = name.rfind("tau_", 0) == 0 ? name.substr(4) : "";
-      if (body.empty() || find_body(topology, body) < 0)
+      const auto tau = find_variable(topology, name, {VariableKind::torque});
+      if (!tau)
         throw InputError(toml_location(path, key.source()),
                          fmt::format("input '{}' names no body; inputs are tau_<body>, e.g. tau_{}", name,
                                      topology.bodies.front().name));
-      s.inputs.push_back(InputSpec{body, read_signal(r, value, scene_dir)});
+      s.inputs.push_back(InputSpec{tau->index, read_signal(r, value, scene_dir), r.loc(value)});
     }
     // Inputs in body order, the order of the model's tau vector.
-    std::sort(s.inputs.begin(), s.inputs.end(), [&](const InputSpec& a, const InputSpec& b) {
-      return find_body(topology, a.body) < find_body(topology, b.body);
-    });
+    std::sort(s.inputs.begin(), s.inputs.end(), [](const InputSpec& a, const InputSpec& b) { return a.body < b.body; });
   }
 
   if (const toml::node* n = root.get("initial")) {
     if (!n->is_table()) r.fail(*n, "[initial] must be a table of omega_<body> and F_<mesh> values");
     for (const auto& [key, value] : *n->as_table()) {
       const std::string name(key.str());
-      if (name.rfind("omega_", 0) == 0 && find_body(topology, name.substr(6)) >= 0) {
-        s.initial[name] = r.quantity(value, angular_velocity_dimension(), name);
-      } else if (name.rfind("F_", 0) == 0 &&
-                 std::any_of(topology.meshes.begin(), topology.meshes.end(),
-                             [&](const Mesh& m) { return m.name == name.substr(2); })) {
+      const auto v = find_variable(topology, name, {VariableKind::velocity, VariableKind::force});
+      if (!v)
+        throw InputError(toml_location(path, key.source()),
+                         fmt::format("'{}' is neither omega_<body> nor F_<mesh> of the model", name));
+      if (v->kind == VariableKind::velocity) {
+        s.initial[*v] = r.quantity(value, angular_velocity_dimension(), name);
+      } else {
         if (!s.effects.mesh_compliance)
           throw InputError(toml_location(path, key.source()), fmt::format("initial force '{}' needs mesh_compliance: the rigid "
                                                                "model has no force states", name));
-        s.initial[name] = r.quantity(value, force_dimension(), name);
-      } else {
-        throw InputError(toml_location(path, key.source()),
-                         fmt::format("'{}' is neither omega_<body> nor F_<mesh> of the model", name));
+        s.initial[*v] = r.quantity(value, force_dimension(), name);
       }
     }
   }
 
   if (const toml::node* n = root.get("outputs")) {
-    s.outputs = r.strings(*n, "outputs");
     s.outputs_where = r.loc(*n);
-    std::set<std::string> seen;
-    for (const auto& o : s.outputs) {
-      if (!seen.insert(o).second) r.fail(*n, fmt::format("output '{}' is listed twice", o));
-      const bool velocity = o.rfind("omega_", 0) == 0 && find_body(topology, o.substr(6)) >= 0;
-      const bool force = o.rfind("F_", 0) == 0 && std::any_of(topology.meshes.begin(), topology.meshes.end(),
-                                                             [&](const Mesh& m) { return m.name == o.substr(2); });
-      if (!velocity && !force) r.fail(*n, fmt::format("output '{}' is neither omega_<body> nor F_<mesh>", o));
-      if (force && !s.effects.mesh_forces)
+    for (const auto& o : r.strings(*n, "outputs")) {
+      const auto v = find_variable(topology, o, {VariableKind::velocity, VariableKind::force});
+      if (!v) r.fail(*n, fmt::format("output '{}' is neither omega_<body> nor F_<mesh>", o));
+      if (std::find(s.outputs.begin(), s.outputs.end(), *v) != s.outputs.end())
+        r.fail(*n, fmt::format("output '{}' is listed twice", o));
+      if (v->kind == VariableKind::force && !s.effects.mesh_forces)
         r.fail(*n, fmt::format("output '{}' is a mesh force, but the scene does not ask for mesh_forces; add it to "
                                "effects", o));
+      s.outputs.push_back(*v);
     }
   }
 
@@ -396,21 +378,6 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
 
 Scene parse_scene(const std::string& path) {
   return parse_scene_text(read_input_file(path, max_model_file_bytes, "scene file"), path);
-}
-
-Topology apply_overrides(Topology t, const Scene& scene) {
-  for (const auto& o : scene.overrides)
-    for (auto& p : t.parameters)
-      if (p.name == o.name) {
-        p.text = o.text;
-        p.where = o.where;
-        p.column_offset = o.column_offset;
-      }
-  evaluate_parameters(t.parameters);
-  // An override of 0 for an inertia or a length for a stiffness would reach the algebra as a
-  // singular matrix; it is the scene's mistake, and the location is the override's.
-  check_parameter_roles(t);
-  return t;
 }
 
 }  // namespace pogear

@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "pogear/signals.hpp"
+#include "pogear/solver.hpp"
+#include "model_variables.hpp"
 #include "topology.hpp"
 
 namespace pogear {
@@ -17,43 +20,34 @@ struct Effects {
   bool mesh_forces = false;      // force outputs
 };
 
-enum class SignalKind { constant, step, ramp, sine, table };
-
-// A torque signal in SI units; which fields matter depends on the kind.
-struct SignalSpec {
-  SignalKind kind = SignalKind::constant;
-  double value = 0;      // constant value; step: value after; ramp: slope (N m / s); sine: amplitude
-  double before = 0;     // step: value before; ramp: value before the start
-  double time = 0;       // step time, ramp start
-  double frequency = 0;  // sine, Hz
-  double phase = 0;      // sine, rad
-  double offset = 0;     // sine
-  std::string table_file;
-  std::vector<double> table_t, table_v;
-  SourceLocation where;
-  bool identically_zero() const;
-};
-
+// An input torque of the scene, in SI units, as the runtime evaluates it.
 struct InputSpec {
-  std::string body;  // the driven body; the input is tau_<body>
-  SignalSpec signal;
+  int body = -1;  // the driven body; the input is tau_<body>
+  rt::Signal signal;
+  SourceLocation where;
 };
 
-enum class Solver { exact, rk4, dopri5, implicit };
+// Whether the signal is zero at every time: such an input is no input.
+bool identically_zero(const rt::Signal& signal);
+
+using rt::Solver;
 
 struct Scene {
   std::string file;
+  std::string digest;  // of the scene file's text (text_digest)
   std::string name;
   std::string model_file;  // resolved relative to the scene file
   std::string model_ref;   // as the scene file writes it
+  // The model, read once, with the scene's [parameters] applied: every quantity of the scene is
+  // evaluated against it, and every later stage reads it (never the file again).
+  Topology model;
   Effects effects;
   std::vector<std::string> keep;  // empty: the model's default
   bool compare_rigid = false;
   std::vector<InputSpec> inputs;
-  std::map<std::string, double> initial;  // omega_<body> [rad/s], F_<mesh> [N]
-  std::vector<Parameter> overrides;
+  std::map<Variable, double> initial;  // velocities [rad/s] and forces [N]
   std::vector<std::string> tunable;
-  std::vector<std::string> outputs;  // empty: every velocity, and every force with mesh_forces
+  std::vector<Variable> outputs;  // velocities and forces; empty: every velocity, and every force with mesh_forces
   double horizon = 1.0;
   double sample = 1e-3;
   Solver solver = Solver::exact;
@@ -63,14 +57,12 @@ struct Scene {
   SourceLocation solver_where, outputs_where, keep_where, tunable_where, sample_where;
 };
 
-// Reads a scene and checks it against its model (bodies, meshes, parameter names).
+// Reads a scene and its model, applies the scene's parameter overrides to the model, and checks
+// the scene against the result (bodies, meshes, parameter names, units).
 Scene parse_scene(const std::string& path);
 Scene parse_scene_text(const std::string& text, const std::string& path);
 
-// The model with the scene's parameter overrides applied.
-Topology apply_overrides(Topology topology, const Scene& scene);
-
+// The solver `name` (rt::parse_solver), or an InputError at `where`.
 Solver parse_solver(const std::string& name, const SourceLocation& where);
-const char* solver_name(Solver s);
 
 }  // namespace pogear

@@ -112,8 +112,7 @@ std::vector<std::string> compile_command(const fs::path& dir, const std::string&
 // Compiles the sources in `dir` to `dir`/simulator (through a temporary name, then rename: a
 // concurrent run sees no binary or a whole one).
 fs::path compile_into(const fs::path& dir, const GeneratedSources& g) {
-  write_file_atomically((dir / g.header_name).string(), g.header);
-  write_file_atomically((dir / g.main_name).string(), g.main);
+  write_sources(g, dir.string());
   const fs::path exe = dir / "simulator";
   const fs::path tmp = dir / fmt::format("simulator.tmp{}", ::getpid());
   const int slot = remember_temporary(tmp.string());
@@ -139,6 +138,16 @@ fs::path compile_into(const fs::path& dir, const GeneratedSources& g) {
 }
 
 }  // namespace
+
+std::vector<std::string> source_paths(const GeneratedSources& g, const std::string& dir) {
+  return {dir + "/" + g.header_name, dir + "/" + g.main_name};
+}
+
+void write_sources(const GeneratedSources& g, const std::string& dir) {
+  const std::vector<std::string> paths = source_paths(g, dir);
+  write_file_atomically(paths[0], g.header);
+  write_file_atomically(paths[1], g.main);
+}
 
 std::uint64_t simulator_cache_key(const GeneratedSources& g, const std::string& runtime_include) {
   std::uint64_t h = fnv1a(g.header);

@@ -5,10 +5,17 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "codegen.hpp"
 
 namespace pogear {
+
+// The files write_sources writes into `dir`, as `dir`/NAME: the header, then the main.
+std::vector<std::string> source_paths(const GeneratedSources& sources, const std::string& dir);
+
+// Writes the generated sources into `dir` (atomically, file by file).
+void write_sources(const GeneratedSources& sources, const std::string& dir);
 
 // The cache key of a simulator: a hash of its sources, the runtime headers under
 // `runtime_include`/pogear, the compiler (path, size, modification time), flags and version.

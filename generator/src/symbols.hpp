@@ -1,55 +1,32 @@
-// The GiNaC symbols of one model, by name: GiNaC tells symbols apart by identity, not by name,
-// so every stage must draw them from the same table.
+// The GiNaC symbols of one model, made once from its topology: GiNaC tells symbols apart by
+// identity, not by name, so every stage draws them from this table, and a lookup never makes one.
 #pragma once
 
 #include <map>
 #include <string>
-#include <vector>
 
 #include <ginac/ginac.h>
 
+#include "exact_algebra.hpp"
+#include "model_variables.hpp"
+
 namespace pogear {
 
-struct Symbols {
-  std::map<std::string, GiNaC::realsymbol> by_name;
+struct SymbolTable {
+  // Every parameter the model file gives or a role names (radii the geometry derives included).
+  std::map<std::string, GiNaC::realsymbol> parameters;
+  // Every variable of the equations; a parameter of the same name is another symbol.
+  std::map<Variable, GiNaC::realsymbol> variables;
 };
 
-inline GiNaC::realsymbol symbol(Symbols& s, const std::string& name) {
-  auto it = s.by_name.find(name);
-  if (it == s.by_name.end()) it = s.by_name.emplace(name, GiNaC::realsymbol(name)).first;
-  return it->second;
-}
+SymbolTable make_symbol_table(const Topology& t);
 
-// The double v as an exact rational. Parameters enter the algebra exactly, so every number
-// pogear prints is the correctly rounded value of an exact expression: two different formulas
-// for the same quantity give the same double.
-GiNaC::numeric exact_number(double v);
+// The symbol of a parameter or a variable of the table; a name the table lacks is a bug of pogear
+// (the readers check every name), reported as std::logic_error.
+const GiNaC::realsymbol& parameter_symbol(const SymbolTable& s, const std::string& name);
+const GiNaC::realsymbol& variable_symbol(const SymbolTable& s, Variable v);
 
-// Substitutes numeric SI values, as exact rationals, for every symbol that has one.
-GiNaC::exmap numeric_substitutions(Symbols& s, const std::map<std::string, double>& values);
-double to_double(const GiNaC::ex& e);  // throws std::domain_error when e is not a real number
+// Substitutes numeric SI values, as exact rationals, for the parameters named.
+GiNaC::exmap numeric_substitutions(const SymbolTable& s, const std::map<std::string, double>& values);
 
-// e with `values` (symbol -> number) put in, computed exactly: the number GiNaC's subs gives, but
-// by one walk over e, without building the substituted tree (the closed forms of a long chain
-// are megabytes). Anything the walk does not know (functions, non-integer powers, symbols
-// without a number) goes through subs; the result is then not necessarily a number.
-GiNaC::ex exact_value(const GiNaC::ex& e, const GiNaC::exmap& values);
-GiNaC::numeric as_number(const GiNaC::ex& e);  // throws std::domain_error when e is not a number
-
-// Products and solutions of matrices of exact numbers (else std::domain_error), skipping zeros: R, L and the like are
-// sparse, and GiNaC's own dense routines treat every entry as a symbolic expression.
-GiNaC::matrix exact_product(const GiNaC::matrix& a, const GiNaC::matrix& b);
-GiNaC::matrix exact_solve(const GiNaC::matrix& a, const GiNaC::matrix& b);  // a x = b; throws if a is singular
-// The given rows of x, in that order; unknowns no given row depends on are not computed.
-GiNaC::matrix exact_solve_rows(const GiNaC::matrix& a, const GiNaC::matrix& b, const std::vector<int>& rows);
-
-}  // namespace pogear
-
-#include <Eigen/Dense>
-
-namespace pogear {
-// Every entry of `m` at the given substitutions (SI values); throws if one stays symbolic.
-Eigen::MatrixXd evaluate_matrix(const GiNaC::matrix& m, const GiNaC::exmap& values);
-// Every entry of `m` with `values` put in, exactly (see exact_value).
-GiNaC::matrix exact_matrix(const GiNaC::matrix& m, const GiNaC::exmap& values);
 }  // namespace pogear

@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 
 #include <fmt/format.h>
+
+#include "pogear/input_file.hpp"
 
 namespace pogear {
 
@@ -93,6 +96,36 @@ void TomlReader::only_keys(const toml::table& t, std::initializer_list<std::stri
 std::string TomlReader::string(const toml::node& n, std::string_view what) const {
   if (!n.is_string()) fail(n, fmt::format("{} must be a string in quotes", what));
   return *n.value<std::string>();
+}
+
+std::string text_digest(std::string_view text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char c : text) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ull;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+std::string read_input_file(const std::string& path, std::size_t limit, const std::string& what) {
+  const SourceLocation where{path, 0, 0};
+  rt::InputFile in = rt::read_regular_file(path, limit);
+  switch (in.status) {
+    case rt::InputFileStatus::ok: return std::move(in.text);
+    case rt::InputFileStatus::cannot_open:
+      throw InputError(where, fmt::format("cannot read the {} ({}); check the path", what, in.reason));
+    case rt::InputFileStatus::directory:
+      throw InputError(where, fmt::format("this is a directory; give the {} itself", what));
+    case rt::InputFileStatus::not_regular:
+      // A FIFO or a device would hang or never end; a model is a file on disk.
+      throw InputError(where, fmt::format("this is {}, not a regular file; give the path of the {} itself", in.reason,
+                                          what));
+    case rt::InputFileStatus::too_large:
+      throw InputError(where, fmt::format("the {} is larger than {} bytes; a model or scene file is a few kilobytes",
+                                          what, limit));
+    case rt::InputFileStatus::read_error: break;
+  }
+  throw InputError(where, fmt::format("cannot read the {}: a read error; check the file", what));
 }
 
 }  // namespace pogear

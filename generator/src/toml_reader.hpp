@@ -22,6 +22,15 @@ inline constexpr std::size_t max_key_parts = 64;
 toml::table parse_toml_document(const std::string& text, const std::string& path, std::size_t max_bytes,
                                 const std::string& too_large);
 
+// A short fingerprint of a file's text (64-bit FNV-1a, 16 hex digits): it names, in generated code,
+// which model and scene text it came from. It tells versions apart; it is no defence against forgery.
+std::string text_digest(std::string_view text);
+
+// The contents of an input file, read at most `limit` bytes far (a FIFO or /dev/zero must not
+// fill the memory). Throws InputError naming the file when it cannot be read, is a directory or
+// is larger; `what` names it in messages: "file" (a model), "scene file".
+std::string read_input_file(const std::string& path, std::size_t limit, const std::string& what);
+
 struct TomlReader {
   std::string file;
 

@@ -15,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include "pogear/input_file.hpp"
+#include "model_parameters.hpp"
 #include "toml_reader.hpp"
 
 namespace pogear {
@@ -90,7 +91,7 @@ Body read_body(const Reader& r, const toml::table& t) {
         if (!c || !d) r.fail(*axis, "a carried axis needs carrier = \"<body>\" and distance = \"<parameter>\"");
         b.axis = AxisKind::carried;
         b.carrier = r.identifier(*c, "carrier");
-        b.distance = r.identifier(*d, "distance");
+        b.distance_parameter = r.identifier(*d, "distance");
         if (const toml::node* s = at.get("side")) {
           const std::string side = r.string(*s, "side");
           if (side != "above" && side != "below") r.fail(*s, "side must be \"above\" or \"below\"");
@@ -105,10 +106,10 @@ Body read_body(const Reader& r, const toml::table& t) {
       r.fail(*arrow, "arrow must be \"right\" or \"left\": the positive direction of omega as drawn");
     b.arrow = a == "right" ? +1 : -1;
   }
-  b.inertia = "J_" + b.name;
-  b.friction = "b_" + b.name;
-  if (const toml::node* n = t.get("inertia")) b.inertia = r.identifier(*n, "inertia");
-  if (const toml::node* n = t.get("friction")) b.friction = r.identifier(*n, "friction");
+  b.inertia_parameter = "J_" + b.name;
+  b.friction_parameter = "b_" + b.name;
+  if (const toml::node* n = t.get("inertia")) b.inertia_parameter = r.identifier(*n, "inertia");
+  if (const toml::node* n = t.get("friction")) b.friction_parameter = r.identifier(*n, "friction");
 
   if (const toml::node* wheels = t.get("wheels")) {
     if (!wheels->is_array()) r.fail(*wheels, "wheels must be a list: [ { name = \"s1\", radius = \"r_s1\" } ]");
@@ -120,8 +121,8 @@ Body read_body(const Reader& r, const toml::table& t) {
       if (!wn) r.fail(w, "a wheel needs a name, e.g. { name = \"s1\", radius = \"r_s1\" }");
       wheel.name = r.identifier(*wn, "a wheel name");
       wheel.where = r.loc(*wn);
-      wheel.radius = "r_" + wheel.name;
-      if (const toml::node* rn = wt.get("radius")) wheel.radius = r.identifier(*rn, "radius");
+      wheel.radius_parameter = "r_" + wheel.name;
+      if (const toml::node* rn = wt.get("radius")) wheel.radius_parameter = r.identifier(*rn, "radius");
       if (const toml::node* in = wt.get("internal")) {
         if (!in->is_boolean()) r.fail(*in, "internal must be true or false");
         wheel.internal = **in->as_boolean();
@@ -239,56 +240,6 @@ void read_parameters(const Reader& r, const toml::table& params, Topology& t) {
 
 }  // namespace
 
-void check_parameter_roles(const Topology& t) {
-  struct Role {
-    std::string name;
-    Dimension dimension;
-    bool positive;  // strictly; otherwise non-negative
-    const char* what;
-    SourceLocation used_at;
-  };
-  std::vector<Role> roles;
-  for (const auto& b : t.bodies) {
-    roles.push_back({b.inertia, inertia_dimension(), true, "an inertia", b.where});
-    roles.push_back({b.friction, rotational_damping_dimension(), false, "a bearing friction coefficient", b.where});
-    if (b.axis == AxisKind::carried) roles.push_back({b.distance, length_dimension(), true, "an axis distance", b.where});
-  }
-  for (const auto& m : t.meshes) {
-    roles.push_back({m.stiffness, stiffness_dimension(), true, "a mesh stiffness", m.where});
-    roles.push_back({m.damping, linear_damping_dimension(), false, "a mesh damping coefficient", m.where});
-    for (WheelRef w : {m.first, m.second})
-      roles.push_back({wheel(t, w).radius, length_dimension(), true, "a radius", m.where});
-  }
-  for (const auto& role : roles) {
-    const Parameter* p = find_parameter(t, role.name);
-    if (!p) {
-      if (role.dimension == length_dimension()) continue;  // may follow from the geometry
-      throw InputError(role.used_at, fmt::format("missing parameter '{}' ({}); add it under [parameters], e.g. "
-                                                 "{} = \"...\"",
-                                                 role.name, role.what, role.name));
-    }
-    if (p->value.has_unit && !(p->value.dimension == role.dimension))
-      throw InputError(p->where, p->value.dimension == Dimension{}
-                                     ? fmt::format("parameter '{}' is {} but has no unit (rad, deg, rev and pi are "
-                                                   "plain numbers); it needs {}",
-                                                   role.name, role.what, describe(role.dimension))
-                                     : fmt::format("parameter '{}' is {} but has unit {}; it needs {}", role.name,
-                                                   role.what, describe(p->value.dimension), describe(role.dimension)));
-    const double v = p->value.si;
-    if (role.positive ? !(v > 0.0) : !(v >= 0.0))
-      throw InputError(p->where, fmt::format("parameter '{}' is {} and must be {} (it is {})", role.name, role.what,
-                                             role.positive ? "positive" : "zero or positive", v));
-    // Physical gears span 1e-12 (small inertias, damping) to 1e12 (stiffness) in SI. Products of
-    // a few such factors stay finite within these bounds; beyond them, ranks and the elastic
-    // model's matrices overflow or underflow to garbage (a 1e200 m radius gave "rank of R 0").
-    constexpr double smallest = 1e-30, largest = 1e30;
-    if (v != 0.0 && !(v >= smallest && v <= largest))
-      throw InputError(p->where, fmt::format("parameter '{}' is {} of {} (SI), outside the range pogear computes "
-                                             "with, {:g} to {:g}; check the value and its unit",
-                                             role.name, role.what, v, smallest, largest));
-  }
-}
-
 Topology parse_topology_text(const std::string& text, const std::string& path) {
   Reader r{{path}};
   const toml::table root = parse_toml_document(
@@ -298,6 +249,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
 
   Topology t;
   t.file = path;
+  t.digest = text_digest(text);
   if (const toml::node* n = root.get("name")) t.name = r.identifier(*n, "the model name");
   else t.name = std::filesystem::path(path).stem().string();
   if (auto s = r.optional_string(root, "title", "title")) {
@@ -332,10 +284,10 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
     if (m.first.body == m.second.body) r.fail(*s, "a body cannot mesh with itself");
     m.name = t.bodies[m.first.body].name + t.bodies[m.second.body].name;
     if (const toml::node* nn = mt.get("name")) m.name = r.identifier(*nn, "a mesh name");
-    m.stiffness = "K_" + m.name;
-    m.damping = "b_" + m.name;
-    if (const toml::node* nn = mt.get("stiffness")) m.stiffness = r.identifier(*nn, "stiffness");
-    if (const toml::node* nn = mt.get("damping")) m.damping = r.identifier(*nn, "damping");
+    m.stiffness_parameter = "K_" + m.name;
+    m.damping_parameter = "b_" + m.name;
+    if (const toml::node* nn = mt.get("stiffness")) m.stiffness_parameter = r.identifier(*nn, "stiffness");
+    if (const toml::node* nn = mt.get("damping")) m.damping_parameter = r.identifier(*nn, "damping");
     t.meshes.push_back(std::move(m));
   }
   check_unique_names(t, true);
@@ -356,66 +308,14 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   return t;
 }
 
-std::string read_input_file(const std::string& path, std::size_t limit, const std::string& what) {
-  const SourceLocation where{path, 0, 0};
-  rt::InputFile in = rt::read_regular_file(path, limit);
-  switch (in.status) {
-    case rt::InputFileStatus::ok: return std::move(in.text);
-    case rt::InputFileStatus::cannot_open:
-      throw InputError(where, fmt::format("cannot read the {} ({}); check the path", what, in.reason));
-    case rt::InputFileStatus::directory:
-      throw InputError(where, fmt::format("this is a directory; give the {} itself", what));
-    case rt::InputFileStatus::not_regular:
-      // A FIFO or a device would hang or never end; a model is a file on disk.
-      throw InputError(where, fmt::format("this is {}, not a regular file; give the path of the {} itself", in.reason,
-                                          what));
-    case rt::InputFileStatus::too_large:
-      throw InputError(where, fmt::format("the {} is larger than {} bytes; a model or scene file is a few kilobytes",
-                                          what, limit));
-    case rt::InputFileStatus::read_error: break;
-  }
-  throw InputError(where, fmt::format("cannot read the {}: a read error; check the file", what));
-}
-
 Topology parse_topology(const std::string& path) {
   return parse_topology_text(read_input_file(path, max_model_file_bytes, "file"), path);
-}
-
-// In dependency order, so that `b_p = "b_c"` works wherever b_c stands in the file.
-void evaluate_parameters(std::vector<Parameter>& parameters) {
-  std::map<std::string, const Parameter*> by_name;
-  for (const auto& p : parameters) by_name[p.name] = &p;
-  std::map<std::string, Quantity> done;
-  std::set<std::string> visiting;
-  std::function<void(const Parameter&)> visit = [&](const Parameter& p) {
-    if (done.count(p.name)) return;
-    if (!visiting.insert(p.name).second)
-      throw InputError(p.where, fmt::format("parameter '{}' is defined through itself", p.name));
-    for (const auto& ref : referenced_names(p.text))
-      if (auto it = by_name.find(ref); it != by_name.end()) visit(*it->second);
-    done[p.name] = evaluate_quantity(p.text, done, p.where, p.column_offset);
-    visiting.erase(p.name);
-  };
-  for (const auto& p : parameters) visit(p);
-  for (auto& p : parameters) p.value = done[p.name];
 }
 
 int find_body(const Topology& t, const std::string& name) {
   for (int i = 0; i < static_cast<int>(t.bodies.size()); ++i)
     if (t.bodies[i].name == name) return i;
   return -1;
-}
-
-const Parameter* find_parameter(const Topology& t, const std::string& name) {
-  for (const auto& p : t.parameters)
-    if (p.name == name) return &p;
-  return nullptr;
-}
-
-double parameter_value(const Topology& t, const std::string& name) {
-  const Parameter* p = find_parameter(t, name);
-  if (!p) throw InputError(SourceLocation{t.file, 0, 0}, fmt::format("missing parameter '{}'", name));
-  return p->value.si;
 }
 
 const Wheel& wheel(const Topology& t, WheelRef w) { return t.bodies.at(w.body).wheels.at(w.wheel); }

@@ -20,7 +20,7 @@ enum class AxisKind {
 
 struct Wheel {
   std::string name;
-  std::string radius;     // parameter name, e.g. r_s1
+  std::string radius_parameter;  // the name of the parameter that holds the radius, e.g. r_s1
   bool internal = false;  // teeth on the inside (a ring)
   SourceLocation where;
 };
@@ -29,11 +29,12 @@ struct Body {
   std::string name;
   AxisKind axis = AxisKind::central;
   std::string carrier;   // carried: the carrier body's name
-  std::string distance;  // carried: parameter naming the axis distance, e.g. r_c
+  std::string distance_parameter;  // carried: the parameter holding the axis distance, e.g. r_c
   int side = +1;         // carried: +1 drawn above the carrier's axis; fixed: +1 above its mates
   int arrow = +1;        // positive direction of omega as drawn: +1 right, -1 left (the paper's s_k)
-  std::string inertia;   // parameter names, J_<name> and b_<name> unless set
-  std::string friction;
+  // The parameters holding the inertia and the bearing friction: J_<name> and b_<name> unless set.
+  std::string inertia_parameter;
+  std::string friction_parameter;
   std::vector<Wheel> wheels;
   SourceLocation where;
 };
@@ -46,8 +47,8 @@ struct WheelRef {
 struct Mesh {
   std::string name;       // F_<name> is positive from the first terminal to the second
   WheelRef first, second;
-  std::string stiffness;  // K_<name> unless set
-  std::string damping;    // b_<name> unless set
+  std::string stiffness_parameter;  // K_<name> unless set
+  std::string damping_parameter;    // b_<name> unless set
   SourceLocation where;
 };
 
@@ -61,6 +62,7 @@ struct Parameter {
 
 struct Topology {
   std::string file;
+  std::string digest;  // of the model file's text (text_digest)
   std::string name;
   std::string title;
   std::vector<Body> bodies;  // in the order of the velocity vector omega
@@ -88,25 +90,14 @@ inline constexpr std::size_t max_parameters = 2048;
 // Names become C++ identifiers and column headers; 64 characters is generous for `J_planet_3`.
 inline constexpr std::size_t max_name_length = 64;
 
-// The contents of an input file, read at most `limit` bytes far (a FIFO or /dev/zero must not
-// fill the memory). Throws InputError naming the file when it cannot be read, is a directory or
-// is larger; `what` names it in messages: "file" (a model), "scene file".
-std::string read_input_file(const std::string& path, std::size_t limit, const std::string& what);
 
 // Reads a model file (TOML). Throws InputError for anything wrong, located in the file.
 Topology parse_topology(const std::string& path);
 // The same from text already in memory; `path` names it in messages.
 Topology parse_topology_text(const std::string& text, const std::string& path);
 
-// Gives every parameter its value from its text; they may refer to each other.
-void evaluate_parameters(std::vector<Parameter>& parameters);
-// Every parameter a role needs must exist (radii may come from the geometry later), carry the
-// right unit and a sensible sign; also after a scene's overrides, which may change any of them.
-void check_parameter_roles(const Topology& t);
 
 int find_body(const Topology& t, const std::string& name);  // -1 when absent
-const Parameter* find_parameter(const Topology& t, const std::string& name);
-double parameter_value(const Topology& t, const std::string& name);  // SI; throws if absent
 const Wheel& wheel(const Topology& t, WheelRef w);
 std::string wheel_label(const Topology& t, WheelRef w);  // "s1 (body s)" or "p"
 

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "exact_algebra.hpp"
+
 namespace pogear {
 
 namespace {
@@ -25,7 +27,7 @@ GiNaC::ex exact_numbers(const GiNaC::ex& e) {
 }  // namespace
 
 std::map<std::string, GiNaC::ex> tunable_dependents(const std::vector<Parameter>& parameters,
-                                                    const std::vector<std::string>& tunables, Symbols& symbols) {
+                                                    const std::vector<std::string>& tunables, const SymbolTable& symbols) {
   std::map<std::string, const Parameter*> by_name;
   for (const auto& p : parameters) by_name[p.name] = &p;
   const std::set<std::string> tunable(tunables.begin(), tunables.end());
@@ -34,7 +36,7 @@ std::map<std::string, GiNaC::ex> tunable_dependents(const std::vector<Parameter>
   // evaluate_parameters has ruled out cycles and unknown names; the recursion follows its order.
   std::function<GiNaC::ex(const Parameter&)> visit = [&](const Parameter& p) -> GiNaC::ex {
     if (auto it = value.find(p.name); it != value.end()) return it->second;
-    if (tunable.count(p.name)) return value[p.name] = symbol(symbols, p.name);
+    if (tunable.count(p.name)) return value[p.name] = parameter_symbol(symbols, p.name);
     GiNaC::symtab table;
     bool follows = false;
     for (const auto& ref : referenced_names(p.text)) {
@@ -65,7 +67,7 @@ std::map<std::string, GiNaC::ex> tunable_dependents(const std::vector<Parameter>
       e = exact_numbers(GiNaC::parser(table, true)(p.text)).expand();
       GiNaC::exmap at_values;
       for (const auto& t : tunables)
-        if (auto it = by_name.find(t); it != by_name.end()) at_values[symbol(symbols, t)] = exact_number(it->second->value.si);
+        if (auto it = by_name.find(t); it != by_name.end()) at_values[parameter_symbol(symbols, t)] = exact_number(it->second->value.si);
       const GiNaC::ex v = GiNaC::evalf(e.subs(at_values, GiNaC::subs_options::no_pattern));
       same = GiNaC::is_a<GiNaC::numeric>(v) &&
              std::abs(GiNaC::ex_to<GiNaC::numeric>(v).to_double() - p.value.si) <= 1e-12 * std::abs(p.value.si);

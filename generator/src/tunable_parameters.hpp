@@ -17,7 +17,7 @@ namespace pogear {
 // themselves), each as an expression in the tunables' symbols with every other parameter and unit
 // at its exact value: `K_pr = "K_ps"` with K_ps tunable is the symbol K_ps, not its number.
 std::map<std::string, GiNaC::ex> tunable_dependents(const std::vector<Parameter>& parameters,
-                                                    const std::vector<std::string>& tunables, Symbols& symbols);
+                                                    const std::vector<std::string>& tunables, const SymbolTable& symbols);
 
 // The unit a parameter's text multiplies its leading number by, as written ("Newton/mm" in
 // "1000*Newton/mm"), with its value in SI; nothing when the text is not NUMBER*UNITS.

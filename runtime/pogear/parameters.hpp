@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "pogear/scene_runner.hpp"
+#include "pogear/command_line.hpp"
 
 namespace pogear::rt {
 

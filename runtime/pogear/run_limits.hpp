@@ -1,5 +1,5 @@
 // The ranges of a run's settings, shared by the scene reader ([simulation] in generator/src/scene.cpp)
-// and the generated simulators' command line (scene_runner.hpp), so both accept the same values.
+// and the generated simulators' command line (command_line.hpp), so both accept the same values.
 #pragma once
 
 namespace pogear::rt::limits {

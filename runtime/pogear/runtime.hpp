@@ -3,8 +3,8 @@
 #pragma once
 
 #include "pogear/csv.hpp"
+#include "pogear/drivers.hpp"
 #include "pogear/exact.hpp"
 #include "pogear/signals.hpp"
-#include "pogear/simulate.hpp"
 #include "pogear/steppers.hpp"
 #include "pogear/sweep.hpp"

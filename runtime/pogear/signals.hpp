@@ -110,23 +110,48 @@ inline std::optional<double> parse_double(std::string_view s) {
 inline constexpr std::size_t max_table_rows = 100000;
 inline constexpr std::size_t max_table_bytes = std::size_t{16} << 20;  // 1e5 rows of ~50 characters, with room
 
+// Why a table could not be loaded: the file as a whole (kind other than bad_row, line 0) or one of
+// its rows (bad_row, with its line).
+enum class TableErrorKind { cannot_open, not_regular, too_large, read_error, bad_row, no_data_rows };
+
+struct TableError {
+  TableErrorKind kind = TableErrorKind::bad_row;
+  std::string path;
+  long line = 0;        // 1-based line of the row at fault; 0 when the whole file is concerned
+  std::string message;  // what is wrong, e.g. "bad number 'abc' in column 2 (value)"
+
+  // "PATH:LINE: message", or "PATH: message" when no line is concerned.
+  std::string text() const {
+    std::string t = path;
+    if (line > 0) t += ':' + std::to_string(line);
+    t += ": ";
+    t += message;
+    return t;
+  }
+};
+
 // Reads a two-column CSV "t,value". The first line may be a header (none of its fields is a number);
-// blank lines and lines starting with '#' are skipped. On failure returns nullopt and sets `error` to
-// "PATH:LINE: what is wrong" (or "PATH: what is wrong" when no line is concerned). Never throws for
-// bad input; only std::bad_alloc can escape.
-inline std::optional<Table> load_table_csv(const std::string& path, std::string& error) {
-  error.clear();
+// blank lines and lines starting with '#' are skipped. On failure returns nullopt and sets `error`.
+// Never throws for bad input; only std::bad_alloc can escape.
+inline std::optional<Table> load_table_csv(const std::string& path, TableError& error) {
+  error = TableError{};
+  auto file_error = [&](TableErrorKind kind, std::string message) {
+    error = TableError{kind, path, 0, std::move(message)};
+    return std::nullopt;
+  };
   InputFile in = read_regular_file(path, max_table_bytes);
   switch (in.status) {
     case InputFileStatus::ok: break;
-    case InputFileStatus::cannot_open: error = path + ": cannot open file (" + in.reason + ")"; return std::nullopt;
+    case InputFileStatus::cannot_open:
+      return file_error(TableErrorKind::cannot_open, "cannot open file (" + in.reason + ")");
     case InputFileStatus::directory:
-    case InputFileStatus::not_regular: error = path + ": " + in.reason + ", not a regular file"; return std::nullopt;
+    case InputFileStatus::not_regular:
+      return file_error(TableErrorKind::not_regular, in.reason + ", not a regular file");
     case InputFileStatus::too_large:
-      error = path + ": larger than " + std::to_string(max_table_bytes) + " bytes; a table has at most " +
-              std::to_string(max_table_rows) + " rows";
-      return std::nullopt;
-    case InputFileStatus::read_error: error = path + ": read error"; return std::nullopt;
+      return file_error(TableErrorKind::too_large, "larger than " + std::to_string(max_table_bytes) +
+                                                       " bytes; a table has at most " +
+                                                       std::to_string(max_table_rows) + " rows");
+    case InputFileStatus::read_error: return file_error(TableErrorKind::read_error, "read error");
   }
   std::string& content = in.text;
   // A byte order mark (spreadsheets write one) is not part of the first field.
@@ -136,8 +161,8 @@ inline std::optional<Table> load_table_csv(const std::string& path, std::string&
   std::string line;
   long lineno = 0;
   bool seen_content = false;
-  auto fail = [&](const std::string& what) {
-    error = path + ":" + std::to_string(lineno) + ": " + what;
+  auto fail = [&](std::string what) {
+    error = TableError{TableErrorKind::bad_row, path, lineno, std::move(what)};
     return std::nullopt;
   };
   // A field quoted in a message, cut short: a garbage line may be megabytes long.
@@ -168,10 +193,7 @@ inline std::optional<Table> load_table_csv(const std::string& path, std::string&
     tab.t.push_back(*t);
     tab.v.push_back(*v);
   }
-  if (tab.t.empty()) {
-    error = path + ": no data rows";
-    return std::nullopt;
-  }
+  if (tab.t.empty()) return file_error(TableErrorKind::no_data_rows, "no data rows");
   return tab;
 }
 

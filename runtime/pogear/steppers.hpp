@@ -71,7 +71,7 @@ double rk4_stability_limit(const M& A) {
   return rho > 0 ? 2.785 / rho : std::numeric_limits<double>::infinity();
 }
 
-// Adaptive steppers share one protocol, driven by run_adaptive in simulate.hpp:
+// Adaptive steppers share one protocol, driven by run_adaptive in drivers.hpp:
 //   start(t, x)            derivative at the start (again after each breakpoint: f jumps there)
 //   attempt(t, x, h, brk)  trial step; returns its error norm: <= 1 accept, NaN the trial is not
 //                          finite, +inf its stage equations could not be solved

@@ -4,12 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
-#include "pogear/simulate.hpp"
+#include "pogear/drivers.hpp"
 
 namespace pogear::rt {
 
@@ -22,45 +21,20 @@ using BatchInput = Eigen::Matrix<double, NU, B, Eigen::RowMajor>;
 template <int NY, int B>
 using BatchOutput = Eigen::Matrix<double, NY, B, Eigen::RowMajor>;
 
-// Outputs y = C x + D u. The generated systems' outputs are linear in the state and the inputs
-// (eq. 8 adds the derivatives, which are themselves M x + N u), so probing them with unit vectors
-// gives C and D (a structural zero of the generated code is an exact 0 here).
+// Outputs y = C x + D u of a generated system, from its output_matrices(p, C, D): the generator
+// reads them off the output expressions (eq. 8's mesh forces, which read dx/dt = M x + N u, too).
 template <int NY, int NX, int NU>
 struct LinearOutputs {
   Eigen::Matrix<double, NY, NX> C;
   Eigen::Matrix<double, NY, NU> D;
-  // The largest difference, relative to the outputs' magnitude, between C x + D u and the system's
-  // own outputs at a test point: rounding (~1e-16) for linear outputs, O(1) for anything else.
-  double probe_error = 0;
 };
 
-// C and D of a generated system (System::nx, nu, ny and outputs(p, x, u, y)), by probing its
-// outputs at unit states and inputs. probe_error says whether they are linear.
+// C and D of a system with fixed sizes (System::nx, nu, ny and output_matrices(p, C, D)).
 template <class System>
 LinearOutputs<System::ny, System::nx, System::nu> linear_outputs(const System& sys,
                                                                 const typename System::Params& p) {
-  constexpr int NX = System::nx, NU = System::nu, NY = System::ny;
-  LinearOutputs<NY, NX, NU> lo;
-  typename System::State x = System::State::Zero();
-  typename System::Input u = System::Input::Zero();
-  typename System::Output y, y0;
-  sys.outputs(p, x, u, y0);  // nonzero for affine outputs: caught by probe_error below
-  for (int j = 0; j < NX + NU; ++j) {
-    if (j < NX) x[j] = 1;
-    else u[j - NX] = 1;
-    sys.outputs(p, x, u, y);
-    if (j < NX) lo.C.col(j) = y, x[j] = 0;
-    else lo.D.col(j - NX) = y, u[j - NX] = 0;
-  }
-  // A test point with every entry nonzero and of different sizes.
-  for (int j = 0; j < NX; ++j) x[j] = 0.5 + 0.37 * j;
-  for (int j = 0; j < NU; ++j) u[j] = -1.3 + 0.61 * j;
-  sys.outputs(p, x, u, y);
-  typename System::Output lin = lo.C * x;
-  if constexpr (NU > 0) lin += lo.D * u;
-  const double scale = std::max(y.cwiseAbs().maxCoeff(), 1e-300);
-  lo.probe_error = std::max((lin - y).cwiseAbs().maxCoeff(), y0.cwiseAbs().maxCoeff()) / scale;
-  if (!std::isfinite(lo.probe_error)) lo.probe_error = std::numeric_limits<double>::infinity();
+  LinearOutputs<System::ny, System::nx, System::nu> lo;
+  sys.output_matrices(p, lo.C, lo.D);
   return lo;
 }
 

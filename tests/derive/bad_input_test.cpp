@@ -113,7 +113,7 @@ TEST(BadInput, NegativeInertia) {
 }
 
 TEST(BadInput, InconsistentGeometryOfThePrintedTwoStageListing) {
-  // The paper prints r_r = 5.4*cm in Sec. IV-A (ERRATA): the ring cannot mesh planet p then.
+  // The paper prints r_r = 5.4*cm in Sec. IV-A (docs/paper-errata.md E10): the ring cannot mesh planet p then.
   const std::string text =
       replaced(read_text(source_path("models/paper_two_stage.toml")), "r_r = \"13.0*cm\"", "r_r = \"5.4*cm\"");
   const InputError e = error_of(text);

@@ -1,10 +1,10 @@
 // The pogear command as users run it: exit statuses, messages, determinism across processes,
 // and that a failed run leaves an existing output file untouched.
-#include <cstdlib>
 #include <filesystem>
+#include <set>
+#include <utility>
 
-#include <sys/wait.h>
-
+#include "../support/commands.hpp"
 #include "test_support.hpp"
 
 namespace pogear::test {
@@ -12,25 +12,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int status;
-  std::string out, err;
-};
-
-CommandResult run(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / ("pogear_cli_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string out = (dir / "out").string(), err = (dir / "err").string();
-  const std::string cmd = std::string(POGEAR_EXECUTABLE) + " " + args + " >" + out + " 2>" + err;
-  const int raw = std::system(cmd.c_str());
-  return CommandResult{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_text(out), read_text(err)};
-}
+Command run(const std::string& args) { return run_command(std::string(POGEAR_EXECUTABLE) + " " + args); }
 
 std::string model(const std::string& name) { return source_path("models/" + name + ".toml"); }
 
 TEST(Cli, DeriveSucceedsInEveryFormat) {
   for (const char* format : {"text", "latex", "markdown", "json"}) {
-    const CommandResult r = run("derive " + model("paper_one_stage") + " --keep c,r --format " + format);
+    const Command r = run("derive " + model("paper_one_stage") + " --keep c,r --format " + format);
     EXPECT_EQ(r.status, 0) << format << ": " << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
     const bool math = std::string(format) == "latex" || std::string(format) == "markdown";
@@ -42,8 +30,8 @@ TEST(Cli, OutputIsTheSameBytesInSeparateProcesses) {
   // GiNaC's own printing order changes between processes; pogear's must not.
   for (const char* m : {"paper_one_stage", "paper_two_stage"})
     for (const char* format : {"json", "latex"}) {
-      const CommandResult a = run("derive " + model(m) + " --format " + format);
-      const CommandResult b = run("derive " + model(m) + " --format " + format);
+      const Command a = run("derive " + model(m) + " --format " + format);
+      const Command b = run("derive " + model(m) + " --format " + format);
       ASSERT_EQ(a.status, 0);
       EXPECT_EQ(a.out, b.out) << m << " " << format;
     }
@@ -54,7 +42,7 @@ TEST(Cli, OutputIsTheSameBytesInSeparateProcesses) {
 // Eight processes, so that a run-to-run difference of that kind shows with certainty in practice.
 TEST(Cli, HashOrderSensitiveOutputsAreTheSameBytesInSeparateProcesses) {
   const std::string derive = "derive " + model("paper_two_stage") + " --keep b,s --format text";
-  const CommandResult first = run(derive);
+  const Command first = run(derive);
   ASSERT_EQ(first.status, 0) << first.err;
   for (int i = 0; i < 7; ++i) EXPECT_EQ(run(derive).out, first.out) << "run " << i + 2;
 
@@ -62,7 +50,7 @@ TEST(Cli, HashOrderSensitiveOutputsAreTheSameBytesInSeparateProcesses) {
   std::string generated;
   for (int i = 0; i < 3; ++i) {
     fs::remove_all(dir);
-    const CommandResult g = run("generate " + source_path("models/scenes/three_planets.toml") + " -o " + dir.string());
+    const Command g = run("generate " + source_path("models/scenes/three_planets.toml") + " -o " + dir.string());
     ASSERT_EQ(g.status, 0) << g.err;
     const std::string text = read_text((dir / "three_planets.hpp").string());
     if (i == 0) generated = text;
@@ -71,8 +59,35 @@ TEST(Cli, HashOrderSensitiveOutputsAreTheSameBytesInSeparateProcesses) {
   fs::remove_all(dir);
 }
 
+// `generate --list-outputs` names the files `generate` writes (the CMake function builds on it):
+// after the scene's `name`, not its file name; it writes nothing itself.
+TEST(Cli, ListOutputsNamesTheFilesGenerateWrites) {
+  const fs::path dir = fs::temp_directory_path() / ("pogear_cli_list_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string scene = read_text(source_path("models/scenes/paper_one_stage.toml"));
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"name = \"paper_one_stage\"", "name = \"renamed\""},
+                                 {"\"../paper_one_stage.toml\"", "\"" + model("paper_one_stage") + "\""}})
+    scene.replace(scene.find(from), from.size(), to);
+  write_text((dir / "scene.toml").string(), scene);
+  const std::string out = (dir / "out").string();
+  const Command listed = run("generate " + (dir / "scene.toml").string() + " -o " + out + " --list-outputs");
+  ASSERT_EQ(listed.status, 0) << listed.err;
+  EXPECT_EQ(listed.out, out + "/renamed.hpp\n" + out + "/renamed_main.cpp\n");
+  EXPECT_FALSE(fs::exists(out));
+  const Command generated = run("generate " + (dir / "scene.toml").string() + " -o " + out);
+  ASSERT_EQ(generated.status, 0) << generated.err;
+  std::set<std::string> written;
+  for (const auto& e : fs::directory_iterator(out)) written.insert(e.path().string());
+  EXPECT_EQ(written, (std::set<std::string>{out + "/renamed.hpp", out + "/renamed_main.cpp"}));
+  const Command bad = run("generate " + (dir / "missing.toml").string() + " --list-outputs");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_TRUE(bad.out.empty()) << bad.out;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, JsonHasTheSchemaKeysInOrder) {
-  const CommandResult r = run("derive " + model("paper_one_stage") + " --keep c,r --format json");
+  const Command r = run("derive " + model("paper_one_stage") + " --keep c,r --format json");
   ASSERT_EQ(r.status, 0);
   std::size_t at = 0;
   for (const char* key : {"\"model\"", "\"velocities\"", "\"forces\"", "\"keep\"", "\"geometry\"", "\"R\"", "\"Q1\"",
@@ -85,7 +100,7 @@ TEST(Cli, JsonHasTheSchemaKeysInOrder) {
   EXPECT_NE(r.out.find("\"geometry\": [\"r_c==r_p+r_s1\", \"r_r1==2*r_p+r_s1\"]"), std::string::npos);
   EXPECT_NE(r.out.find("\"J1\": \"J_c+J_p*r_c^2/r_p^2+4*J_s*r_c^2/r_s1^2+4*J_g*r_c^2*r_s2^2/(r_g^2*r_s1^2)\""),
             std::string::npos);
-  // b_c = 0.08 Nm/rpm = 0.08 * 60 / (2 pi) = 0.76394372684109765 N m s/rad (ERRATA, units); the
+  // b_c = 0.08 Nm/rpm = 0.08 * 60 / (2 pi) = 0.76394372684109765 N m s/rad (docs/paper-errata.md, units); the
   // division order may move the last printed digit by one ulp, so compare 15 digits.
   EXPECT_NE(r.out.find("\"b\": [0.763943726841097"), std::string::npos);
 }
@@ -95,7 +110,7 @@ TEST(Cli, BadInputExitsTwoWithLocation) {
   std::string text = read_text(model("paper_two_stage"));
   text.replace(text.find("r_r = \"13.0*cm\""), 15, "r_r = \"5.4*cm\"");
   { std::ofstream(bad) << text; }
-  const CommandResult r = run("derive " + bad.string());
+  const Command r = run("derive " + bad.string());
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err.rfind(bad.string() + ":", 0), 0u) << r.err;
   EXPECT_NE(r.err.find(": error: 'r_r' = 5.4*cm"), std::string::npos) << r.err;
@@ -103,7 +118,7 @@ TEST(Cli, BadInputExitsTwoWithLocation) {
 }
 
 TEST(Cli, MissingFileExitsTwo) {
-  const CommandResult r = run("derive /nonexistent/model.toml");
+  const Command r = run("derive /nonexistent/model.toml");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("/nonexistent/model.toml: error: cannot read the file"), std::string::npos) << r.err;
 }
@@ -121,7 +136,7 @@ TEST(Cli, FailedRunLeavesTheExistingOutputFileUntouched) {
   ASSERT_EQ(run("derive " + model("paper_one_stage") + " --format json -o " + report.string()).status, 0);
   const std::string good = read_text(report.string());
   ASSERT_FALSE(good.empty());
-  const CommandResult r = run("derive " + model("paper_one_stage") + " --keep s,g --format json -o " + report.string());
+  const Command r = run("derive " + model("paper_one_stage") + " --keep s,g --format json -o " + report.string());
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(read_text(report.string()), good);
   std::size_t files = 0;

@@ -1,5 +1,5 @@
 // Golden tests: pogear's R, Q1 and closed forms against the paper's printed formulas, written
-// here by hand from the paper's text (with the corrections of shared/seed/ERRATA.md, as noted).
+// here by hand from the paper's text (with the corrections of docs/paper-errata.md, as noted).
 #include "test_support.hpp"
 
 namespace pogear::test {
@@ -38,7 +38,7 @@ TEST(GoldenOneStage, GeometryRelationsAreThePapers) {
 TEST(GoldenOneStage, Q1IsTheT1Block) {
   Derivation d = derive_paper("paper_one_stage", {"c", "r"});
   auto r = [&](const char* n) { return sym(d, n); };
-  // T1 of Sec. III-B for x1 = (omega_c, omega_r); "2 r_c / r_s" is r_s1 (ERRATA).
+  // T1 of Sec. III-B for x1 = (omega_c, omega_r); "2 r_c / r_s" is r_s1 (docs/paper-errata.md E8).
   const ex expected[6][2] = {
       {1, 0},
       {-r("r_c") / r("r_p"), r("r_r1") / r("r_p")},
@@ -85,7 +85,7 @@ TEST(GoldenOneStage, ClosedFormsArePrinted) {
 TEST(GoldenTwoStage, RadiusMatrixIsEquation10WithRq) {
   Derivation d = derive_paper("paper_two_stage", {"s", "r"});
   auto r = [&](const char* n) { return sym(d, n); };
-  // Eq. (10), columns (s, c, p, a, r, b, q), rows (sp, sa, pr, ab, bq); last entry -r_q (ERRATA).
+  // Eq. (10), columns (s, c, p, a, r, b, q), rows (sp, sa, pr, ab, bq); last entry -r_q (docs/paper-errata.md E9).
   const ex expected[5][7] = {
       {r("r_s1"), -r("r_cp"), r("r_p"), 0, 0, 0, 0},
       {r("r_s2"), -r("r_ca"), 0, r("r_a"), 0, 0, 0},
@@ -101,7 +101,7 @@ TEST(GoldenTwoStage, RadiusMatrixIsEquation10WithRq) {
 TEST(GoldenTwoStage, GeometryRelationsAreThePapers) {
   Derivation d = derive_paper("paper_two_stage", {"s", "r"});
   auto r = [&](const char* n) { return sym(d, n); };
-  // Sec. IV after eq. (10), and r_r = 2 r_p + r_s1 (ERRATA).
+  // Sec. IV after eq. (10), and r_r = 2 r_p + r_s1 (docs/paper-errata.md E10).
   const std::map<std::string, ex> expected{
       {"r_cp", r("r_p") + r("r_s1")},
       {"r_ca", r("r_a") + r("r_s2")},
@@ -121,7 +121,7 @@ TEST(GoldenTwoStage, Q1IsThePrintedMatrixAsCorrected) {
   auto r = [&](const char* n) { return sym(d, n); };
   const ex rs1 = r("r_s1"), rs2 = r("r_s2"), rcp = r("r_cp"), rca = r("r_ca"), rcb = r("r_cb"), rr = r("r_r"),
            rp = r("r_p"), ra = r("r_a"), rb = r("r_b"), rq = r("r_q");
-  // Rows s, c, p, a, r, b, q of Q1 for x1 = (omega_s, omega_r), as given in ERRATA.md.
+  // Rows s, c, p, a, r, b, q of Q1 for x1 = (omega_s, omega_r), as given in docs/paper-errata.md E13.
   const ex expected[7][2] = {
       {1, 0},
       {rs1 / (2 * rcp), rr / (2 * rcp)},

@@ -13,7 +13,7 @@
 #include "error_support.hpp"
 #include "plot.hpp"
 #include "simulator_cache.hpp"
-#include "simulation.hpp"
+#include "simulate_scene.hpp"
 
 namespace pogear::test {
 namespace {
@@ -23,7 +23,7 @@ using namespace std::chrono_literals;
 class Hardening : public ErrorTest {
  protected:
   // `scene.toml` with `edits`, then its model and scene as pogear reads them.
-  SimModel scene_model(const Edits& edits) {
+  SpecializedScene scene_model(const Edits& edits) {
     write_text("scene.toml", edited(base_scene(), edits));
     return specialize(parse_scene("scene.toml"));
   }
@@ -52,7 +52,7 @@ TEST_F(Hardening, OutputPathNeverReachesGnuplotSyntax) {
 
 // Item 3: a cache another user can write to is not used, so a binary planted there never runs.
 TEST_F(Hardening, PlantedBinaryInASharedCacheIsNotRun) {
-  const SimModel model = scene_model({});
+  const SpecializedScene model = scene_model({});
   const GeneratedSources sources = generate_sources(model);
   fs::create_directories("shared");
   fs::permissions("shared", fs::perms::all);  // mode 0777, as the shared temporary directory
@@ -289,7 +289,7 @@ TEST_F(Hardening, OutputSizeIsBoundedBeforeTheRun) {
   expect_pogear_error("simulate scene.toml --interpreted -o out", 2,
       R"~(scene.toml:16:10: error: the CSV files of this scene may take up to 4.5 GB (1e+07 samples of 9 columns); the limit is 1.07 GB: raise sample, shorten the horizon or list fewer outputs, or pass --large-output to write them all the same)~");
   EXPECT_FALSE(fs::exists("out/demo.csv"));
-  const SimModel model = specialize(parse_scene("scene.toml"));
+  const SpecializedScene model = specialize(parse_scene("scene.toml"));
   EXPECT_NO_THROW(check_output_size(model, true));
 }
 

@@ -49,14 +49,6 @@ std::optional<std::uintmax_t> unnamed_output_size(pid_t pid, const fs::path& dir
   return size;
 }
 
-// The names in `dir`, sorted.
-std::vector<std::string> listing(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 // A scene that simulates long enough to be interrupted while it writes its CSV: 6e5 samples of
 // eight outputs, some 90 MB were it ever to finish.
 std::string long_scene(const std::string& name) {
@@ -97,7 +89,7 @@ TEST_F(Interrupt, DeriveInterruptedAtAnyMoment) {
     EXPECT_TRUE(WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) == 0)) << status;
     const std::string report = read_text("report.txt");
     EXPECT_TRUE(report == "the good report\n" || report == reference) << "a partial report after " << i << " ms";
-    EXPECT_EQ(listing("."), (std::vector<std::string>{"gear.toml", "report.txt", "scene.toml"}));
+    EXPECT_EQ(names_in("."), (std::vector<std::string>{"gear.toml", "report.txt", "scene.toml"}));
   }
 }
 
@@ -118,13 +110,13 @@ void interrupt_interpreted_run(const fs::path& dir, int sig) {
 
 TEST_F(Interrupt, InterpretedSimulationSigint) {
   interrupt_interpreted_run(dir_, SIGINT);
-  EXPECT_EQ(listing("out"), std::vector<std::string>{"endurance.csv"});
+  EXPECT_EQ(names_in("out"), std::vector<std::string>{"endurance.csv"});
 }
 
 TEST_F(Interrupt, InterpretedSimulationSigkill) {
   interrupt_interpreted_run(dir_, SIGKILL);
   // Nothing runs after SIGKILL, and nothing needs to: the partial CSV never had a name.
-  EXPECT_EQ(listing("out"), std::vector<std::string>{"endurance.csv"});
+  EXPECT_EQ(names_in("out"), std::vector<std::string>{"endurance.csv"});
 }
 
 TEST_F(Interrupt, SimulatorKilled) {
@@ -143,7 +135,7 @@ TEST_F(Interrupt, SimulatorKilled) {
     const int status = finish(pid);
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << status;
     EXPECT_EQ(read_text("out/paper_one_stage.csv"), "the good csv\n");
-    EXPECT_EQ(listing("out"), std::vector<std::string>{"paper_one_stage.csv"});
+    EXPECT_EQ(names_in("out"), std::vector<std::string>{"paper_one_stage.csv"});
   }
 }
 
@@ -161,7 +153,7 @@ TEST_F(Interrupt, CompiledSimulationCtrlC) {
   const int status = finish(pid);
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << status;
   EXPECT_EQ(read_text("out/endurance.csv"), "the good csv\n");
-  EXPECT_EQ(listing("out"), std::vector<std::string>{"endurance.csv"});
+  EXPECT_EQ(names_in("out"), std::vector<std::string>{"endurance.csv"});
 }
 
 }  // namespace

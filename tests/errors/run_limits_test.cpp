@@ -2,7 +2,7 @@
 // the scene's [simulation] table enforce them, and the runs that stop instead of reporting wrong
 // numbers. Each message is an entry of docs/errors.md, checked to the character.
 #include "error_support.hpp"
-#include "simulation.hpp"
+#include "interpreted_run.hpp"
 
 namespace pogear::test {
 namespace {
@@ -57,14 +57,13 @@ class RunChecks : public ErrorTest {};
 
 TEST_F(RunChecks, DivergedSolution) {
   write_text("scene.toml", edited(base_scene(), {{"horizon = \"0.1*s\"", "horizon = \"2*s\""}}));
-  const SimModel m = specialize(parse_scene("scene.toml"));
+  const SpecializedScene m = specialize(parse_scene("scene.toml"));
   rt::SceneRun run;
   run.name = m.scene.name;
   run.horizon = m.scene.horizon;
   run.sample = m.scene.sample;
-  run.solver = "dopri5";
-  run.options.rtol = 0.2;
-  run.options.atol = 0.2e-2;
+  run.solver = rt::Solver::dopri5;
+  rt::set_tolerance(run.options, 0.2);
   run.out_dir = "out";
   run.quiet = true;
   fs::create_directory("out");

@@ -13,7 +13,7 @@ class TunableErrors : public ErrorTest {
   // fields (names, units, signs) codegen writes into it, from the same specialized system.
   static std::string param_error(const std::string& list, const std::string& given) {
     write_text("scene.toml", edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [" + list + "]"}}));
-    const SimModel model = specialize(parse_scene("scene.toml"));
+    const SpecializedScene model = specialize(parse_scene("scene.toml"));
     std::vector<double> values(model.main.params.size());
     std::vector<rt::ParameterField> fields;
     for (std::size_t i = 0; i < values.size(); ++i) {

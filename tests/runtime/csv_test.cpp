@@ -13,27 +13,18 @@
 #include <string>
 #include <vector>
 
+#include "../support/files.hpp"
+
 namespace fs = std::filesystem;
 namespace rt = pogear::rt;
 
 namespace {
 
 // out.csv in an empty directory of the test's own.
-fs::path temp_path() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / (std::string("pogear_rt_csv_") + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir / "out.csv";
-}
+fs::path temp_path() { return pogear::test::test_dir("rt_csv") / "out.csv"; }
 
 // The names in the directory of `p`: a temporary file would show up here.
-std::vector<std::string> names_beside(const fs::path& p) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(p.parent_path())) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
+std::vector<std::string> names_beside(const fs::path& p) { return pogear::test::names_in(p.parent_path()); }
 
 std::vector<std::string> read_lines(const fs::path& p) {
   std::ifstream in(p);

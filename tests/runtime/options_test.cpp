@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "pogear/scene_runner.hpp"
+#include "pogear/command_line.hpp"
+#include "pogear/drivers.hpp"
 
 namespace rt = pogear::rt;
 namespace fs = std::filesystem;
@@ -87,6 +88,62 @@ TEST(Options, ParamsAreCollectedAsGiven) {
   EXPECT_FALSE(parse({"--param", "J_c"}).ok);
   EXPECT_FALSE(parse({"--param", "=1"}).ok);
   EXPECT_FALSE(parse({"--param"}).ok);
+}
+
+// pogear runs a compiled simulator with command_line(run): every setting comes back as it was,
+// numbers to the last bit.
+TEST(Options, CommandLineReadsBackAsTheRun) {
+  rt::SceneRun run;
+  run.solver = rt::Solver::dopri5;
+  rt::set_tolerance(run.options, 3e-7);
+  run.options.h = 1.0 / 3;
+  run.options.max_steps = 123456789012;
+  run.out_dir = "some dir/with spaces";
+  run.repeat = 7;
+  run.csv = false;
+  run.quiet = true;
+  run.params = {{"J_c", "0.5"}, {"K_ps", "2e6*Newton/m"}};
+  const Parsed p = parse(rt::command_line(run));
+  ASSERT_TRUE(p.ok);
+  EXPECT_EQ(p.run.solver, run.solver);
+  EXPECT_EQ(p.run.options.rtol, run.options.rtol);
+  EXPECT_EQ(p.run.options.atol, run.options.atol);
+  EXPECT_EQ(p.run.options.h, run.options.h);
+  EXPECT_EQ(p.run.options.max_steps, run.options.max_steps);
+  EXPECT_EQ(p.run.out_dir, run.out_dir);
+  EXPECT_EQ(p.run.repeat, run.repeat);
+  EXPECT_EQ(p.run.csv, run.csv);
+  EXPECT_EQ(p.run.quiet, run.quiet);
+  EXPECT_EQ(p.run.params, run.params);
+  for (const rt::Solver s : rt::all_solvers) {
+    run.solver = s;
+    EXPECT_EQ(parse(rt::command_line(run)).run.solver, s) << rt::solver_name(s);
+  }
+}
+
+// The tolerance rule is the runtime's, whichever way the tolerance arrives.
+TEST(Options, AbsoluteToleranceFollowsTheRelativeOne) {
+  rt::SolverOptions options;
+  rt::set_tolerance(options, 1e-6);
+  EXPECT_EQ(options.atol, 1e-6 * rt::absolute_per_relative_tolerance);
+  EXPECT_EQ(parse({"--tolerance", "1e-6"}).run.options.atol, options.atol);
+}
+
+// The messages and the usage line list the options of one table.
+TEST(Options, UnknownOptionListsTheTable) {
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(parse({"--bogus"}).ok);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(),
+            "sim: error: unknown option '--bogus'; options are --solver, --tolerance, --step, --out, --repeat, "
+            "--max-steps, --param, --no-csv, --quiet\n");
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(parse({"--solver", "euler"}).ok);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(),
+            "sim: error: unknown solver 'euler'; the solvers are exact, rk4, dopri5, implicit\n");
+  EXPECT_EQ(rt::usage_lines("PROGRAM", 100),
+            (std::vector<std::string>{
+                "Usage: PROGRAM [--solver exact|rk4|dopri5|implicit] [--tolerance R] [--step S] [--out DIR]",
+                "               [--repeat N] [--max-steps N] [--param NAME=VALUE] [--no-csv] [--quiet]"}));
 }
 
 using V1 = Eigen::Matrix<double, 1, 1>;

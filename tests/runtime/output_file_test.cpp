@@ -17,32 +17,17 @@
 
 #include <pogear/output_file.hpp>
 
+#include "../support/files.hpp"
+
 namespace fs = std::filesystem;
 namespace rt = pogear::rt;
 
 namespace {
 
-fs::path test_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / (std::string("pogear_rt_out_") + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using pogear::test::names_in;
+using pogear::test::read_text;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::vector<std::string> names_in(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
+fs::path test_dir() { return pogear::test::test_dir("rt_out"); }
 
 bool write_whole(const std::string& path, const std::string& text) {
   rt::OutputFile out(path);
@@ -58,12 +43,12 @@ TEST(OutputFile, ReplacesARegularFileOnlyOnCommit) {
     rt::OutputFile out((dir / "a.txt").string());
     ASSERT_TRUE(out.ok()) << out.error();
     ASSERT_TRUE(out.write("new contents"));
-    EXPECT_EQ(read(dir / "a.txt"), "old");
+    EXPECT_EQ(read_text(dir / "a.txt"), "old");
   }  // abandoned
-  EXPECT_EQ(read(dir / "a.txt"), "old");
+  EXPECT_EQ(read_text(dir / "a.txt"), "old");
   EXPECT_EQ(names_in(dir), std::vector<std::string>{"a.txt"});
   ASSERT_TRUE(write_whole((dir / "a.txt").string(), "new"));
-  EXPECT_EQ(read(dir / "a.txt"), "new");
+  EXPECT_EQ(read_text(dir / "a.txt"), "new");
   EXPECT_EQ(names_in(dir), std::vector<std::string>{"a.txt"});
 }
 
@@ -89,7 +74,7 @@ TEST(OutputFile, RefusesASymbolicLink) {
                              "remove the link");
   EXPECT_FALSE(out.write("x"));
   EXPECT_FALSE(out.commit());
-  EXPECT_EQ(read(dir / "victim"), "precious");
+  EXPECT_EQ(read_text(dir / "victim"), "precious");
   EXPECT_TRUE(fs::is_symlink(dir / "out.csv"));
 }
 
@@ -158,8 +143,8 @@ TEST(OutputFile, PlantedTemporaryLinkIsNotFollowed) {
   for (const char* name : {"out.csv.tmp", ".out.csv.tmp", ".out.csv.tmp0"})
     fs::create_symlink(dir / "victim", dir / name);
   ASSERT_TRUE(write_whole((dir / "out.csv").string(), "result"));
-  EXPECT_EQ(read(dir / "victim"), "precious");
-  EXPECT_EQ(read(dir / "out.csv"), "result");
+  EXPECT_EQ(read_text(dir / "victim"), "precious");
+  EXPECT_EQ(read_text(dir / "out.csv"), "result");
 }
 
 // Writers of one path at once: each commit replaces the whole file, so the result is one writer's
@@ -181,7 +166,7 @@ TEST(OutputFile, ConcurrentWritersNeverMix) {
     });
   for (auto& t : threads) t.join();
   EXPECT_EQ(std::count(ok.begin(), ok.end(), 1), kWriters);
-  const std::string result = read(path);
+  const std::string result = read_text(path);
   EXPECT_NE(std::find(contents.begin(), contents.end(), result), contents.end()) << "a mix of writers";
   EXPECT_EQ(names_in(dir), std::vector<std::string>{"out.csv"});
 }

@@ -64,10 +64,10 @@ TEST(Signals, Breakpoints) {
 
 TEST(TableCsv, LoadsWithHeaderCommentsAndBlankLines) {
   const std::string path = write_temp("t [s],torque [N m]\n0,1.5\n\n# comment\n 0.5 , -2e-1\r\n1,+3\n");
-  std::string error;
+  rt::TableError error;
   const auto tab = rt::load_table_csv(path, error);
-  ASSERT_TRUE(tab) << error;
-  EXPECT_TRUE(error.empty());
+  ASSERT_TRUE(tab) << error.text();
+  EXPECT_TRUE(error.message.empty());
   EXPECT_EQ(tab->t, (std::vector<double>{0, 0.5, 1}));
   EXPECT_EQ(tab->v, (std::vector<double>{1.5, -0.2, 3}));
   EXPECT_DOUBLE_EQ(tab->value(0.75), 1.4);  // -0.2 + 0.5 * 3.2: rounding of a few ulps
@@ -76,17 +76,17 @@ TEST(TableCsv, LoadsWithHeaderCommentsAndBlankLines) {
 
 TEST(TableCsv, LoadsWithoutHeader) {
   const std::string path = write_temp("0,1\n2,3\n");
-  std::string error;
+  rt::TableError error;
   const auto tab = rt::load_table_csv(path, error);
-  ASSERT_TRUE(tab) << error;
+  ASSERT_TRUE(tab) << error.text();
   EXPECT_EQ(tab->value(1), 2);
   std::filesystem::remove(path);
 }
 
 TEST(TableCsv, MissingFile) {
-  std::string error;
+  rt::TableError error;
   EXPECT_FALSE(rt::load_table_csv("/nonexistent/dir/table.csv", error));
-  EXPECT_EQ(error, "/nonexistent/dir/table.csv: cannot open file (No such file or directory)");
+  EXPECT_EQ(error.text(), "/nonexistent/dir/table.csv: cannot open file (No such file or directory)");
 }
 
 TEST(TableCsv, ErrorsCarryLineNumbers) {
@@ -101,25 +101,47 @@ TEST(TableCsv, ErrorsCarryLineNumbers) {
   };
   for (const auto& [content, what] : cases) {
     const std::string path = write_temp(content);
-    std::string error;
+    rt::TableError error;
     EXPECT_FALSE(rt::load_table_csv(path, error)) << content;
-    EXPECT_EQ(error, path + what) << content;
+    EXPECT_EQ(error.text(), path + what) << content;
     std::filesystem::remove(path);
   }
   const std::string path = write_temp("t,value\n");
-  std::string error;
+  rt::TableError error;
   EXPECT_FALSE(rt::load_table_csv(path, error));
-  EXPECT_EQ(error, path + ": no data rows");
+  EXPECT_EQ(error.text(), path + ": no data rows");
   std::filesystem::remove(path);
+}
+
+// The reader of a scene points at the row or at the `table =` from these fields, never by taking
+// the message apart.
+TEST(TableCsv, ErrorsAreTyped) {
+  const std::string path = write_temp("t,value\n0,1\n0.1,abc\n");
+  rt::TableError error;
+  EXPECT_FALSE(rt::load_table_csv(path, error));
+  EXPECT_EQ(error.kind, rt::TableErrorKind::bad_row);
+  EXPECT_EQ(error.path, path);
+  EXPECT_EQ(error.line, 3);
+  EXPECT_EQ(error.message, "bad number 'abc' in column 2 (value)");
+  std::filesystem::remove(path);
+  EXPECT_FALSE(rt::load_table_csv("/nonexistent/dir/table.csv", error));
+  EXPECT_EQ(error.kind, rt::TableErrorKind::cannot_open);
+  EXPECT_EQ(error.line, 0);
+  EXPECT_EQ(error.message, "cannot open file (No such file or directory)");
+  const std::string empty = write_temp("t,value\n");
+  EXPECT_FALSE(rt::load_table_csv(empty, error));
+  EXPECT_EQ(error.kind, rt::TableErrorKind::no_data_rows);
+  EXPECT_EQ(error.line, 0);
+  std::filesystem::remove(empty);
 }
 
 // A spreadsheet's byte order mark must not turn the first data row into a header: with it dropped,
 // 100 N m would hold from t = 0 instead of ramping from 0 at t = 0 to 100 at t = 1.
 TEST(TableCsv, ByteOrderMarkIsNotPartOfTheFirstRow) {
   const std::string path = write_temp("\xEF\xBB\xBF" "0,0\n1,100\n");
-  std::string error;
+  rt::TableError error;
   const auto tab = rt::load_table_csv(path, error);
-  ASSERT_TRUE(tab) << error;
+  ASSERT_TRUE(tab) << error.text();
   EXPECT_EQ(tab->t, (std::vector<double>{0, 1}));
   EXPECT_EQ(tab->v, (std::vector<double>{0, 100}));
   EXPECT_EQ(tab->value(0.5), 50);
@@ -133,9 +155,9 @@ TEST(TableCsv, FirstLineWithANumberIsData) {
            {"x0,0\n1,100\n", ":1: bad number 'x0' in column 1 (time)"},
            {"0,y\n1,100\n", ":1: bad number 'y' in column 2 (value)"}}) {
     const std::string path = write_temp(content);
-    std::string error;
+    rt::TableError error;
     EXPECT_FALSE(rt::load_table_csv(path, error)) << content;
-    EXPECT_EQ(error, path + what) << content;
+    EXPECT_EQ(error.text(), path + what) << content;
     std::filesystem::remove(path);
   }
 }
@@ -145,8 +167,8 @@ TEST(TableCsv, FifoIsRefused) {
   const std::string path = write_temp("");
   std::filesystem::remove(path);
   ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
-  std::string error;
+  rt::TableError error;
   EXPECT_FALSE(rt::load_table_csv(path, error));
-  EXPECT_EQ(error, path + ": a FIFO, not a regular file");
+  EXPECT_EQ(error.text(), path + ": a FIFO, not a regular file");
   std::filesystem::remove(path);
 }

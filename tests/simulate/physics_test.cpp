@@ -1,5 +1,5 @@
 // Physics along simulated trajectories: the elastic model tends to the rigid one as K grows
-// (the paper's claim), eq. (8) recovers the elastic forces, and power balances (DESIGN.md §3).
+// (the paper's claim), eq. (8) recovers the elastic forces, and power balances (docs/design.md §3).
 #include "sim_support.hpp"
 
 namespace pogear::test {
@@ -24,7 +24,7 @@ struct Gaps {
 Gaps elastic_rigid_gaps(const std::string& scene, const std::string& overrides, double horizon, double after) {
   std::string text = with_line(scene_text(scene), "horizon = ", "horizon = " + std::to_string(horizon) + " #");
   if (!overrides.empty()) text = with_parameters(text, overrides);
-  const SimModel m = scene_model(text);
+  const SpecializedScene m = scene_model(text);
   const Trajectory e = interpret_trajectory(m, m.main, run_settings(m));
   const Trajectory r = interpret_trajectory(m, *m.rigid, run_settings(m));
   EXPECT_TRUE(e.status.ok && r.status.ok);
@@ -71,7 +71,7 @@ TEST(ElasticToRigid, OneStageGapFallsAsOneOverKWithoutAStep) {
     std::string text = with_line(scene_text("paper_one_stage"), "tau_c = { constant = \"100*Nm\" }",
                                  "tau_c = { ramp = \"100*Nm/s\" }");
     if (!overrides.empty()) text = with_parameters(text, overrides);
-    const SimModel m = scene_model(text);
+    const SpecializedScene m = scene_model(text);
     const Trajectory e = interpret_trajectory(m, m.main, run_settings(m));
     const Trajectory r = interpret_trajectory(m, *m.rigid, run_settings(m));
     return Gaps{gap_after(e, r, 1.0, 0, 6), gap_after(e, r, 1.0, 6, 4)};
@@ -88,22 +88,22 @@ TEST(PowerBalance, HoldsAlongElasticAndRigidTrajectories) {
   for (const char* scene : {"paper_one_stage", "paper_two_stage"}) {
     std::string text = with_line(scene_text(scene), "sample = \"1*ms\"", "sample = \"0.02*ms\"");
     text = with_line(text, "horizon = ", "horizon = \"0.2*s\" #");
-    const SimModel m = scene_model(text);
-    Derivation d = m.derivation;
-    const GiNaC::exmap v = numeric_substitutions(d.symbols, d.radius.values);
+    const SpecializedScene m = scene_model(text);
+    const Derivation& d = m.derivation;
+    const GiNaC::exmap v = d.values;
     const Eigen::MatrixXd J = evaluate_matrix(d.elastic.J, v), BJ = evaluate_matrix(d.elastic.B_J, v),
                           K = evaluate_matrix(d.elastic.K, v), BK = evaluate_matrix(d.elastic.B_K, v),
                           R = evaluate_matrix(d.elastic.R, v), Q1 = evaluate_matrix(d.rigid.Q1, v);
     const Eigen::Index n = J.rows(), k = K.rows();
     const double torque = 100.0;  // both scenes drive body 0 with 100 N m
-    for (const SimSystem* sys : {&m.main, &*m.rigid}) {
+    for (const SpecializedSystem* sys : {&m.main, &*m.rigid}) {
       const Trajectory tr = interpret_trajectory(m, *sys, run_settings(m));
       ASSERT_TRUE(tr.status.ok);
       std::vector<double> energy, power;
       for (const auto& x : tr.x) {
-        const Eigen::VectorXd omega = sys->kind == "elastic" ? Eigen::VectorXd(x.head(n)) : Eigen::VectorXd(Q1 * x);
+        const Eigen::VectorXd omega = sys->kind == SystemKind::elastic ? Eigen::VectorXd(x.head(n)) : Eigen::VectorXd(Q1 * x);
         double e = 0.5 * omega.dot(J * omega);
-        if (sys->kind == "elastic") e += 0.5 * x.tail(k).dot(K.inverse() * x.tail(k));
+        if (sys->kind == SystemKind::elastic) e += 0.5 * x.tail(k).dot(K.inverse() * x.tail(k));
         const Eigen::VectorXd slip = R * omega;  // zero on the rigid model
         energy.push_back(e);
         power.push_back(torque * omega(0) - omega.dot(BJ * omega) - slip.dot(BK * slip));

@@ -1,26 +1,28 @@
 // Helpers for the simulate tests: scene variants, in-memory runs, external commands.
 #pragma once
 
-#include <cstdlib>
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "../derive/test_support.hpp"
+#include "../support/commands.hpp"
 #include "../support/csv.hpp"
+#include "../support/gaps.hpp"
 #include "../support/json.hpp"
-#include "simulation.hpp"
+#include "interpreted_run.hpp"
+#include "simulate_scene.hpp"
 
 namespace pogear::test {
 
 inline std::string scene_text(const std::string& name) { return read_text(source_path("models/scenes/" + name + ".toml")); }
 
 // A scene from text, as if it stood in models/scenes/ (its model path is relative to that).
-inline SimModel scene_model(const std::string& text) {
+inline SpecializedScene scene_model(const std::string& text) {
   return specialize(parse_scene_text(text, source_path("models/scenes/variant.toml")));
 }
 
@@ -35,57 +37,25 @@ inline std::string with_line(std::string text, const std::string& from, const st
   return text;
 }
 
+// `text` with each of the lines `from` replaced by its `to`, in order.
+inline std::string with_lines(std::string text, const std::vector<std::pair<std::string, std::string>>& edits) {
+  for (const auto& [from, to] : edits) text = with_line(std::move(text), from, to);
+  return text;
+}
+
 // Appends a [parameters] table (the paper scenes have none).
 inline std::string with_parameters(const std::string& text, const std::string& lines) {
   return text + "\n[parameters]\n" + lines + "\n";
 }
 
-inline rt::SceneRun run_settings(const SimModel& m, const std::string& solver = "exact") {
-  rt::SceneRun r;
-  r.name = m.scene.name;
-  r.horizon = m.scene.horizon;
-  r.sample = m.scene.sample;
+inline rt::SceneRun run_settings(const SpecializedScene& m, rt::Solver solver = rt::Solver::exact) {
+  rt::SceneRun r = scene_run(m.scene);
   r.solver = solver;
-  r.options.rtol = m.scene.tolerance;
-  r.options.atol = m.scene.tolerance * 1e-2;
-  r.options.h = m.scene.step;
-  r.options.max_steps = m.scene.max_steps;
   return r;
 }
 
-struct Command {
-  int status;
-  std::string out, err;
-};
-
-inline std::filesystem::path temp_dir(const std::string& tag) {
-  const auto dir = std::filesystem::temp_directory_path() / ("pogear_" + tag + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-inline Command run_command(const std::string& cmd) {
-  const auto dir = std::filesystem::temp_directory_path() / ("pogear_cmd_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const std::string out = (dir / "out").string(), err = (dir / "err").string();
-  const int raw = std::system((cmd + " >" + out + " 2>" + err).c_str());
-  return Command{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_text(out), read_text(err)};
-}
-
-// Largest |a - b| over a column, relative to the largest |b| in it.
-inline double column_error(const std::vector<std::vector<double>>& a, const std::vector<std::vector<double>>& b,
-                           std::size_t col) {
-  double err = 0, scale = 0;
-  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
-    err = std::max(err, std::abs(a[i][col] - b[i][col]));
-    scale = std::max(scale, std::abs(b[i][col]));
-  }
-  return scale > 0 ? err / scale : err;
-}
-
 // An interpreted run of `sys` as CSV rows (t, then the outputs), to compare with a simulator's CSV.
-inline std::vector<std::vector<double>> interpreted_rows(const SimModel& model, const SimSystem& sys) {
+inline std::vector<std::vector<double>> interpreted_rows(const SpecializedScene& model, const SpecializedSystem& sys) {
   const Trajectory tr = interpret_trajectory(model, sys, run_settings(model));
   EXPECT_TRUE(tr.status.ok) << tr.status.message;
   std::vector<std::vector<double>> rows;
@@ -95,6 +65,29 @@ inline std::vector<std::vector<double>> interpreted_rows(const SimModel& model, 
     rows.push_back(row);
   }
   return rows;
+}
+
+// A simulator's CSV of `sys` against the interpreted run of the same model: each output column's
+// largest gap relative to its scale (column_error) below `tolerance`.
+inline void expect_csv_matches_interpreted(const std::filesystem::path& csv_file, const SpecializedScene& model,
+                                           const SpecializedSystem& sys, double tolerance) {
+  const Csv csv = read_csv(csv_file.string());
+  const std::vector<std::vector<double>> interpreted = interpreted_rows(model, sys);
+  ASSERT_EQ(csv.rows.size(), interpreted.size()) << csv_file;
+  for (std::size_t col = 1; col < csv.header.size(); ++col)
+    EXPECT_LT(column_error(csv.rows, interpreted, col), tolerance) << sys.kind << " " << csv.header[col];
+}
+
+// scripts/make_chain.sh K: writes the model to DIR/chain.toml and returns the text of its own scene
+// (every effect, compare_rigid).
+inline std::string chain_scene_text(int k, const std::filesystem::path& dir) {
+  const std::string script = source_path("scripts/make_chain.sh");
+  const Command model = run_command(script + " " + std::to_string(k));
+  EXPECT_EQ(model.status, 0) << model.err;
+  write_text(dir / "chain.toml", model.out);
+  const Command scene = run_command(script + " " + std::to_string(k) + " --scene chain.toml");
+  EXPECT_EQ(scene.status, 0) << scene.err;
+  return scene.out;
 }
 
 }  // namespace pogear::test

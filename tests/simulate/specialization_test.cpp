@@ -1,6 +1,7 @@
 // Simulate only what the scene calls for: each effect left out removes operations, gives the
 // trajectory of that effect's parameters set to zero, and zero inputs or unrequested outputs
 // leave nothing behind.
+#include "codegen.hpp"
 #include "sim_support.hpp"
 
 namespace pogear::test {
@@ -8,7 +9,7 @@ namespace {
 
 const std::string all = "\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\", \"mesh_forces\"";
 
-int total_ops(const SimModel& m) { return m.main.rhs_ops.total() + m.main.output_ops.total(); }
+int total_ops(const SpecializedScene& m) { return m.main.rhs_ops.total() + m.main.output_ops.total(); }
 
 TEST(Specialization, EachEffectLeftOutRemovesOperations) {
   for (const char* scene : {"paper_one_stage", "paper_two_stage"}) {
@@ -16,7 +17,7 @@ TEST(Specialization, EachEffectLeftOutRemovesOperations) {
     const int full = total_ops(scene_model(with_effects(base, all)));
     const int no_damping = total_ops(scene_model(with_effects(base, "\"mesh_compliance\", \"bearing_friction\", \"mesh_forces\"")));
     const int no_friction = total_ops(scene_model(with_effects(base, "\"mesh_compliance\", \"mesh_damping\", \"mesh_forces\"")));
-    const SimModel no_forces_model = scene_model(with_effects(base, "\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\""));
+    const SpecializedScene no_forces_model = scene_model(with_effects(base, "\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\""));
     const int rigid = total_ops(scene_model(with_effects(base, "\"bearing_friction\", \"mesh_forces\"")));
     const int rigid_no_forces = total_ops(scene_model(with_effects(base, "\"bearing_friction\"")));
     EXPECT_LT(no_damping, full) << scene;
@@ -32,7 +33,7 @@ TEST(Specialization, EachEffectLeftOutRemovesOperations) {
 }
 
 // M of the specialized expressions, numerically.
-Eigen::MatrixXd specialized_M(const SimModel& m) {
+Eigen::MatrixXd specialized_M(const SpecializedScene& m) {
   Eigen::MatrixXd M(m.main.M.rows(), m.main.M.cols());
   for (unsigned i = 0; i < m.main.M.rows(); ++i)
     for (unsigned j = 0; j < m.main.M.cols(); ++j) M(i, j) = to_double(m.main.M(i, j));
@@ -41,8 +42,8 @@ Eigen::MatrixXd specialized_M(const SimModel& m) {
 
 TEST(Specialization, AnEffectLeftOutEqualsItsParametersAtZero) {
   const std::string base = scene_text("paper_one_stage");
-  const SimModel no_friction = scene_model(with_effects(base, "\"mesh_compliance\", \"mesh_damping\", \"mesh_forces\""));
-  const SimModel zero_friction =
+  const SpecializedScene no_friction = scene_model(with_effects(base, "\"mesh_compliance\", \"mesh_damping\", \"mesh_forces\""));
+  const SpecializedScene zero_friction =
       scene_model(with_parameters(base, "b_c = 0\nb_p = 0\nb_s = 0\nb_r = 0\nb_g = 0\nb_m = 0"));
   // Same numbers through different expressions: equal to rounding of a few operations.
   EXPECT_LT((specialized_M(no_friction) - specialized_M(zero_friction)).norm(), 1e-12 * specialized_M(zero_friction).norm());
@@ -51,15 +52,15 @@ TEST(Specialization, AnEffectLeftOutEqualsItsParametersAtZero) {
   ASSERT_EQ(a.y.size(), b.y.size());
   EXPECT_LT((a.y.back() - b.y.back()).norm(), 1e-12 * b.y.back().norm());
 
-  const SimModel no_damping = scene_model(with_effects(base, "\"mesh_compliance\", \"bearing_friction\", \"mesh_forces\""));
-  const SimModel zero_damping = scene_model(with_parameters(base, "b_ps = 0"));  // b_pr, b_sg, b_rm follow b_ps
+  const SpecializedScene no_damping = scene_model(with_effects(base, "\"mesh_compliance\", \"bearing_friction\", \"mesh_forces\""));
+  const SpecializedScene zero_damping = scene_model(with_parameters(base, "b_ps = 0"));  // b_pr, b_sg, b_rm follow b_ps
   EXPECT_LT((specialized_M(no_damping) - specialized_M(zero_damping)).norm(), 1e-12 * specialized_M(zero_damping).norm());
 }
 
 TEST(Specialization, ZeroInputsAreNotInputs) {
   const std::string text = with_line(scene_text("paper_one_stage"), "tau_c = { constant = \"100*Nm\" }",
                                      "tau_c = { constant = \"100*Nm\" }\ntau_p = \"0*Nm\"\ntau_g = { step = \"0*Nm\", at = \"1*s\" }");
-  const SimModel m = scene_model(text);
+  const SpecializedScene m = scene_model(text);
   EXPECT_EQ(m.main.inputs, std::vector<std::string>{"tau_c"});
   EXPECT_EQ(m.rigid->inputs, std::vector<std::string>{"tau_c"});
 }
@@ -67,18 +68,18 @@ TEST(Specialization, ZeroInputsAreNotInputs) {
 TEST(Specialization, OnlyRequestedOutputsAreComputed) {
   const std::string text = with_line(scene_text("paper_one_stage"), "compare_rigid = true",
                                      "compare_rigid = true\noutputs = [\"omega_c\", \"F_sg\"]");
-  const SimModel m = scene_model(text);
+  const SpecializedScene m = scene_model(text);
   EXPECT_EQ(m.rigid->outputs, (std::vector<std::string>{"omega_c", "F_sg"}));
-  const SimModel full = scene_model(scene_text("paper_one_stage"));
+  const SpecializedScene full = scene_model(scene_text("paper_one_stage"));
   EXPECT_LT(m.rigid->output_ops.total(), full.rigid->output_ops.total());
   const GeneratedSources g = generate_sources(m);
   EXPECT_NE(g.header.find("static constexpr int nx = 2, nu = 1, ny = 2;"), std::string::npos);
 }
 
 TEST(Specialization, NonTunableParametersAreLiteralsTunablesAreNot) {
-  const SimModel fixed = scene_model(scene_text("paper_one_stage"));
+  const SpecializedScene fixed = scene_model(scene_text("paper_one_stage"));
   EXPECT_NE(generate_sources(fixed).header.find("struct Params {};"), std::string::npos);
-  const SimModel tuned = scene_model(with_line(scene_text("paper_one_stage"), "compare_rigid = true",
+  const SpecializedScene tuned = scene_model(with_line(scene_text("paper_one_stage"), "compare_rigid = true",
                                                "compare_rigid = true\ntunable = [\"J_c\", \"K_ps\"]"));
   const std::string h = generate_sources(tuned).header;
   EXPECT_NE(h.find("double J_c = 0.17648;"), std::string::npos);
@@ -87,9 +88,45 @@ TEST(Specialization, NonTunableParametersAreLiteralsTunablesAreNot) {
   // A tunable radius and the radii the geometry ties to it: Tunables.DerivedRadiiFollowATunableRadius.
 }
 
+// A scene's quantities are evaluated against its model with the scene's own parameter values: the
+// carrier radius below is the override's 24.8 cm, not the model's 14.8 cm.
+TEST(Specialization, InitialStateAndInputsSeeTheSceneParameters) {
+  std::string text = with_line(scene_text("paper_one_stage"), "omega_c = \"0*rpm\"", "omega_c = \"r_c*100/(m*s)\"");
+  text = with_line(text, "tau_c = { constant = \"100*Nm\" }", "tau_c = { constant = \"r_c*1000*N\" }");
+  const SpecializedScene m = scene_model(with_parameters(text, "r_s1 = \"20*cm\"\nr_c = \"24.8*cm\"\nr_r1 = \"29.6*cm\""));
+  // 0.248 * 100 and * 1000 in doubles: the product's rounding, a few ulps.
+  EXPECT_NEAR(m.main.x0.at(0), 24.8, 1e-12);
+  ASSERT_EQ(m.scene.inputs.size(), 1u);
+  EXPECT_NEAR(rt::value(m.scene.inputs[0].signal, 0.0), 248.0, 1e-11);
+  ASSERT_TRUE(m.rigid.has_value());
+  EXPECT_NEAR(m.rigid->x0.at(0), 24.8, 1e-12);
+}
+
+// The load split of redundant meshes has exact weights: each coefficient of the rigid force outputs
+// is the correctly rounded value of an exact number, the one the reference model rounds, and not
+// a sum of rounded weights whose last bits (1.7e-18 for an exact 0) follow GiNaC's term order.
+TEST(Specialization, RedundantMeshForcesHaveCorrectlyRoundedCoefficients) {
+  const SpecializedScene m = scene_model(scene_text("three_planets"));
+  ASSERT_TRUE(m.derivation.rigid.redundant_meshes);
+  ASSERT_TRUE(m.rigid.has_value());
+  const SpecializedSystem& sys = *m.rigid;
+  const NumericSystem ref = numeric_system(m, sys);
+  int forces = 0;
+  for (std::size_t i = 0; i < sys.outputs.size(); ++i) {
+    if (sys.output_variables[i].kind != VariableKind::force) continue;
+    ++forces;
+    const GiNaC::ex y = sys.output_values[i].expand();
+    for (std::size_t j = 0; j < sys.states.size(); ++j) {
+      const double c = to_double(y.coeff(variable_symbol(m.derivation.symbols, sys.state_variables[j]), 1));
+      EXPECT_EQ(c, ref.C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))) << sys.outputs[i] << " " << sys.states[j];
+    }
+  }
+  EXPECT_EQ(forces, 6);
+}
+
 TEST(Specialization, GenerationIsDeterministic) {
-  const SimModel a = scene_model(scene_text("paper_two_stage"));
-  const SimModel b = scene_model(scene_text("paper_two_stage"));
+  const SpecializedScene a = scene_model(scene_text("paper_two_stage"));
+  const SpecializedScene b = scene_model(scene_text("paper_two_stage"));
   EXPECT_EQ(generate_sources(a).header, generate_sources(b).header);
 }
 

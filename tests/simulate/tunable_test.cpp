@@ -1,7 +1,7 @@
 // Tunable parameters (issue 10, item 15): finite and compact generated code, parameters defined
 // through a tunable follow it, geometry relations, and `--param` against the interpreted path.
-#include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "simulator_cache.hpp"
 #include "sim_support.hpp"
@@ -11,8 +11,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
-
 std::string with_tunable(const std::string& scene, const std::string& list) {
   return with_line(scene, "compare_rigid = true", "compare_rigid = true\ntunable = [" + list + "]");
 }
@@ -20,13 +18,7 @@ std::string with_tunable(const std::string& scene, const std::string& list) {
 // scripts/make_chain.sh K: the model, and its own scene (every effect, compare_rigid) with `extra`.
 fs::path chain_scene(int k, const std::string& extra) {
   const fs::path dir = temp_dir("chain_" + std::to_string(k));
-  const std::string script = source_path("scripts/make_chain.sh");
-  const Command model = run_command(script + " " + std::to_string(k));
-  EXPECT_EQ(model.status, 0) << model.err;
-  write_text(dir / "chain.toml", model.out);
-  const Command scene = run_command(script + " " + std::to_string(k) + " --scene chain.toml");
-  EXPECT_EQ(scene.status, 0) << scene.err;
-  write_text(dir / "scene.toml", with_line(scene.out, "compare_rigid = true", "compare_rigid = true\n" + extra));
+  write_text(dir / "scene.toml", with_line(chain_scene_text(k, dir), "compare_rigid = true", "compare_rigid = true\n" + extra));
   return dir / "scene.toml";
 }
 
@@ -34,29 +26,24 @@ bool has_inf_or_nan(const std::string& code) {
   return std::regex_search(code, std::regex("\\b(inf|nan|INF|NAN|infinity)\\b", std::regex::icase));
 }
 
-// The largest |a - b| relative to the largest |b|.
-double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
-}
-
 // The issue: `inf*J_c1*omega_r1/((inf*J_c1 + inf))`, from the exact coefficients of an expanded
 // symbolic inverse of L1 that overflow doubles.
 TEST(Tunables, ChainWithATunableInertiaPrintsFiniteNumbers) {
-  const SimModel m = specialize(parse_scene(chain_scene(5, "tunable = [\"J_c1\"]").string()));
+  const SpecializedScene m = specialize(parse_scene(chain_scene(5, "tunable = [\"J_c1\"]").string()));
   const GeneratedSources g = generate_sources(m);
   EXPECT_FALSE(has_inf_or_nan(g.header)) << g.header.substr(0, 3000);
   // The rigid system's M at the scene's values is the interpreted path's (another formula):
   // both are exact up to one rounding of each entry and a small solve, ~1e-15 relative.
   ASSERT_TRUE(m.rigid);
-  EXPECT_LT(relative_difference(state_matrix(m, *m.rigid), numeric_system(m, *m.rigid).M), 1e-12);
+  EXPECT_LT(relative_gap(state_matrix(m, *m.rigid), numeric_system(m, *m.rigid).M), 1e-12);
 }
 
 // The one-stage gear's rigid system has 2 states; its rhs was 22 operations without tunables,
 // 291 with 2 and 21,844 with 10 (a symbolic L1^-1 over one common denominator).
 TEST(Tunables, OperationCountsStayBoundedWithManyTunables) {
   const std::string scene = scene_text("paper_one_stage");
-  const SimModel none = scene_model(scene);
-  const SimModel ten = scene_model(
+  const SpecializedScene none = scene_model(scene);
+  const SpecializedScene ten = scene_model(
       with_tunable(scene, "\"J_c\", \"J_p\", \"J_r\", \"J_s\", \"J_g\", \"J_m\", \"b_c\", \"b_p\", \"K_ps\", \"b_ps\""));
   ASSERT_TRUE(ten.rigid);
   // L1, A1 (2x2, sums of at most 6 monomials each), B1 (2x1) and a 2x2 Cholesky solve: 70
@@ -64,13 +51,15 @@ TEST(Tunables, OperationCountsStayBoundedWithManyTunables) {
   // before (1,912 for these 10).
   EXPECT_LT(ten.rigid->rhs_ops.total(), 200) << ten.rigid->rhs_ops.total() << " vs " << none.rigid->rhs_ops.total();
   EXPECT_LT(generate_sources(ten).header.size(), 2 * generate_sources(none).header.size());
-  EXPECT_LT(relative_difference(state_matrix(ten, *ten.rigid), numeric_system(ten, *ten.rigid).M), 1e-12);
+  EXPECT_LT(relative_gap(state_matrix(ten, *ten.rigid), numeric_system(ten, *ten.rigid).M), 1e-12);
 }
 
 TEST(Tunables, ParametersDefinedThroughATunableFollowIt) {
   // K_pr, K_sg and K_rm are "K_ps" in the model; b_p ... b_m are "b_c".
-  const SimModel m = scene_model(with_tunable(scene_text("paper_one_stage"), "\"K_ps\", \"b_c\""));
-  const std::string h = generate_sources(m).header;
+  const SpecializedScene m = scene_model(with_tunable(scene_text("paper_one_stage"), "\"K_ps\", \"b_c\""));
+  const std::string header = generate_sources(m).header;
+  // The systems' code, after the parameter table (which lists every parameter with its value).
+  const std::string h = header.substr(header.find("\nstruct "));
   for (const char* name : {"K_pr", "K_sg", "K_rm"}) EXPECT_EQ(h.find(name), std::string::npos) << name;
   // K_ps = 1000 N/mm = 1e6 N/m and b_c = 0.08 N m/rpm appear as values of Params only.
   EXPECT_EQ(std::regex_search(h, std::regex("[^=] 1000000\\.0")), false);
@@ -100,37 +89,83 @@ TEST(Tunables, DerivedRadiiFollowATunableRadius) {
   std::string scene = with_tunable(scene_text("paper_one_stage"), "\"r_p\"");
   scene = with_line(scene, "model = \"../paper_one_stage.toml\"", "model = \"model.toml\"");
   write_text(dir / "scene.toml", scene);
-  const SimModel m = specialize(parse_scene((dir / "scene.toml").string()));
+  const SpecializedScene m = specialize(parse_scene((dir / "scene.toml").string()));
   const std::string h = generate_sources(m).header;
   EXPECT_NE(h.find("double r_p = 0.048;"), std::string::npos);
+  EXPECT_NE(h.find("inline constexpr double r_c = 0.14800000000000002;  // m, derived from the geometry\n"), std::string::npos);
   EXPECT_NE(h.find("r_p + 0.1"), std::string::npos) << h.substr(0, 4000);  // r_c = r_p + r_s1
-  EXPECT_LT(relative_difference(state_matrix(m, m.main), numeric_system(m, m.main).M), 1e-12);
-  EXPECT_LT(relative_difference(state_matrix(m, *m.rigid), numeric_system(m, *m.rigid).M), 1e-12);
+  EXPECT_LT(relative_gap(state_matrix(m, m.main), numeric_system(m, m.main).M), 1e-12);
+  EXPECT_LT(relative_gap(state_matrix(m, *m.rigid), numeric_system(m, *m.rigid).M), 1e-12);
 }
 
 // The compiled tunable path, with values other than the scene's through --param, against the
 // interpreted path of the same scene with those values as [parameters] overrides.
 TEST(Tunables, ParamOptionMatchesTheInterpretedPathWithTheSameValues) {
   const std::string scene = with_tunable(scene_text("paper_one_stage"), "\"K_ps\", \"J_c\"");
-  const GeneratedSources sources = generate_sources(scene_model(scene));
+  const SpecializedScene tunable = scene_model(scene);
+  // J_c enters L1: the rigid system is the implicit one, L1 x1' = A1 x1 + B1 tau solved by the
+  // generated code from Params (its outputs, the eq. 8 forces, call rhs and so that solve).
+  ASSERT_TRUE(tunable.rigid && tunable.rigid->implicit);
+  ASSERT_TRUE(tunable.rigid->output_derivatives);
+  const GeneratedSources sources = generate_sources(tunable);
+  ASSERT_NE(sources.header.find("implicit_form(p, L, A, B);"), std::string::npos);
   const CompiledSimulator sim = build_simulator(sources);
   const fs::path dir = temp_dir("tunable_param");
   const Command run = run_command(sim.executable() + " --out " + dir.string() +
                                   " --quiet --param K_ps=2000*Newton/mm --param J_c=0.3");
   ASSERT_EQ(run.status, 0) << run.err;
 
-  const SimModel reference = scene_model(with_parameters(scene, "K_ps = \"2000*Newton/mm\"\nJ_c = 0.3"));
-  for (const SimSystem* sys : {&reference.main, &*reference.rigid}) {
-    const Csv csv = read_csv((dir / ("paper_one_stage" + std::string(sys->kind == "rigid" ? ".rigid" : "") + ".csv")).string());
-    const std::vector<std::vector<double>> interpreted = interpreted_rows(reference, *sys);
-    ASSERT_EQ(csv.rows.size(), interpreted.size());
-    // Both step with exp(M h) of the same M, built once from Params by the generated code (a 2x2
-    // Cholesky solve for the rigid system) and once from L^-1 A in doubles: entries differ by
-    // rounding, which 2000 contracting steps keep below 1e-10 of each column's scale. With the
-    // scene's values instead (K_ps 1000 N/mm, J_c 0.17648) the difference is of order 1.
-    for (std::size_t col = 1; col < csv.header.size(); ++col)
-      EXPECT_LT(column_error(csv.rows, interpreted, col), 1e-10) << sys->kind << " " << csv.header[col];
-  }
+  const SpecializedScene reference = scene_model(with_parameters(scene, "K_ps = \"2000*Newton/mm\"\nJ_c = 0.3"));
+  // Both step with exp(M h) of the same M, built once from Params by the generated code (a 2x2
+  // Cholesky solve for the rigid system) and once from L^-1 A in doubles: entries differ by
+  // rounding, which 2000 contracting steps keep below 1e-10 of each column's scale. With the
+  // scene's values instead (K_ps 1000 N/mm, J_c 0.17648) the difference is of order 1.
+  expect_csv_matches_interpreted(dir / "paper_one_stage.csv", reference, reference.main, 1e-10);
+  expect_csv_matches_interpreted(dir / "paper_one_stage.rigid.csv", reference, *reference.rigid, 1e-10);
+}
+
+}  // namespace
+}  // namespace pogear::test
+
+namespace pogear::test {
+namespace {
+
+// A program over a generated header that prints output_matrices_error of its systems, with Params
+// `values` (C++ statements setting `p`).
+std::string output_matrices_checker(const std::string& header, const std::string& values) {
+  return "#include \"" + header + "\"\n#include \"" + source_path("tests/support/output_matrices_check.hpp") + R"("
+#include <cstdio>
+
+namespace scene = pogear_generated::paper_one_stage;
+
+template <class System>
+double error() {
+  typename System::Params p;
+  )" + values + R"(
+  return pogear::test::output_matrices_error<System>(p);
+}
+
+int main() { std::printf("%.3g %.3g\n", error<scene::Elastic>(), error<scene::Rigid>()); }
+)";
+}
+
+// The rigid system with tunable inertias solves L dx/dt = A x + B u numerically: output_matrices
+// takes the mesh forces' dependence on dx/dt through matrices() (C + E M, D + E N), at values
+// other than the scene's.
+TEST(Tunables, OutputMatricesMatchTheOutputsAtOtherValues) {
+  GeneratedSources sources = generate_sources(scene_model(with_tunable(scene_text("paper_one_stage"), "\"K_ps\", \"J_c\"")));
+  ASSERT_NE(sources.header.find("implicit_form"), std::string::npos);
+  sources.main = output_matrices_checker(sources.header_name, "p.K_ps = 2e6;\n  p.J_c = 0.3;");
+  const CompiledSimulator checker = build_simulator(sources);
+  const Command run = run_command(checker.executable());
+  ASSERT_EQ(run.status, 0) << run.err;
+  std::istringstream printed(run.out);
+  double elastic = 1, rigid = 1;
+  ASSERT_TRUE(printed >> elastic >> rigid) << run.out;
+  EXPECT_EQ(elastic, 0) << "the elastic outputs are states";
+  // (E M) x against E (M x), with M from a 2x2 Cholesky solve both ways: a few eps of the largest
+  // term (measured 5e-16); 1e-14 leaves room, and C without E M is off by 1.4 (measured).
+  EXPECT_LT(rigid, 1e-14);
 }
 
 }  // namespace

@@ -13,12 +13,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string with_simulation(std::string text, const std::string& from, const std::string& to) {
-  return with_line(std::move(text), from, to);
-}
-
 // The rk4 step a scene's systems are all stable with: its own step, or 0.9 of the tightest limit.
-double stable_rk4_step(const SimModel& m) {
+double stable_rk4_step(const SpecializedScene& m) {
   double h = m.scene.step;
   h = std::min(h, 0.9 * system_diagnostics(m, m.main).rk4_max_step);
   if (m.rigid) h = std::min(h, 0.9 * system_diagnostics(m, *m.rigid).rk4_max_step);
@@ -29,10 +25,9 @@ TEST(Divergence, Dopri5AtTolerance02IsReportedAsDiverged) {
   // The review's case: dopri5 at tolerance 0.2 ended at omega_c = 3.8e10 rad/s (exact 26.4) with
   // exit 0. The scene reader and the simulator now refuse such a tolerance, so the run is set up
   // through the library, as a program of the user's could.
-  const SimModel m = scene_model(scene_text("paper_one_stage"));
-  rt::SceneRun run = run_settings(m, "dopri5");
-  run.options.rtol = 0.2;
-  run.options.atol = 0.2e-2;
+  const SpecializedScene m = scene_model(scene_text("paper_one_stage"));
+  rt::SceneRun run = run_settings(m, rt::Solver::dopri5);
+  rt::set_tolerance(run.options, 0.2);
   run.quiet = true;
   const fs::path dir = temp_dir("diverged");
   run.out_dir = dir.string();
@@ -62,11 +57,10 @@ TEST(Divergence, UndampedGearWithDopri5AtTheLoosestToleranceIsCaught) {
   text = with_line(text, "compare_rigid = true", "compare_rigid = false");
   text = with_line(text, "tau_c = { constant = \"100*Nm\" }", "");
   text = with_line(text, "omega_c = \"0*rpm\"", "omega_c = \"100*rpm\"");
-  const SimModel m = scene_model(text);
+  const SpecializedScene m = scene_model(text);
   for (const auto& [tolerance, status] : {std::pair{1e-2, 3}, std::pair{1e-9, 0}}) {
-    rt::SceneRun run = run_settings(m, "dopri5");
-    run.options.rtol = tolerance;
-    run.options.atol = tolerance * 1e-2;
+    rt::SceneRun run = run_settings(m, rt::Solver::dopri5);
+    rt::set_tolerance(run.options, tolerance);
     run.csv = false;
     run.quiet = true;
     ::testing::internal::CaptureStderr();
@@ -84,18 +78,19 @@ TEST(Divergence, HonestRunsOfEverySceneWithEverySolverNeverTripTheBound) {
   // never flags a run that is merely inaccurate within its tolerance.
   for (const auto& entry : fs::directory_iterator(source_path("models/scenes"))) {
     if (entry.path().extension() != ".toml") continue;
-    const SimModel m = specialize(parse_scene(entry.path().string()));
-    for (const std::string solver : {"exact", "rk4", "dopri5", "implicit"}) {
+    const SpecializedScene m = specialize(parse_scene(entry.path().string()));
+    for (const rt::Solver solver : rt::all_solvers) {
       std::vector<double> tolerances{m.scene.tolerance};
-      if (solver == "dopri5" || solver == "implicit") tolerances.push_back(rt::limits::max_tolerance);
+      if (solver == rt::Solver::dopri5 || solver == rt::Solver::implicit)
+        tolerances.push_back(rt::limits::max_tolerance);
       for (double tolerance : tolerances) {
         rt::SceneRun run = run_settings(m, solver);
-        run.options.rtol = tolerance;
-        run.options.atol = tolerance * 1e-2;
-        if (solver == "rk4") run.options.h = stable_rk4_step(m);
+        rt::set_tolerance(run.options, tolerance);
+        if (solver == rt::Solver::rk4) run.options.h = stable_rk4_step(m);
         run.csv = false;
         run.quiet = true;
-        EXPECT_EQ(run_interpreted(m, run), 0) << entry.path().filename() << " " << solver << " " << tolerance;
+        EXPECT_EQ(run_interpreted(m, run), 0)
+            << entry.path().filename() << " " << rt::solver_name(solver) << " " << tolerance;
       }
     }
   }
@@ -104,7 +99,7 @@ TEST(Divergence, HonestRunsOfEverySceneWithEverySolverNeverTripTheBound) {
 TEST(Divergence, CompiledSimulatorsCheckTheBoundToo) {
   // The generated energy_matrix is the numeric L of the derivation (diag(J, K^-1), and L1 for the
   // rigid model), so the compiled path checks the same bound as the interpreted one.
-  const SimModel m = specialize(parse_scene(source_path("models/scenes/paper_one_stage.toml")));
+  const SpecializedScene m = specialize(parse_scene(source_path("models/scenes/paper_one_stage.toml")));
   namespace g = pogear_generated::paper_one_stage;
   g::Elastic::StateMatrix L;
   g::Elastic::energy_matrix({}, L);
@@ -126,11 +121,10 @@ TEST(Divergence, CompiledSimulatorsCheckTheBoundToo) {
 TEST(TinyStep, Rk4WithA1e30SecondStepFailsInsteadOfTakingOneStepPerSample) {
   // The review's case: sample 10 ms, step 1e-30 s; ceil(0.01 / 1e-30) overflowed a long, and rk4
   // took one 10 ms step per sample (unstable: omega_c = 1.4e265 rad/s after "100 steps", exit 0).
-  std::string text = with_simulation(scene_text("paper_one_stage"), "solver = \"exact\"", "solver = \"rk4\"");
-  text = with_simulation(text, "sample = \"1*ms\"", "sample = \"10*ms\"");
-  text = with_simulation(text, "step = \"0.05*ms\"", "step = \"1e-30*s\"");
-  const SimModel m = scene_model(text);
-  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, "rk4"));
+  const SpecializedScene m = scene_model(with_lines(scene_text("paper_one_stage"), {{"solver = \"exact\"", "solver = \"rk4\""},
+                                                                          {"sample = \"1*ms\"", "sample = \"10*ms\""},
+                                                                          {"step = \"0.05*ms\"", "step = \"1e-30*s\""}}));
+  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, rt::Solver::rk4));
   EXPECT_FALSE(tr.status.ok);
   EXPECT_EQ(tr.status.steps, 0);
   EXPECT_EQ(tr.status.message.rfind("rk4 cannot reach t = 0.01: steps of at most 1e-30 s need 1e+28 steps", 0), 0u)
@@ -145,7 +139,7 @@ TEST(Diagnostics, UndampedFastModesAreStiff) {
   std::string text = with_effects(scene_text("paper_one_stage"), "\"mesh_compliance\"");
   text = with_line(text, "compare_rigid = true", "compare_rigid = false");
   text = with_parameters(text, "K_ps = \"1e30*Newton/m\"\nJ_p = \"1e-30*kg*meters^2\"");
-  const SimModel m = scene_model(text);
+  const SpecializedScene m = scene_model(text);
   const Diagnostics d = system_diagnostics(m, m.main);
   EXPECT_LT(d.fastest_time_constant, 1e-20);
   EXPECT_EQ(d.adaptive_solver, "implicit") << d.reason;
@@ -156,7 +150,7 @@ TEST(Diagnostics, UndampedFastModesAreStiff) {
 TEST(Diagnostics, ThePaperScenesStayNotStiff) {
   // The fastest time scale of the paper's scenes (~1 ms) is that of their 1 ms sample period.
   for (const char* name : {"paper_one_stage", "paper_two_stage"}) {
-    const SimModel m = specialize(parse_scene(source_path(std::string("models/scenes/") + name + ".toml")));
+    const SpecializedScene m = specialize(parse_scene(source_path(std::string("models/scenes/") + name + ".toml")));
     const Diagnostics d = system_diagnostics(m, m.main);
     EXPECT_EQ(d.adaptive_solver, "dopri5") << name << ": " << d.reason;
   }
@@ -166,11 +160,10 @@ TEST(LongHorizon, ImplicitFinishesA1e8SecondHorizon) {
   // The minimum step was 1e-14 of the horizon, 1e-6 s here, above the steps the start of the
   // transient needs: the implicit method stalled at t = 0. Over 1e8 s the gear must settle where
   // M x + N u = 0.
-  std::string text = with_line(scene_text("paper_one_stage"), "horizon = \"2*s\"", "horizon = \"1e8*s\"");
-  text = with_line(text, "sample = \"1*ms\"", "sample = \"1e5*s\"");
-  text = with_line(text, "solver = \"exact\"", "solver = \"implicit\"");
-  const SimModel m = scene_model(text);
-  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, "implicit"));
+  const SpecializedScene m = scene_model(with_lines(scene_text("paper_one_stage"), {{"horizon = \"2*s\"", "horizon = \"1e8*s\""},
+                                                                          {"sample = \"1*ms\"", "sample = \"1e5*s\""},
+                                                                          {"solver = \"exact\"", "solver = \"implicit\""}}));
+  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, rt::Solver::implicit));
   ASSERT_TRUE(tr.status.ok) << tr.status.message;
   EXPECT_EQ(tr.t.back(), 1e8);
   const NumericSystem ns = numeric_system(m, m.main);

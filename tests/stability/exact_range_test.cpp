@@ -31,7 +31,7 @@ const char* const kLost = "exact stepping lost accuracy: with steps of 0.001 s t
 // Exact stepping printed 0 for every velocity; the reference omega_c(0.1 s) = 5.70718059817, which
 // the rigid model (the limit of stiff meshes, as the message suggests) gives to 1e-12.
 TEST(ExactRange, StiffMeshesWithATinyPlanetAreRefusedAndTheRigidModelIsRight) {
-  const SimModel m =
+  const SpecializedScene m =
       scene_model(range_scene(kUndamped, "K_ps = \"1e30*Newton/m\"\nJ_p = \"1e-30*kg*meters^2\"", "0.1*s", "1*ms"));
   const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m));
   EXPECT_FALSE(tr.status.ok);
@@ -39,7 +39,7 @@ TEST(ExactRange, StiffMeshesWithATinyPlanetAreRefusedAndTheRigidModelIsRight) {
   EXPECT_NE(tr.status.message.find("(the matrix exponential overflows)"), std::string::npos) << tr.status.message;
   EXPECT_LE(tr.t.size(), 1u) << "no velocity may be printed past t = 0";
 
-  const SimModel rigid = scene_model(range_scene("", "K_ps = \"1e30*Newton/m\"\nJ_p = \"1e-30*kg*meters^2\"",
+  const SpecializedScene rigid = scene_model(range_scene("", "K_ps = \"1e30*Newton/m\"\nJ_p = \"1e-30*kg*meters^2\"",
                                                  "0.1*s", "1*ms"));
   const Trajectory r = interpret_trajectory(rigid, rigid.main, run_settings(rigid));
   ASSERT_TRUE(r.status.ok) << r.status.message;
@@ -54,7 +54,7 @@ TEST(ExactRange, StiffMeshesWithATinyPlanetAreRefusedAndTheRigidModelIsRight) {
 // 5.05791980484). With the squaring of e^(Mh) - I the carrier comes out right, but the planet's
 // velocity, which the fast mode moves by a visible amount, cannot be (its phase is lost): refused.
 TEST(ExactRange, ATinyPlanetInertiaIsRefused) {
-  const SimModel m = scene_model(range_scene(kUndamped, "J_p = \"1e-30*kg*meters^2\"", "0.1*s", "1*ms"));
+  const SpecializedScene m = scene_model(range_scene(kUndamped, "J_p = \"1e-30*kg*meters^2\"", "0.1*s", "1*ms"));
   const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m));
   EXPECT_FALSE(tr.status.ok);
   EXPECT_NE(tr.status.message.find(kLost), std::string::npos) << tr.status.message;
@@ -68,7 +68,7 @@ TEST(ExactRange, ATinyPlanetInertiaIsRefused) {
 // hold squared 2^55 times) and 0 from 1e18 s on.
 TEST(ExactRange, HugeStepsOfADampedSceneLandOnItsSteadyState) {
   for (const auto& [horizon, sample] : {std::pair{"1e15*s", "1e14*s"}, std::pair{"1e19*s", "1e18*s"}}) {
-    const SimModel m = scene_model(
+    const SpecializedScene m = scene_model(
         range_scene("\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\"", "", horizon, sample));
     const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m));
     ASSERT_TRUE(tr.status.ok) << tr.status.message;
@@ -103,7 +103,7 @@ TEST(ExactRange, StiffMeshesKeepTheSlowMotionWithinTheEstimateOrAreRefused) {
       {1e30, 5.67990988151, 5.13935659546, false},  // estimate 8e-6: refused
   };
   for (const StiffCase& c : cases) {
-    const SimModel m = scene_model(range_scene(kUndamped, fmt::format("K_ps = \"{}*Newton/m\"", c.K), "0.1*s", "1*ms"));
+    const SpecializedScene m = scene_model(range_scene(kUndamped, fmt::format("K_ps = \"{}*Newton/m\"", c.K), "0.1*s", "1*ms"));
     const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m));
     EXPECT_EQ(tr.status.ok, c.accepted) << "K = " << c.K << ": " << tr.status.message;
     if (!c.accepted) {
@@ -123,7 +123,7 @@ TEST(ExactRange, StiffMeshesKeepTheSlowMotionWithinTheEstimateOrAreRefused) {
 // A step other than the nominal one (next to a breakpoint, the last partial sample) is checked
 // when it is built: an untrustworthy one stops the run on the spot.
 TEST(ExactRange, AnUntrustworthyOddStepStopsTheRun) {
-  const SimModel m = scene_model(range_scene(kUndamped, "J_p = \"1e-30*kg*meters^2\"", "0.1*s", "1*ms"));
+  const SpecializedScene m = scene_model(range_scene(kUndamped, "J_p = \"1e-30*kg*meters^2\"", "0.1*s", "1*ms"));
   const NumericSystem ns = numeric_system(m, m.main);
   using D = rt::ExactDiscretization<Eigen::Dynamic, Eigen::Dynamic>;
   D odd;

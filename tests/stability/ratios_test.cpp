@@ -35,7 +35,7 @@ TEST(ExtremeRatios, ClosedFormsAgreeWithNumericQ1tJQ1WithinTheirCondition) {
   for (double inertia : {1e-6, 1e-3, 1.0, 1e3, 1e6})
     for (double radius : {1e-3, 1e-1, 1.0, 1e1, 1e3}) {
       Derivation d = spread(inertia, std::sqrt(radius));  // r_s1/r_p = radius * 10/4.8
-      const GiNaC::exmap exact = numeric_substitutions(d.symbols, d.radius.values);
+      const GiNaC::exmap exact = d.values;
       // The closed forms of L1 at exact rational values, rounded once: correctly rounded.
       const Eigen::MatrixXd closed = evaluate_matrix(d.rigid.L1, exact);
       // The same in doubles, as a numeric code would: Q1 and J rounded, then multiplied.

@@ -26,8 +26,8 @@ TEST(ExplicitOnStiff, Rk4AboveItsStabilityLimitIsRefusedWithTheLimit) {
 }
 
 TEST(ExplicitOnStiff, Dopri5ThatCannotFinishStopsWithAClearError) {
-  const SimModel m = scene_model(stiff_scene("solver = \"dopri5\"\nmax_steps = 20000"));
-  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, "dopri5"));
+  const SpecializedScene m = scene_model(stiff_scene("solver = \"dopri5\"\nmax_steps = 20000"));
+  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, rt::Solver::dopri5));
   EXPECT_FALSE(tr.status.ok);
   EXPECT_NE(tr.status.message.find("dopri5"), std::string::npos) << tr.status.message;
   EXPECT_NE(tr.status.message.find("--solver exact or --solver implicit"), std::string::npos) << tr.status.message;
@@ -52,8 +52,8 @@ TEST(ExplicitOnStiff, TheSimulatorMarksTheCsvIncomplete) {
 TEST(LongHorizon, ExactSteppingHoldsTheSteadyStateFor1e4Seconds) {
   std::string text = with_line(scene_text("paper_one_stage"), "horizon = \"2*s\"", "horizon = \"1e4*s\"");
   text = with_line(text, "sample = \"1*ms\"", "sample = \"0.5*s\"");
-  const SimModel m = scene_model(text);
-  for (const SimSystem* sys : {&m.main, &*m.rigid}) {
+  const SpecializedScene m = scene_model(text);
+  for (const SpecializedSystem* sys : {&m.main, &*m.rigid}) {
     const Trajectory tr = interpret_trajectory(m, *sys, run_settings(m));
     ASSERT_TRUE(tr.status.ok);
     const NumericSystem ns = numeric_system(m, *sys);
@@ -75,11 +75,11 @@ TEST(LongHorizon, UndampedEnergyOver1e4SecondsDriftsOnlyByRounding) {
   text = with_line(text, "omega_c = \"0*rpm\"", "omega_c = \"100*rpm\"");
   text = with_line(text, "horizon = \"2*s\"", "horizon = \"1e4*s\"");
   text = with_line(text, "sample = \"1*ms\"", "sample = \"0.01*s\"");
-  const SimModel m = scene_model(text);
+  const SpecializedScene m = scene_model(text);
   const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m));
   ASSERT_TRUE(tr.status.ok);
-  Derivation d = m.derivation;
-  const GiNaC::exmap v = numeric_substitutions(d.symbols, d.radius.values);
+  const Derivation& d = m.derivation;
+  const GiNaC::exmap v = d.values;
   const Eigen::MatrixXd J = evaluate_matrix(d.elastic.J, v), K = evaluate_matrix(d.elastic.K, v);
   auto energy = [&](const Eigen::VectorXd& x) {
     return 0.5 * x.head(6).dot(J * x.head(6)) + 0.5 * x.tail(4).dot(K.inverse() * x.tail(4));

@@ -19,10 +19,10 @@ StiffnessRuns run_with_stiffness(const std::string& scene, double K, bool ramp) 
   text = with_line(text, "horizon = ", "horizon = 0.2 #");
   text = with_line(text, "tolerance = 1e-9", "tolerance = 1e-6");
   text = with_parameters(text, (scene == "paper_one_stage" ? "K_ps = " : "K_sp = ") + fmt::format("{}", K));
-  const SimModel m = scene_model(text);
-  return StiffnessRuns{interpret_trajectory(m, m.main, run_settings(m, "exact")),
-             interpret_trajectory(m, m.main, run_settings(m, "implicit")),
-             interpret_trajectory(m, *m.rigid, run_settings(m, "exact"))};
+  const SpecializedScene m = scene_model(text);
+  return StiffnessRuns{interpret_trajectory(m, m.main, run_settings(m, rt::Solver::exact)),
+             interpret_trajectory(m, m.main, run_settings(m, rt::Solver::implicit)),
+             interpret_trajectory(m, *m.rigid, run_settings(m, rt::Solver::exact))};
 }
 
 double max_relative_difference(const Trajectory& a, const Trajectory& b) {

@@ -8,7 +8,7 @@ namespace pogear::test {
 namespace {
 
 // The one-stage gear, no friction, no mesh damping, no input, spinning and twisted at t = 0.
-SimModel undamped(double horizon, double sample, double tolerance) {
+SpecializedScene undamped(double horizon, double sample, double tolerance) {
   std::string text = with_effects(scene_text("paper_one_stage"), "\"mesh_compliance\", \"mesh_forces\"");
   text = with_line(text, "compare_rigid = true", "compare_rigid = false");
   text = with_line(text, "tau_c = { constant = \"100*Nm\" }", "");
@@ -19,9 +19,9 @@ SimModel undamped(double horizon, double sample, double tolerance) {
   return scene_model(text);
 }
 
-std::vector<double> energies(const SimModel& m, const Trajectory& tr) {
-  Derivation d = m.derivation;
-  const GiNaC::exmap v = numeric_substitutions(d.symbols, d.radius.values);
+std::vector<double> energies(const SpecializedScene& m, const Trajectory& tr) {
+  const Derivation& d = m.derivation;
+  const GiNaC::exmap v = d.values;
   const Eigen::MatrixXd J = evaluate_matrix(d.elastic.J, v), K = evaluate_matrix(d.elastic.K, v);
   const Eigen::Index n = J.rows();
   std::vector<double> e;
@@ -30,12 +30,12 @@ std::vector<double> energies(const SimModel& m, const Trajectory& tr) {
   return e;
 }
 
-double fastest_period(const SimModel& m) { return 2 * 3.141592653589793 / system_diagnostics(m, m.main).fastest_rate; }
+double fastest_period(const SpecializedScene& m) { return 2 * 3.141592653589793 / system_diagnostics(m, m.main).fastest_rate; }
 
 TEST(Undamped, ExactSteppingConservesEnergyOver1e4Periods) {
   const double period = fastest_period(undamped(1, 1e-3, 1e-8));
-  const SimModel m = undamped(1e4 * period, period / 8, 1e-8);
-  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, "exact"));
+  const SpecializedScene m = undamped(1e4 * period, period / 8, 1e-8);
+  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, rt::Solver::exact));
   ASSERT_TRUE(tr.status.ok) << tr.status.message;
   ASSERT_GE(tr.t.back(), 1e4 * period * (1 - 1e-12));
   const auto e = energies(m, tr);
@@ -51,8 +51,8 @@ TEST(Undamped, ExactSteppingConservesEnergyOver1e4Periods) {
 TEST(Undamped, TrBdf2LosesEnergyAtItsTheoreticalRate) {
   const double period = fastest_period(undamped(1, 1e-3, 1e-8));
   const double tol = 1e-4;
-  const SimModel m = undamped(1e4 * period, period / 8, tol);
-  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, "implicit"));
+  const SpecializedScene m = undamped(1e4 * period, period / 8, tol);
+  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, rt::Solver::implicit));
   ASSERT_TRUE(tr.status.ok) << tr.status.message;
   const auto e = energies(m, tr);
   const double loss = (e.front() - e.back()) / e.front();

@@ -12,16 +12,10 @@
 #include <vector>
 
 #include "pogear/exact.hpp"
+#include "pogear/solver.hpp"
 #include "pogear/steppers.hpp"
 
 namespace pogear::rt {
-
-struct SolverOptions {
-  double rtol = 1e-8, atol = 1e-10;
-  double h = 1e-4;  // rk4 and exact: largest step; dopri5 and implicit: first step
-  double h_max = std::numeric_limits<double>::infinity();
-  long max_steps = 100000000;  // adaptive methods count rejected attempts too
-};
 
 struct RunStatus {
   bool ok = true;
@@ -33,11 +27,6 @@ struct RunStatus {
 // Observers are obs(double t, const X& x); one returning bool can stop the run by returning false
 // (e.g. when its output file cannot be written).
 namespace detail {
-
-inline std::string num(double v) {
-  char buf[32];
-  return std::string(buf, std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 10).ptr);
-}
 
 // The sample times, computed as t0 + k dt rather than accumulated so that late samples are as exact
 // as early ones. The last sample is t_end itself, also when (t_end - t0) / dt is not a whole number.

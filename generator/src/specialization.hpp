@@ -4,24 +4,23 @@
 #pragma once
 
 #include <optional>
+#include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "derivation.hpp"
+#include "operation_count.hpp"
+#include "reference_model.hpp"
 #include "scene.hpp"
 
 namespace pogear {
-
-struct OperationCount {
-  int multiplications = 0;  // divisions included
-  int additions = 0;        // subtractions included
-  int total() const { return multiplications + additions; }
-};
 
 // `const double name = value;` in generated code.
 struct Assignment {
   std::string name;
   GiNaC::ex value;
+  GiNaC::ex symbol;  // what the expressions after it read for it
 };
 
 // How `--param NAME=VALUE` of a generated simulator may write a tunable's value: a plain number
@@ -43,18 +42,25 @@ struct ImplicitForm {
   GiNaC::matrix L, A, B;
 };
 
-struct SimSystem {
-  std::string kind;       // "elastic" or "rigid"
+enum class SystemKind { elastic, rigid };
+inline std::string_view kind_name(SystemKind k) { return k == SystemKind::elastic ? "elastic" : "rigid"; }
+inline std::ostream& operator<<(std::ostream& out, SystemKind k) { return out << kind_name(k); }
+
+struct SpecializedSystem {
+  SystemKind kind = SystemKind::elastic;
   std::string equations;  // one line, for the generated header comment
+  // Names (as the generated code and the CSV files write them) and what each one is.
   std::vector<std::string> states, state_units;
+  std::vector<Variable> state_variables;
   std::vector<double> x0;
   std::vector<std::string> inputs;    // tau_<body> of the nonzero signals
+  std::vector<Variable> input_variables;
   std::vector<int> input_signal;      // index into Scene::inputs
   std::vector<TunableParameter> params;
   std::vector<Assignment> rhs_temporaries;
   std::vector<GiNaC::ex> rhs;  // dx/dt, one per state
   std::vector<std::string> outputs, output_units;
-  std::vector<Assignment> output_temporaries;
+  std::vector<Variable> output_variables;
   std::vector<GiNaC::ex> output_values;
   GiNaC::matrix M, N;  // dx/dt = M x + N u (every scene pogear knows is linear); 0 x 0 with `implicit`
   // A rigid system with tunables: dx/dt from L1 x1' = A1 x1 + B1 tau, solved by the generated code
@@ -66,32 +72,14 @@ struct SimSystem {
   GiNaC::matrix L;  // energy E = x^T L x / 2 (symmetric positive definite), for the runner's divergence check
 };
 
-struct SimModel {
+struct SpecializedScene {
   Scene scene;
   Derivation derivation;  // with the scene's overrides applied
-  SimSystem main;
-  std::optional<SimSystem> rigid;  // the comparison, when the scene asks for it
+  SpecializedSystem main;
+  std::optional<SpecializedSystem> rigid;  // the comparison, when the scene asks for it
 };
 
-SimModel specialize(const Scene& scene);
-SimSystem specialize_system(const Scene& scene, Derivation& d, bool elastic);
-
-OperationCount count_operations(const GiNaC::ex& e);
-
-// Numeric (M, N) of the same system built from the derivation's L, A, B instead of the
-// specialized expressions: an independent computation for --interpreted and the tests.
-struct NumericSystem {
-  Eigen::MatrixXd M, N;        // dx/dt = M x + N u
-  Eigen::MatrixXd L;           // energy E = x^T L x / 2
-  Eigen::MatrixXd C, D, E;     // y = C x + D u + E dx/dt
-  Eigen::VectorXd x0;
-};
-NumericSystem numeric_system(const SimModel& model, const SimSystem& system);
-
-// The state matrix M of a system at the scene's values (every tunable at its value).
-Eigen::MatrixXd state_matrix(const SimModel& model, const SimSystem& system);
-
-// Diagnostics of a specialized system (its own M, the scene's values and effects).
-Diagnostics system_diagnostics(const SimModel& model, const SimSystem& system);
+SpecializedScene specialize(const Scene& scene);
+SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, bool elastic);
 
 }  // namespace pogear

@@ -1,138 +1,25 @@
-// Runs one system of a scene with the chosen method and writes its CSV: the part of every
-// generated main that does not depend on the model, shared with the interpreted mode.
+// Runs one system of a scene with the run's solver (simulate_system, the one place that picks the
+// driver) and writes its CSV (run_system): the part of every generated main that does not depend
+// on the model, shared with pogear's interpreted mode.
 #pragma once
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <optional>
 #include <string>
-#include <string_view>
-#include <system_error>
 #include <utility>
 #include <variant>
 #include <vector>
 
+#include "pogear/command_line.hpp"
 #include "pogear/csv.hpp"
-#include "pogear/run_limits.hpp"
+#include "pogear/drivers.hpp"
 #include "pogear/signals.hpp"
-#include "pogear/simulate.hpp"
 
 namespace pogear::rt {
-
-struct SceneRun {
-  std::string name;
-  double horizon = 1, sample = 1e-3;
-  std::string solver = "exact";
-  SolverOptions options;
-  std::string out_dir = ".";
-  bool csv = true;
-  int repeat = 1;  // > 1 for timing: the median is reported
-  bool quiet = false;
-  // --param NAME=VALUE as given, in order; the generated main resolves them against its Params.
-  std::vector<std::pair<std::string, std::string>> params;
-};
-
-namespace detail {
-
-// The whole of `text` as a finite number, or nothing: "1e-6x", "0.05ms", "", "inf" and "nan" are
-// not numbers here (atof would have read a prefix, or 0).
-inline std::optional<double> parse_finite(std::string_view text) {
-  double v = 0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, v);
-  if (ec != std::errc{} || ptr != end || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
-
-}  // namespace detail
-
-// Reads the generated simulator's options into `run`; on bad usage prints
-// `PROGRAM: error: what; what to do` and returns false (the caller exits with 1). Every number
-// must be all of its argument and inside the ranges of run_limits.hpp, which the scene file obeys too.
-inline bool parse_command_line(int argc, char** argv, SceneRun& run) {
-  const char* program = argv[0];
-  auto usage_error = [&](const std::string& message) {
-    std::fprintf(stderr, "%s: error: %s\n", program, message.c_str());
-    return false;
-  };
-  // A number in [lo, hi]; `what` says what the option takes, for the message.
-  auto number = [&](const char* option, const char* text, double lo, double hi, const std::string& what,
-                    bool whole, double& out) {
-    const std::optional<double> v = detail::parse_finite(text);
-    if (!v) return usage_error(std::string(option) + " '" + text + "' is not a finite number; give " + what);
-    if (!(*v >= lo && *v <= hi) || (whole && *v != std::floor(*v)))
-      return usage_error(std::string(option) + " " + text + " is out of range; give " + what);
-    out = *v;
-    return true;
-  };
-  const std::string tolerance_range = "a relative tolerance from " + detail::num(limits::min_tolerance) + " to " +
-                                      detail::num(limits::max_tolerance) + ", e.g. 1e-8";
-  const std::string step_range = "a step in seconds as a plain number (no unit), from " +
-                                 detail::num(limits::min_step) + " to " + detail::num(limits::max_step) +
-                                 ", e.g. 5e-05";
-  const std::string max_steps_range = "a whole number from " + std::to_string(limits::min_max_steps) + " to " +
-                                      std::to_string(limits::max_max_steps) + ", e.g. 10000000";
-  const std::string repeat_range = "a whole number from 1 to " + std::to_string(limits::max_repeat) + ", e.g. 10";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool takes_value = a == "--solver" || a == "--tolerance" || a == "--step" || a == "--out" ||
-                             a == "--repeat" || a == "--max-steps" || a == "--param";
-    if (takes_value && i + 1 >= argc) return usage_error(a + " needs a value");
-    const char* v = takes_value ? argv[++i] : nullptr;
-    double x = 0;
-    if (a == "--solver") {
-      run.solver = v;
-    } else if (a == "--tolerance") {
-      if (!number("--tolerance", v, limits::min_tolerance, limits::max_tolerance, tolerance_range, false, x))
-        return false;
-      run.options.rtol = x;
-      run.options.atol = x * 1e-2;
-    } else if (a == "--step") {
-      if (!number("--step", v, limits::min_step, limits::max_step, step_range, false, x)) return false;
-      run.options.h = x;
-    } else if (a == "--max-steps") {
-      if (!number("--max-steps", v, static_cast<double>(limits::min_max_steps),
-                  static_cast<double>(limits::max_max_steps), max_steps_range, true, x))
-        return false;
-      run.options.max_steps = static_cast<long>(x);
-    } else if (a == "--repeat") {
-      if (!number("--repeat", v, 1, static_cast<double>(limits::max_repeat), repeat_range, true, x)) return false;
-      run.repeat = static_cast<int>(x);
-    } else if (a == "--out") {
-      if (!*v) return usage_error("--out needs a directory name, not an empty one; give e.g. --out results");
-      run.out_dir = v;
-    } else if (a == "--param") {
-      const std::string_view pv = v;
-      const auto eq = pv.find('=');
-      if (eq == std::string_view::npos || eq == 0)
-        return usage_error("--param '" + std::string(pv) + "' is not NAME=VALUE; give a tunable parameter and "
-                           "its value, e.g. --param J_c=0.5");
-      run.params.emplace_back(std::string(pv.substr(0, eq)), std::string(pv.substr(eq + 1)));
-    } else if (a == "--no-csv") {
-      run.csv = false;
-    } else if (a == "--quiet") {
-      run.quiet = true;
-    } else {
-      return usage_error("unknown option '" + a + "'; options are --solver, --tolerance, --step, --out, --repeat, "
-                         "--max-steps, --param, --no-csv, --quiet");
-    }
-  }
-  if (run.solver != "exact" && run.solver != "rk4" && run.solver != "dopri5" && run.solver != "implicit")
-    return usage_error("unknown solver '" + run.solver + "'; the solvers are exact, rk4, dopri5, implicit");
-  if (run.csv) {
-    std::error_code ec;
-    std::filesystem::create_directories(run.out_dir, ec);
-    if (ec)
-      return usage_error("cannot create the output directory '" + run.out_dir + "' (" + ec.message() +
-                         "); give --out a directory you can create or write to");
-  }
-  return true;
-}
 
 // The exact method is exact for inputs linear between breakpoints, so it steps a whole sample
 // period; a sine is held linear over the scene's `step` instead.
@@ -140,6 +27,37 @@ inline double exact_step(const SceneRun& run, const std::vector<Signal>& signals
   const bool piecewise_linear = std::none_of(signals.begin(), signals.end(),
                                              [](const Signal& s) { return std::holds_alternative<Sine>(s); });
   return piecewise_linear ? run.sample : std::min(run.sample, run.options.h);
+}
+
+// The signals' values at t, into u (one entry per signal).
+template <class Input>
+void input_values(const std::vector<Signal>& signals, double t, Input& u) {
+  for (std::size_t i = 0; i < signals.size(); ++i) u(static_cast<Eigen::Index>(i)) = value(signals[i], t);
+}
+
+// Integrates dx/dt = M x + N u(t), u from `signals`, from x0 at t = 0 to run.horizon with run.solver,
+// calling obs at every sample: the one place that maps a Solver to its driver. `rhs(t, x, dx)` is
+// the same right-hand side with the inputs applied (a generated rhs costs less than M x + N u); the
+// exact method uses M and N, the implicit one M as its constant Jacobian.
+template <class StateMatrix, class InputMatrix, class Rhs, class State, class Obs>
+RunStatus simulate_system(const SceneRun& run, const std::vector<Signal>& signals, const StateMatrix& M,
+                          const InputMatrix& N, Rhs&& rhs, const State& x0, Obs&& obs) {
+  const std::vector<double> breaks = breakpoints(signals, 0.0, run.horizon);
+  SolverOptions opt = run.options;
+  switch (run.solver) {
+    case Solver::exact: {
+      opt.h = exact_step(run, signals);
+      auto inputs = [&](double t, auto& u) { input_values(signals, t, u); };
+      return simulate_exact(M, N, inputs, x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
+    }
+    case Solver::rk4: return simulate_rk4(rhs, x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
+    case Solver::dopri5: return simulate_dopri5(rhs, x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
+    case Solver::implicit: {
+      auto jac = [&](double, const State&, StateMatrix& J) { J = M; };
+      return simulate_implicit(rhs, jac, true, x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
+    }
+  }
+  return RunStatus{false, "unknown solver", 0.0};
 }
 
 // The largest |u(t)| of a signal over [t0, t1]: a sine's offset plus its amplitude; every other
@@ -224,27 +142,20 @@ int run_system(const System& sys, const typename System::Params& p, const std::v
   typename System::StateMatrix M(nx, nx);
   typename System::InputMatrix N(nx, nu);
   sys.matrices(p, M, N);
-  const std::vector<double> breaks = breakpoints(signals, 0.0, run.horizon);
-  auto inputs = [&](double t, Input& u) {
-    for (Eigen::Index i = 0; i < nu; ++i) u(i) = value(signals[static_cast<std::size_t>(i)], t);
-  };
   Input u(nu);
   Output y(ny);
   auto f = [&](double t, const State& x, State& dx) {
-    inputs(t, u);
+    input_values(signals, t, u);
     sys.rhs(p, x, u, dx);
   };
-  auto jac = [&](double, const State&, typename System::StateMatrix& J) { J = M; };
 
-  SolverOptions opt = run.options;
-  if (run.solver == "exact") opt.h = exact_step(run, signals);
-  if (run.solver == "rk4") {
+  if (run.solver == Solver::rk4) {
     const double limit = rk4_stability_limit(M);
-    if (opt.h > limit) {
+    if (run.options.h > limit) {
       std::fprintf(stderr,
                    "%s: error: rk4 step %g s is above its stability limit %g s for this scene (fastest mode); "
                    "use --step %g or smaller, or --solver exact or implicit\n",
-                   label.c_str(), opt.h, limit, 0.9 * limit);
+                   label.c_str(), run.options.h, limit, 0.9 * limit);
       return 3;
     }
   }
@@ -284,16 +195,13 @@ int run_system(const System& sys, const typename System::Params& p, const std::v
                    "smaller --step for rk4), or --solver exact or implicit";
         return false;
       }
-      inputs(t, u);
+      input_values(signals, t, u);
       sys.outputs(p, x, u, y);
       if (csv) csv->row(t, y);
       return true;
     };
     const auto start = std::chrono::steady_clock::now();
-    if (run.solver == "exact") st = simulate_exact(M, N, inputs, x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
-    else if (run.solver == "rk4") st = simulate_rk4(f, x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
-    else if (run.solver == "dopri5") st = simulate_dopri5(f, x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
-    else st = simulate_implicit(f, jac, true, x0, 0.0, run.horizon, run.sample, opt, obs, breaks);
+    st = simulate_system(run, signals, M, N, f, x0, obs);
     if (!diverged.empty()) st.message = diverged;
     if (csv) {
       if (st.ok ? !csv->commit() : !csv->commit_incomplete(st.message)) {
@@ -312,7 +220,7 @@ int run_system(const System& sys, const typename System::Params& p, const std::v
   std::sort(seconds.begin(), seconds.end());
   if (!run.quiet)
     std::printf("%s: %s, %ld steps, %ld rhs evaluations, %.6g s wall (median of %d)%s\n", label.c_str(),
-                run.solver.c_str(), st.steps, st.rhs_evals, seconds[seconds.size() / 2], run.repeat,
+                std::string(solver_name(run.solver)).c_str(), st.steps, st.rhs_evals, seconds[seconds.size() / 2], run.repeat,
                 run.csv ? (", wrote " + run.out_dir + "/" + label + ".csv").c_str() : "");
   return 0;
 }

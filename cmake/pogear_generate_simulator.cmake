@@ -1,0 +1,39 @@
+# Build step of pogear_add_simulator (cmake -P, with POGEAR, SCENE, OUT_DIR and MAIN defined): asks
+# pogear which files the scene writes, generates them into OUT_DIR/staging and copies into OUT_DIR
+# those that changed, then writes MAIN, a file of a fixed name that includes the generated main.
+cmake_minimum_required(VERSION 3.25)
+
+foreach(var POGEAR SCENE OUT_DIR MAIN)
+  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
+    message(FATAL_ERROR "pogear_generate_simulator.cmake: pass -D${var}=...")
+  endif()
+endforeach()
+
+set(staging "${OUT_DIR}/staging")
+# pogear's own message (FILE:LINE:COL: error: ...) is what the user needs to see when it fails.
+execute_process(COMMAND "${POGEAR}" generate "${SCENE}" -o "${staging}" --list-outputs
+  RESULT_VARIABLE status OUTPUT_VARIABLE listed ERROR_VARIABLE errors)
+if(NOT status STREQUAL "0")
+  message(FATAL_ERROR "${errors}")
+endif()
+execute_process(COMMAND "${POGEAR}" generate "${SCENE}" -o "${staging}"
+  RESULT_VARIABLE status OUTPUT_QUIET ERROR_VARIABLE errors)
+if(NOT status STREQUAL "0")
+  message(FATAL_ERROR "${errors}")
+endif()
+
+# One path per line: the header, then the main.
+string(REGEX REPLACE "\n$" "" listed "${listed}")
+string(REPLACE "\n" ";" listed "${listed}")
+list(LENGTH listed count)
+if(NOT count EQUAL 2)
+  message(FATAL_ERROR "pogear generate --list-outputs printed ${count} files, expected a header and a main: ${listed}")
+endif()
+foreach(path IN LISTS listed)
+  get_filename_component(name "${path}" NAME)
+  # Unchanged files keep their time stamps: the simulator is recompiled only when the code changed.
+  file(COPY_FILE "${staging}/${name}" "${OUT_DIR}/${name}" ONLY_IF_DIFFERENT)
+endforeach()
+list(GET listed 1 generated_main)
+get_filename_component(generated_main "${generated_main}" NAME)
+file(CONFIGURE OUTPUT "${MAIN}" CONTENT "#include \"${generated_main}\"\n" @ONLY)

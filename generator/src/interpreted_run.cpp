@@ -1,0 +1,91 @@
+// The interpreted path: the numeric model's matrices wrapped in the members run_system and
+// simulate_system expect of a generated system.
+#include "interpreted_run.hpp"
+
+#include <string>
+#include <utility>
+
+#include <Eigen/SparseCore>
+
+#include "reference_model.hpp"
+
+namespace pogear {
+namespace {
+
+// A system with the generated structs' members, on dynamic matrices, from the numeric model.
+// The output maps are sparse, as the generated expressions are: a structural zero must not turn
+// an overflowed (infinite) rate into NaN through 0 * inf, where the compiled path writes inf.
+struct InterpretedSystem {
+  InterpretedSystem(NumericSystem numeric, std::vector<std::string> names, std::vector<std::string> units)
+      : ns(std::move(numeric)), output_names(std::move(names)), output_units(std::move(units)),
+        C(ns.C.sparseView()), D(ns.D.sparseView()), E(ns.E.sparseView()) {}
+
+  using State = Eigen::VectorXd;
+  using Input = Eigen::VectorXd;
+  using Output = Eigen::VectorXd;
+  using StateMatrix = Eigen::MatrixXd;
+  using InputMatrix = Eigen::MatrixXd;
+  struct Params {};
+  NumericSystem ns;
+  std::vector<std::string> output_names, output_units;
+  Eigen::SparseMatrix<double> C, D, E;
+
+  void rhs(const Params&, const State& x, const Input& u, State& dx) const {
+    dx.noalias() = ns.M * x;
+    if (u.size()) dx.noalias() += ns.N * u;
+  }
+  void outputs(const Params&, const State& x, const Input& u, Output& y) const {
+    State dx(x.size());
+    rhs({}, x, u, dx);
+    y.noalias() = C * x;
+    y.noalias() += E * dx;
+    if (u.size()) y.noalias() += D * u;
+  }
+  void matrices(const Params&, StateMatrix& M, InputMatrix& N) const {
+    M = ns.M;
+    N = ns.N;
+  }
+  void energy_matrix(const Params&, StateMatrix& L) const { L = ns.L; }
+};
+
+std::vector<rt::Signal> signals_of(const SpecializedScene& model, const SpecializedSystem& sys) {
+  std::vector<rt::Signal> signals;
+  for (int i : sys.input_signal) signals.push_back(model.scene.inputs[i].signal);
+  return signals;
+}
+
+int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run,
+                        const std::string& suffix) {
+  InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
+  return rt::run_system(is, {}, signals_of(model, sys), is.ns.x0, run, suffix);
+}
+
+}  // namespace
+
+int run_interpreted(const SpecializedScene& model, const rt::SceneRun& run) {
+  int status = run_one_interpreted(model, model.main, run, "");
+  if (status == 0 && model.rigid) status = run_one_interpreted(model, *model.rigid, run, ".rigid");
+  return status;
+}
+
+Trajectory interpret_trajectory(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run) {
+  const InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
+  const std::vector<rt::Signal> signals = signals_of(model, sys);
+  Eigen::VectorXd u(static_cast<Eigen::Index>(signals.size())), y(sys.outputs.size());
+  auto f = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
+    rt::input_values(signals, t, u);
+    is.rhs({}, x, u, dx);
+  };
+  Trajectory tr;
+  auto obs = [&](double t, const Eigen::VectorXd& x) {
+    rt::input_values(signals, t, u);
+    is.outputs({}, x, u, y);
+    tr.t.push_back(t);
+    tr.x.push_back(x);
+    tr.y.push_back(y);
+  };
+  tr.status = rt::simulate_system(run, signals, is.ns.M, is.ns.N, f, is.ns.x0, obs);
+  return tr;
+}
+
+}  // namespace pogear

@@ -1,0 +1,21 @@
+// The model's parameter table (Topology::parameters): read once with the model, with a scene's
+// overrides applied by the scene reader, and only read after that. Lookups never add entries.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "topology.hpp"
+
+namespace pogear {
+
+// Gives every parameter its value from its text; they may refer to each other.
+void evaluate_parameters(std::vector<Parameter>& parameters);
+// Every parameter a role needs must exist (radii may come from the geometry later), carry the
+// right unit and a sensible sign; also after a scene's overrides, which may change any of them.
+void check_parameter_roles(const Topology& t);
+
+const Parameter* find_parameter(const Topology& t, const std::string& name);
+double parameter_value(const Topology& t, const std::string& name);  // SI; throws if absent
+
+}  // namespace pogear

@@ -1,0 +1,106 @@
+// See reference_model.hpp: exact rational arithmetic on the assembled matrices, rounded once.
+#include "reference_model.hpp"
+
+#include <algorithm>
+
+#include "exact_algebra.hpp"
+#include "parameter_folding.hpp"
+#include "specialization.hpp"
+
+namespace pogear {
+
+NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& sys) {
+  const Derivation& d = model.derivation;
+  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  const ElasticModel& e = d.elastic;
+  // Exact rational arithmetic on the assembled matrices, rounded once at the end: the same
+  // numbers the specialized expressions give, by another formula.
+  auto exact = [&](const GiNaC::matrix& m) { return exact_matrix(m, values); };
+  auto doubles = [](const GiNaC::matrix& m) { return evaluate_matrix(m, {}); };
+  NumericSystem out;
+  std::vector<int> input_bodies;
+  for (const Variable tau : sys.input_variables) input_bodies.push_back(tau.index);
+  auto input_columns = [&](const GiNaC::matrix& B) {
+    GiNaC::matrix out(B.rows(), input_bodies.size());
+    for (unsigned i = 0; i < B.rows(); ++i)
+      for (std::size_t j = 0; j < input_bodies.size(); ++j) out(i, j) = B(i, input_bodies[j]);
+    return out;
+  };
+  const std::size_t nx = sys.states.size(), ny = sys.outputs.size(), nu = sys.inputs.size();
+  out.C = Eigen::MatrixXd::Zero(ny, nx);
+  out.D = Eigen::MatrixXd::Zero(ny, nu);
+  out.E = Eigen::MatrixXd::Zero(ny, nx);
+  out.x0 = Eigen::Map<const Eigen::VectorXd>(sys.x0.data(), nx);
+  auto state_index = [&](Variable v) {
+    return static_cast<Eigen::Index>(std::find(sys.state_variables.begin(), sys.state_variables.end(), v) -
+                                     sys.state_variables.begin());
+  };
+  if (sys.kind == SystemKind::elastic) {
+    const GiNaC::matrix L = exact(e.L);
+    out.L = doubles(L);
+    out.M = doubles(exact_solve(L, exact(e.A)));
+    out.N = doubles(exact_solve(L, input_columns(exact(e.B))));
+    for (std::size_t i = 0; i < ny; ++i) out.C(i, state_index(sys.output_variables[i])) = 1;
+  } else {
+    // L1, A1 and Q1 from Q1's entries, not by substituting into the closed forms (the same numbers).
+    const RigidValues v = exact_rigid_values(d.rigid, e, values);
+    const GiNaC::matrix& Q1 = v.Q1;
+    const GiNaC::matrix R = exact(e.R), J = exact(e.J), BJ = exact(e.B_J);
+    out.L = doubles(v.L1);
+    out.M = doubles(exact_solve(v.L1, v.A1));
+    out.N = doubles(exact_solve(v.L1, input_columns(Q1.transpose())));
+    // Eq. (8) literally, F = (R R^T)^-1 R g with g = tau - J Q1 x1' - B_J Q1 x1; with redundant
+    // meshes the stiffness-weighted split F = K R (R^T K R)^+ g, which equals
+    // K R (R^T K R + Q1 Q1^T)^-1 g because g is orthogonal to ker R = span Q1. The inverse is
+    // applied to the columns needed, [B_J Q1, J Q1, the inputs' unit vectors], not formed.
+    const unsigned n = Q1.rows(), k = Q1.cols();
+    GiNaC::matrix G(n, 2 * k + nu);
+    for (unsigned b = 0; b < n; ++b)
+      for (unsigned j = 0; j < k; ++j) {
+        G(b, j) = BJ(b, b) * Q1(b, j);
+        G(b, k + j) = J(b, b) * Q1(b, j);
+      }
+    for (std::size_t j = 0; j < nu; ++j) G(input_bodies[j], 2 * k + j) = 1;
+    GiNaC::matrix PG;  // P G
+    if (!d.rigid.redundant_meshes) {
+      PG = exact_solve(exact_product(R, R.transpose()), exact_product(R, G));
+    } else {
+      const GiNaC::matrix K = exact(e.K);
+      const GiNaC::matrix S = exact_product(exact_product(R.transpose(), K), R).add(exact_product(Q1, Q1.transpose()));
+      PG = exact_product(exact_product(K, R), exact_solve(S, G));
+    }
+    const Eigen::MatrixXd PGn = doubles(PG), Q1n = doubles(Q1);
+    const Eigen::MatrixXd C_F = -PGn.leftCols(k), E_F = -PGn.middleCols(k, k);
+    for (std::size_t i = 0; i < ny; ++i) {
+      const Variable y = sys.output_variables[i];
+      if (y.kind == VariableKind::velocity) {
+        out.C.row(i) = Q1n.row(y.index);
+      } else {
+        const Eigen::Index f = y.index;
+        out.C.row(i) = C_F.row(f);
+        out.E.row(i) = E_F.row(f);
+        for (std::size_t j = 0; j < nu; ++j) out.D(i, j) = PGn(f, 2 * k + j);
+      }
+    }
+  }
+  return out;
+}
+
+Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSystem& sys) {
+  const Derivation& d = model.derivation;
+  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  if (!sys.implicit) return evaluate_matrix(sys.M, values);
+  return evaluate_matrix(sys.implicit->L, values).llt().solve(evaluate_matrix(sys.implicit->A, values));
+}
+
+Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedSystem& sys) {
+  const Derivation& d = model.derivation;
+  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  // The specialized system's own M, exact in the tunable parameters, at their values: the numbers
+  // numeric_system computes by another formula (the tests compare them), without solving again.
+  // L1 holds inertias and radii only, which the folding leaves at the model's values.
+  return diagnose(state_matrix(model, sys), evaluate_matrix(d.rigid_values.L1, {}),
+                  evaluate_matrix(d.elastic.R, values), model.scene.sample);
+}
+
+}  // namespace pogear

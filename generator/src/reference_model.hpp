@@ -1,0 +1,30 @@
+// The reference numeric model: a specialized system's matrices computed from the derivation's
+// L, A, B instead of the specialized expressions, for --interpreted runs and the tests.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "diagnostics.hpp"
+
+namespace pogear {
+
+struct SpecializedScene;   // specialization.hpp
+struct SpecializedSystem;  // specialization.hpp
+
+// Numeric (M, N) of the same system built from the derivation's L, A, B instead of the
+// specialized expressions: an independent computation for --interpreted and the tests.
+struct NumericSystem {
+  Eigen::MatrixXd M, N;        // dx/dt = M x + N u
+  Eigen::MatrixXd L;           // energy E = x^T L x / 2
+  Eigen::MatrixXd C, D, E;     // y = C x + D u + E dx/dt
+  Eigen::VectorXd x0;
+};
+NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& system);
+
+// The state matrix M of a system at the scene's values (every tunable at its value).
+Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSystem& system);
+
+// Diagnostics of a specialized system (its own M, the scene's values and effects).
+Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedSystem& system);
+
+}  // namespace pogear

@@ -1,0 +1,71 @@
+// The integration methods a run can use, their names as scenes and command lines write them, and
+// their options: decided here once for the scene reader, the generated simulators and pogear.
+#pragma once
+
+#include <array>
+#include <charconv>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace pogear::rt {
+
+enum class Solver { exact, rk4, dopri5, implicit };
+
+inline constexpr std::array<Solver, 4> all_solvers{Solver::exact, Solver::rk4, Solver::dopri5, Solver::implicit};
+
+inline constexpr std::string_view solver_name(Solver s) {
+  switch (s) {
+    case Solver::exact: return "exact";
+    case Solver::rk4: return "rk4";
+    case Solver::dopri5: return "dopri5";
+    case Solver::implicit: return "implicit";
+  }
+  return "exact";
+}
+
+inline constexpr std::optional<Solver> parse_solver(std::string_view name) {
+  for (Solver s : all_solvers)
+    if (solver_name(s) == name) return s;
+  return std::nullopt;
+}
+
+// The names joined by `separator`, for messages and usage lines ("exact, rk4, dopri5, implicit").
+inline std::string solver_names(std::string_view separator) {
+  std::string list;
+  for (Solver s : all_solvers) {
+    if (!list.empty()) list += separator;
+    list += solver_name(s);
+  }
+  return list;
+}
+
+struct SolverOptions {
+  double rtol = 1e-8, atol = 1e-10;
+  double h = 1e-4;  // rk4 and exact: largest step; dopri5 and implicit: first step
+  double h_max = std::numeric_limits<double>::infinity();
+  long max_steps = 100000000;  // adaptive methods count rejected attempts too
+};
+
+// Scenes and command lines give one tolerance, the relative one; the absolute tolerance follows it
+// two decades lower, so that states near zero (a body at rest) are held to about the same number
+// of digits as the large ones, without a second setting to keep in step.
+inline constexpr double absolute_per_relative_tolerance = 1e-2;
+
+inline void set_tolerance(SolverOptions& options, double relative) {
+  options.rtol = relative;
+  options.atol = relative * absolute_per_relative_tolerance;
+}
+
+namespace detail {
+
+// A number in messages: ten significant digits, the shortest form that shows them.
+inline std::string num(double v) {
+  char buf[32];
+  return std::string(buf, std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 10).ptr);
+}
+
+}  // namespace detail
+
+}  // namespace pogear::rt

@@ -1,0 +1,149 @@
+// The generated rhs(), outputs() and matrices() of every scene in models/scenes/, and of the
+// tunable path at other values than the scene's, against the reference numeric model
+// (numeric_system) built from the same scene file, at random states and inputs. CMake generates
+// each scene's header at build time and lists the scenes of models/scenes/ in scenes.inc.
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../support/files.hpp"
+#include "../support/gaps.hpp"
+#include "generated_scene.hpp"
+#include "reference_model.hpp"
+#include "specialization.hpp"
+
+namespace pogear::test {
+
+#define POGEAR_SCENE(id, file) GeneratedScene generated_##id();
+#include "scenes.inc"
+#undef POGEAR_SCENE
+GeneratedScene generated_tunable_one_stage();  // tunable_scene.cpp
+
+namespace {
+
+struct SceneUnderTest {
+  std::string id, file;
+  GeneratedScene (*generated)();
+  std::string parameters;  // [parameters] overrides of the reference, the values the generated Params hold
+};
+
+void PrintTo(const SceneUnderTest& scene, std::ostream* out) { *out << scene.id; }
+
+std::vector<SceneUnderTest> scenes() {
+  return {
+#define POGEAR_SCENE(id, file) SceneUnderTest{#id, file, &generated_##id, ""},
+#include "scenes.inc"
+#undef POGEAR_SCENE
+      // The tunable path (the rigid system solved from Params) at other values than the scene's.
+      SceneUnderTest{"tunable_one_stage", POGEAR_TUNABLE_SCENE, &generated_tunable_one_stage,
+                     "K_ps = \"2000*Newton/mm\"\nJ_c = 0.3"},
+  };
+}
+
+// Both sides are the doubles of the same exact expressions: the generated code evaluates the
+// specialized expressions (coefficients rounded once, temporaries shared between rows; for the
+// tunable rigid system a Cholesky solve of L1 from Params), the reference rounds the exactly solved
+// M, N, C, D, E once and multiplies in doubles. Each side is within a few ulps of the exact value
+// times the condition of the sum, so the gap is measured relative to the sum of the absolute values
+// of the terms. Measured: at most 6.5e-16 for rhs, 2.1e-15 for outputs (paper_two_stage, whose
+// rigid forces go through dx/dt), 0 for the matrices of the scenes without tunables (the exact
+// entries rounded once) and 7.5e-16 for the tunable one (the solve). 1e-14 leaves a factor of 5;
+// a wrong sign gives a gap of order 1, and J_c off by 1e-12 of itself already 1e-13.
+constexpr double kTolerance = 1e-14;
+
+struct Systems {
+  const GeneratedSystem& generated;
+  const SpecializedSystem& specialized;
+  NumericSystem reference;
+};
+
+class GeneratedSystems : public ::testing::TestWithParam<SceneUnderTest> {
+ protected:
+  void SetUp() override {
+    generated_ = GetParam().generated();
+    const SceneUnderTest& scene = GetParam();
+    model_ = specialize(scene.parameters.empty()
+                            ? parse_scene(scene.file)
+                            : parse_scene_text(read_text(scene.file) + "\n[parameters]\n" + scene.parameters + "\n", scene.file));
+    systems_.push_back({generated_.main, model_.main, numeric_system(model_, model_.main)});
+    ASSERT_EQ(generated_.rigid.has_value(), model_.rigid.has_value());
+    if (model_.rigid) systems_.push_back({*generated_.rigid, *model_.rigid, numeric_system(model_, *model_.rigid)});
+    for (const Systems& s : systems_) {
+      ASSERT_EQ(s.generated.states, s.specialized.states) << s.specialized.kind;
+      ASSERT_EQ(s.generated.outputs, s.specialized.outputs) << s.specialized.kind;
+    }
+  }
+
+  // 20 states and inputs with every entry uniform in [-1, 1] (reproducible: a fixed seed).
+  template <class Check>
+  void at_random_points(const Systems& s, Check check) {
+    std::mt19937 random(20261123);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    const Eigen::Index nx = s.reference.M.rows(), nu = s.reference.N.cols();
+    for (int sample = 0; sample < 20; ++sample) {
+      Eigen::VectorXd x(nx), u(nu);
+      for (Eigen::Index i = 0; i < nx; ++i) x(i) = uniform(random);
+      for (Eigen::Index i = 0; i < nu; ++i) u(i) = uniform(random);
+      check(x, u);
+    }
+  }
+
+  GeneratedScene generated_;
+  SpecializedScene model_;
+  std::vector<Systems> systems_;
+};
+
+TEST_P(GeneratedSystems, RhsMatchesTheReferenceAtRandomStatesAndInputs) {
+  for (const Systems& s : systems_) {
+    const NumericSystem& r = s.reference;
+    at_random_points(s, [&](const Eigen::VectorXd& x, const Eigen::VectorXd& u) {
+      const Eigen::VectorXd dx = r.M * x + r.N * u;
+      const Eigen::VectorXd scale = r.M.cwiseAbs() * x.cwiseAbs() + r.N.cwiseAbs() * u.cwiseAbs();
+      EXPECT_LT(largest_scaled_gap(s.generated.rhs(x, u), dx, scale), kTolerance)
+          << s.specialized.kind << " at x = " << x.transpose() << ", u = " << u.transpose() << ":\n"
+          << s.generated.rhs(x, u).transpose() << "\nvs the reference\n" << dx.transpose();
+    });
+  }
+}
+
+// y = C x + D u + E dx/dt, dx/dt from the reference's M and N.
+TEST_P(GeneratedSystems, OutputsMatchTheReferenceAtRandomStatesAndInputs) {
+  for (const Systems& s : systems_) {
+    const NumericSystem& r = s.reference;
+    at_random_points(s, [&](const Eigen::VectorXd& x, const Eigen::VectorXd& u) {
+      const Eigen::VectorXd dx = r.M * x + r.N * u;
+      const Eigen::VectorXd y = r.C * x + r.D * u + r.E * dx;
+      const Eigen::VectorXd dx_scale = r.M.cwiseAbs() * x.cwiseAbs() + r.N.cwiseAbs() * u.cwiseAbs();
+      const Eigen::VectorXd scale = r.C.cwiseAbs() * x.cwiseAbs() + r.D.cwiseAbs() * u.cwiseAbs() + r.E.cwiseAbs() * dx_scale;
+      EXPECT_LT(largest_scaled_gap(s.generated.output_values(x, u), y, scale), kTolerance)
+          << s.specialized.kind << " at x = " << x.transpose() << ", u = " << u.transpose() << ":\n"
+          << s.generated.output_values(x, u).transpose() << "\nvs the reference\n" << y.transpose();
+    });
+  }
+}
+
+// Entry by entry, each relative to itself: an exact zero of the reference must be a zero.
+TEST_P(GeneratedSystems, MatricesMatchTheReference) {
+  for (const Systems& s : systems_) {
+    Eigen::MatrixXd M, N;
+    s.generated.matrices(M, N);
+    const NumericSystem& r = s.reference;
+    ASSERT_EQ(M.rows(), r.M.rows());
+    ASSERT_EQ(M.cols(), r.M.cols());
+    ASSERT_EQ(N.cols(), r.N.cols());
+    for (Eigen::Index i = 0; i < M.rows(); ++i) {
+      EXPECT_LT(largest_scaled_gap(M.row(i).transpose(), r.M.row(i).transpose(), r.M.row(i).cwiseAbs().transpose()), kTolerance)
+          << s.specialized.kind << " row " << i << " of M:\n" << M.row(i) << "\nvs the reference\n" << r.M.row(i);
+      EXPECT_LT(largest_scaled_gap(N.row(i).transpose(), r.N.row(i).transpose(), r.N.row(i).cwiseAbs().transpose()), kTolerance)
+          << s.specialized.kind << " row " << i << " of N:\n" << N.row(i) << "\nvs the reference\n" << r.N.row(i);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, GeneratedSystems, ::testing::ValuesIn(scenes()),
+                         [](const ::testing::TestParamInfo<SceneUnderTest>& info) { return info.param.id; });
+
+}  // namespace
+}  // namespace pogear::test
