@@ -97,13 +97,10 @@ void check_tunable_geometry(const Scene& sc, const Derivation& d) {
   }
 }
 
-}  // namespace
-
 // E = x^T L x / 2, the energy stored in the specialized system's states, which a run is checked
 // against (the power balance bounds it; runtime/pogear/run_system.hpp): L = diag(J, K^-1) for the
 // elastic model, L1 = Q1^T J Q1 for the rigid one, folded like the equations (tunables stay symbols).
-GiNaC::matrix energy_matrix(const Scene& sc, const Derivation& d, bool elastic) {
-  const GiNaC::exmap fold = parameter_folding(sc, d, true);
+GiNaC::matrix energy_matrix(const Derivation& d, const GiNaC::exmap& fold, bool elastic) {
   auto folded = [&](const ex& e) { return e.subs(fold, GiNaC::subs_options::no_pattern).expand(); };
   const ElasticModel& e = d.elastic;
   if (elastic) {
@@ -122,6 +119,8 @@ GiNaC::matrix energy_matrix(const Scene& sc, const Derivation& d, bool elastic) 
     }
   return L;
 }
+
+}  // namespace
 
 SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool elastic) {
   const SymbolTable& s = d.symbols;
@@ -268,7 +267,7 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
     sys.output_ops.multiplications += sys.rhs_ops.multiplications;
     sys.output_ops.additions += sys.rhs_ops.additions;
   }
-  sys.L = energy_matrix(sc, d, elastic);
+  sys.L = energy_matrix(d, fold, elastic);
   return sys;
 }
 
