@@ -1,4 +1,5 @@
-# pogear_add_simulator(TARGET SCENE): builds an executable TARGET that simulates a scene file, from
+# pogear_add_simulator(TARGET SCENE [SOLVERS LIST] [HEADER_ONLY]): builds an executable TARGET that
+# simulates a scene file, with the solvers of LIST ("exact,dopri5" or "all"; default the scene's), from
 # the C++ that `pogear generate` writes at build time into ${CMAKE_CURRENT_BINARY_DIR}/pogear_TARGET/
 # (the target property POGEAR_GENERATED_DIR, for programs of one's own that include the generated
 # header: docs/simulator-api.md). Installed with the pogear package; in-tree use is
@@ -8,9 +9,12 @@ include_guard(GLOBAL)
 # Run at build time by the commands below (cmake -P), installed next to this file.
 set(_pogear_generate_script "${CMAKE_CURRENT_LIST_DIR}/pogear_generate_simulator.cmake")
 
+# It links libpogear_runtime (pogear::runtime); with HEADER_ONLY the runtime is compiled into TARGET
+# instead (POGEAR_RT_HEADER_ONLY; about 20 s more compile time).
 function(pogear_add_simulator target scene)
-  if(ARGN)
-    message(FATAL_ERROR "pogear_add_simulator(${target} ${scene}): unexpected arguments: ${ARGN}")
+  cmake_parse_arguments(PARSE_ARGV 2 arg "HEADER_ONLY" "SOLVERS" "")
+  if(arg_UNPARSED_ARGUMENTS)
+    message(FATAL_ERROR "pogear_add_simulator(${target} ${scene}): unexpected arguments: ${arg_UNPARSED_ARGUMENTS}")
   endif()
 
   # The installed package's targets when present, otherwise pogear's own build tree.
@@ -39,7 +43,7 @@ function(pogear_add_simulator target scene)
   set(main "${out_dir}/pogear_simulator_main.cpp")
   add_custom_target(pogear_${target}_sources
     COMMAND "${CMAKE_COMMAND}" "-DPOGEAR=$<TARGET_FILE:${generator}>" "-DSCENE=${scene}" "-DOUT_DIR=${out_dir}"
-            "-DMAIN=${main}" -P "${_pogear_generate_script}"
+            "-DMAIN=${main}" "-DSOLVERS=${arg_SOLVERS}" -P "${_pogear_generate_script}"
     BYPRODUCTS "${main}"
     COMMENT "pogear: generating the simulator of ${scene} for ${target}"
     VERBATIM)
@@ -51,6 +55,9 @@ function(pogear_add_simulator target scene)
   add_dependencies(${target} pogear_${target}_sources)
   target_include_directories(${target} PRIVATE "${out_dir}")
   target_link_libraries(${target} PRIVATE ${runtime})
+  if(arg_HEADER_ONLY)
+    target_compile_definitions(${target} PRIVATE POGEAR_RT_HEADER_ONLY)
+  endif()
   target_compile_features(${target} PRIVATE cxx_std_20)
   # Where the header is, for a program of one's own (which then depends on TARGET, whose build
   # generates it).

@@ -1,4 +1,4 @@
-# Build step of pogear_add_simulator (cmake -P, with POGEAR, SCENE, OUT_DIR and MAIN defined): asks
+# Build step of pogear_add_simulator (cmake -P, with POGEAR, SCENE, OUT_DIR, MAIN and optionally SOLVERS defined): asks
 # pogear which files the scene writes, generates them into OUT_DIR/staging and copies into OUT_DIR
 # those that changed, then writes MAIN, a file of a fixed name that includes the generated main.
 cmake_minimum_required(VERSION 3.25)
@@ -10,13 +10,18 @@ foreach(var POGEAR SCENE OUT_DIR MAIN)
 endforeach()
 
 set(staging "${OUT_DIR}/staging")
+# SOLVERS (optional): the solvers to compile in, as `pogear generate --solvers` takes them.
+set(solvers_option "")
+if(DEFINED SOLVERS AND NOT SOLVERS STREQUAL "")
+  set(solvers_option --solvers "${SOLVERS}")
+endif()
 # pogear's own message (FILE:LINE:COL: error: ...) is what the user needs to see when it fails.
 execute_process(COMMAND "${POGEAR}" generate "${SCENE}" -o "${staging}" --list-outputs
   RESULT_VARIABLE status OUTPUT_VARIABLE listed ERROR_VARIABLE errors)
 if(NOT status STREQUAL "0")
   message(FATAL_ERROR "${errors}")
 endif()
-execute_process(COMMAND "${POGEAR}" generate "${SCENE}" -o "${staging}"
+execute_process(COMMAND "${POGEAR}" generate "${SCENE}" -o "${staging}" ${solvers_option}
   RESULT_VARIABLE status OUTPUT_QUIET ERROR_VARIABLE errors)
 if(NOT status STREQUAL "0")
   message(FATAL_ERROR "${errors}")

@@ -134,7 +134,7 @@ CppText provenance(const SpecializedScene& model) {
   return s;
 }
 
-GeneratedSources generate(const SpecializedScene& model) {
+GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::Solver>& solvers) {
   const Scene& sc = model.scene;
   const Derivation& d = model.derivation;
   const CppText name = identifier(sc.name);
@@ -179,10 +179,15 @@ GeneratedSources generate(const SpecializedScene& model) {
             comment_text(build_config::version), file_name(sc.file));
   m += code("// Simulates the scene and writes DIR/{}.csv{}.\n", name,
             model.rigid ? code(" and DIR/{}.rigid.csv", name) : CppText{});
-  for (const std::string& line : rt::usage_lines("PROGRAM", 100)) m += code("// {}\n", comment_text(line));
+  for (const std::string& line : rt::usage_lines("PROGRAM", 100, solvers)) m += code("// {}\n", comment_text(line));
   m += code("#include \"{}\"\n\n#include <pogear/parameters.hpp>\n#include <pogear/run_system.hpp>\n#include <pogear/signals.hpp>\n\n", header_name);
   m += code("namespace scene = pogear_generated::{};\n\n", name);
-  m += code("namespace {{\n\n") + signals_function(model, model.main, main_struct);
+  std::vector<CppText> solver_codes;
+  for (rt::Solver s : solvers) solver_codes.push_back(code("pogear::rt::Solver::{}", identifier(std::string(rt::solver_name(s)))));
+  m += code("namespace {{\n\n");
+  m += code("// The solvers compiled into this simulator (`pogear generate --solvers`): each costs compile time.\n");
+  m += code("using Solvers = pogear::rt::Solvers<{}>;\n\n", join(solver_codes, code(", ")));
+  m += signals_function(model, model.main, main_struct);
   if (model.rigid) m += code("\n") + signals_function(model, *model.rigid, code("Rigid"));
   m += code("\n}}  // namespace\n\n");
   m += code("int main(int argc, char** argv) {{\n");
@@ -191,18 +196,18 @@ GeneratedSources generate(const SpecializedScene& model) {
   m += code("  run.solver = pogear::rt::parse_solver(scene::default_solver).value();\n");
   m += code("  pogear::rt::set_tolerance(run.options, scene::default_tolerance);\n");
   m += code("  run.options.h = scene::default_step;\n  run.options.max_steps = scene::default_max_steps;\n");
-  m += code("  if (!pogear::rt::parse_command_line(argc, argv, run)) return 1;\n");
+  m += code("  if (const int exit = pogear::rt::read_command_line(argc, argv, run, Solvers::list); exit >= 0) return exit;\n");
   m += code("  scene::{}::Params params;\n", main_struct);
   m += code("  if (!pogear::rt::set_parameters(run.params, {{{}}}, argv[0])) return 1;\n",
             parameter_fields(model.main, code("params")));
   m += code("  const scene::{} system;\n", main_struct);
-  m += code("  int status = pogear::rt::run_system(system, params, {}_signals(), scene::{}::initial_state(), run, \"\");\n",
+  m += code("  int status = pogear::rt::run_system<Solvers>(system, params, {}_signals(), scene::{}::initial_state(), run, \"\");\n",
             main_struct, main_struct);
   if (model.rigid) {
     m += code("  scene::Rigid::Params rigid_params;\n");
     for (const auto& p : model.rigid->params)
       m += code("  rigid_params.{} = params.{};\n", identifier(p.name), identifier(p.name));
-    m += code("  if (status == 0)\n    status = pogear::rt::run_system(scene::Rigid{{}}, rigid_params, Rigid_signals(), "
+    m += code("  if (status == 0)\n    status = pogear::rt::run_system<Solvers>(scene::Rigid{{}}, rigid_params, Rigid_signals(), "
               "scene::Rigid::initial_state(), run, \".rigid\");\n");
   }
   m += code("  return status;\n}}\n");
@@ -212,9 +217,14 @@ GeneratedSources generate(const SpecializedScene& model) {
 
 }  // namespace
 
-GeneratedSources generate_sources(const SpecializedScene& model) {
+GeneratedSources generate_sources(const SpecializedScene& model, std::vector<rt::Solver> solvers) {
+  // The scene's solver, and those asked for, in the order of rt::all_solvers.
+  std::vector<rt::Solver> compiled;
+  for (rt::Solver s : rt::all_solvers)
+    if ((solvers.empty() && s == model.scene.solver) || std::find(solvers.begin(), solvers.end(), s) != solvers.end())
+      compiled.push_back(s);
   try {
-    return generate(model);
+    return generate(model, compiled);
   } catch (const std::logic_error& e) {
     // The readers check every name and number; what still fails here (a name or number cpp_text
     // refuses, a coefficient that should be a number) is refused, not written.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "specialization.hpp"
 
@@ -14,7 +15,9 @@ struct GeneratedSources {
   std::string main_name, main;      // <scene>_main.cpp
 };
 
-GeneratedSources generate_sources(const SpecializedScene& model);
+// The simulator's sources, with the drivers of `solvers` compiled in (each costs compile time);
+// none given: the scene's solver only.
+GeneratedSources generate_sources(const SpecializedScene& model, std::vector<rt::Solver> solvers = {});
 
 // "rhs: 38 operations (24 multiplications, 14 additions); outputs: ..." for each system.
 std::string operation_summary(const SpecializedScene& model);

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "pogear/steppers.hpp"
+#include "pogear/stability_limit.hpp"
 
 namespace pogear {
 namespace {

@@ -69,6 +69,19 @@ int main(int argc, char** argv) {
   generate->add_option("-o,--output", generate_dir, "Directory for <scene>.hpp and <scene>_main.cpp")
       ->check(non_empty_path());
   generate->add_flag("--list-outputs", list_outputs, "Print the files it would write, one per line; write nothing");
+  std::string generate_solvers;
+  generate->add_option("--solvers", generate_solvers,
+                       "Solvers to compile into the simulator, comma-separated, or 'all' (default: the scene's)")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            if (value == "all") return std::string();
+            for (const std::string& name : split_list(value))
+              if (!pogear::rt::parse_solver(name))
+                return fmt::format("unknown solver '{}' in '{}'; give some of {}, comma-separated, or all", name, value,
+                                   pogear::rt::solver_names(", "));
+            return std::string();
+          },
+          "LIST"));
 
   CLI::App* simulate = app.add_subcommand("simulate", "Generate, compile and run a scene; write CSV and plots");
   simulate->add_option("SCENE", scene_file, "Scene file (TOML)")->required();
@@ -113,7 +126,11 @@ int main(int argc, char** argv) {
       emit(text, output);
     } else if (*generate) {
       const pogear::SpecializedScene model = pogear::specialize(pogear::parse_scene(scene_file));
-      const pogear::GeneratedSources sources = pogear::generate_sources(model);
+      std::vector<pogear::rt::Solver> solvers;
+      if (generate_solvers == "all") solvers.assign(pogear::rt::all_solvers.begin(), pogear::rt::all_solvers.end());
+      else if (!generate_solvers.empty())
+        for (const std::string& name : split_list(generate_solvers)) solvers.push_back(*pogear::rt::parse_solver(name));
+      const pogear::GeneratedSources sources = pogear::generate_sources(model, solvers);
       if (list_outputs) {
         for (const std::string& path : pogear::source_paths(sources, generate_dir)) std::cout << path << "\n";
         return 0;

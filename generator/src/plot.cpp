@@ -140,7 +140,9 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
     script += "\n";
 
     ChildRequest request;
-    request.argv = {*gnuplot};
+    // The script as a file argument: gnuplot reads a script file in blocks, but its standard input
+    // a few bytes per call (0.28 s instead of 0.04 s for a 2000-sample figure).
+    request.argv = {*gnuplot, "/dev/stdin"};
     request.input = script;
     request.capture_stdout = true;
     request.capture_stderr = true;

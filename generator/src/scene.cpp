@@ -16,7 +16,7 @@
 
 #include "pogear/run_limits.hpp"
 #include "cpp_text.hpp"
-#include "pogear/signals.hpp"
+#include "pogear/signal_table.hpp"
 #include "model_parameters.hpp"
 #include "model_variables.hpp"
 #include "toml_reader.hpp"

@@ -74,7 +74,7 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   if (options.interpreted) {
     status = run_interpreted(model, run);
   } else {
-    const CompiledSimulator simulator = build_simulator(generate_sources(model));
+    const CompiledSimulator simulator = build_simulator(generate_sources(model, {run.solver}));
     status = run_compiled(simulator.executable(), run);
   }
   if (status != 0) return status;

@@ -27,7 +27,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* simulator_flags[] = {"-std=c++20", "-O2", "-DNDEBUG", "-Wall", "-Wextra"};
+// The flags of every simulator compile, decided with the runtime library's build (build_config).
+std::vector<std::string> compile_flags() {
+  return {std::begin(build_config::simulator_flags), std::end(build_config::simulator_flags)};
+}
 
 std::uint64_t fnv1a(const std::string& s, std::uint64_t h = 1469598103934665603ull) {
   for (unsigned char c : s) {
@@ -99,11 +102,19 @@ std::string first_error(const std::string& log) {
 
 std::vector<std::string> compile_command(const fs::path& dir, const std::string& main_name, const fs::path& out) {
   std::vector<std::string> argv{build_config::cxx_compiler};
-  for (const char* f : simulator_flags) argv.emplace_back(f);
+  for (const std::string& f : compile_flags()) argv.push_back(f);
   argv.push_back("-I" + dir.string());
+  // The precompiled headers first: GCC takes pogear/simulator_pch.hpp.gch there when it was built
+  // with these flags, and reads the headers from the runtime's directory otherwise.
+  if (!build_config::simulator_pch.empty()) {
+    argv.push_back("-I" + build_config::simulator_pch);
+    argv.push_back("-include");
+    argv.push_back("pogear/simulator_pch.hpp");
+  }
   argv.push_back("-I" + std::string(build_config::runtime_include));
   argv.push_back("-I" + std::string(build_config::eigen_include));
   argv.push_back((dir / main_name).string());
+  argv.push_back(build_config::runtime_library);
   argv.push_back("-o");
   argv.push_back(out.string());
   return argv;
@@ -153,9 +164,12 @@ std::uint64_t simulator_cache_key(const GeneratedSources& g, const std::string& 
   std::uint64_t h = fnv1a(g.header);
   h = fnv1a(g.main, h);
   std::string flags;
-  for (const char* f : simulator_flags) flags += std::string(f) + " ";
+  for (const std::string& f : compile_flags()) flags += f + " ";
   h = fnv1a(std::string(build_config::cxx_compiler) + flags + runtime_include + build_config::version, h);
   h = hash_runtime_headers(runtime_include, h);
+  // The library the simulator links, by content: a rebuilt runtime gives new entries.
+  h = fnv1a(build_config::runtime_library, h);
+  h = fnv1a(rt::read_regular_file(build_config::runtime_library, std::size_t{1} << 28).text, h);
   return hash_compiler(build_config::cxx_compiler, h);
 }
 

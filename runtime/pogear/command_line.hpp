@@ -8,31 +8,21 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
 
+#include "pogear/number_text.hpp"
 #include "pogear/run_limits.hpp"
+#include "pogear/scene_run.hpp"
 #include "pogear/solver.hpp"
 
 namespace pogear::rt {
 
-struct SceneRun {
-  std::string name;
-  double horizon = 1, sample = 1e-3;
-  Solver solver = Solver::exact;
-  SolverOptions options;
-  std::string out_dir = ".";
-  bool csv = true;
-  int repeat = 1;  // > 1 for timing: the median is reported
-  bool quiet = false;
-  // --param NAME=VALUE as given, in order; the generated main resolves them against its Params.
-  std::vector<std::pair<std::string, std::string>> params;
-};
-
-enum class OptionKey { solver, tolerance, step, out, repeat, max_steps, param, no_csv, quiet };
+enum class OptionKey { solver, tolerance, step, out, repeat, max_steps, param, no_csv, quiet, help };
 
 struct SimulatorOption {
   OptionKey key;
@@ -40,9 +30,23 @@ struct SimulatorOption {
   std::string value;  // what it takes, as the usage line writes it; empty for a flag
 };
 
-// The generated simulators' options, in the order messages and the usage line list them.
-inline std::vector<SimulatorOption> simulator_options() {
-  return {{OptionKey::solver, "--solver", solver_names("|")},
+// The solvers of `list` joined by `separator` ("exact, dopri5"), in the order of all_solvers.
+inline std::string solver_names(std::span<const Solver> list, std::string_view separator) {
+  std::string names;
+  for (Solver s : all_solvers) {
+    bool in = false;
+    for (Solver c : list) in = in || c == s;
+    if (!in) continue;
+    if (!names.empty()) names += separator;
+    names += solver_name(s);
+  }
+  return names;
+}
+
+// The generated simulators' options, in the order messages and the usage line list them; `--solver`
+// offers the solvers compiled into the simulator.
+inline std::vector<SimulatorOption> simulator_options(std::span<const Solver> compiled = all_solvers) {
+  return {{OptionKey::solver, "--solver", solver_names(compiled, "|")},
           {OptionKey::tolerance, "--tolerance", "R"},
           {OptionKey::step, "--step", "S"},
           {OptionKey::out, "--out", "DIR"},
@@ -50,7 +54,8 @@ inline std::vector<SimulatorOption> simulator_options() {
           {OptionKey::max_steps, "--max-steps", "N"},
           {OptionKey::param, "--param", "NAME=VALUE"},
           {OptionKey::no_csv, "--no-csv", ""},
-          {OptionKey::quiet, "--quiet", ""}};
+          {OptionKey::quiet, "--quiet", ""},
+          {OptionKey::help, "--help", ""}};
 }
 
 // "[--solver exact|rk4|dopri5|implicit]", "[--no-csv]": one option of the usage line.
@@ -60,36 +65,17 @@ inline std::string option_synopsis(const SimulatorOption& o) {
 
 // "PROGRAM [--solver ...] ...": the usage line, wrapped before `width` characters; continuation
 // lines are indented under the first option.
-inline std::vector<std::string> usage_lines(const std::string& program, std::size_t width) {
+inline std::vector<std::string> usage_lines(const std::string& program, std::size_t width,
+                                            std::span<const Solver> compiled = all_solvers) {
   std::vector<std::string> lines{"Usage: " + program};
   const std::string indent(lines[0].size(), ' ');
-  for (const SimulatorOption& o : simulator_options()) {
+  for (const SimulatorOption& o : simulator_options(compiled)) {
     const std::string item = option_synopsis(o);
     if (lines.back().size() + 1 + item.size() > width && lines.back().size() > indent.size()) lines.push_back(indent);
     lines.back() += " " + item;
   }
   return lines;
 }
-
-namespace detail {
-
-// The whole of `text` as a finite number, or nothing: "1e-6x", "0.05ms", "", "inf" and "nan" are
-// not numbers here (atof would have read a prefix, or 0).
-inline std::optional<double> parse_finite(std::string_view text) {
-  double v = 0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, v);
-  if (ec != std::errc{} || ptr != end || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
-
-// The shortest text that reads back as exactly `v`.
-inline std::string shortest(double v) {
-  char buf[32];
-  return std::string(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
-}
-
-}  // namespace detail
 
 // The arguments that make parse_command_line set `run`'s options (not its name, horizon and
 // sample: those are the scene's, compiled into the simulator).
@@ -112,6 +98,7 @@ inline std::vector<std::string> command_line(const SceneRun& run) {
       case OptionKey::quiet:
         if (run.quiet) args.push_back(o.name);
         break;
+      case OptionKey::help: break;
     }
   }
   return args;
@@ -120,7 +107,8 @@ inline std::vector<std::string> command_line(const SceneRun& run) {
 // Reads the generated simulator's options into `run`; on bad usage prints
 // `PROGRAM: error: what; what to do` and returns false (the caller exits with 1). Every number
 // must be all of its argument and inside the ranges of run_limits.hpp, which the scene file obeys too.
-inline bool parse_command_line(int argc, char** argv, SceneRun& run) {
+// `compiled` are the solvers the simulator has; --solver refuses the others. --help sets run.help.
+inline bool parse_command_line(int argc, char** argv, SceneRun& run, std::span<const Solver> compiled = all_solvers) {
   const char* program = argv[0];
   auto usage_error = [&](const std::string& message) {
     std::fprintf(stderr, "%s: error: %s\n", program, message.c_str());
@@ -144,7 +132,7 @@ inline bool parse_command_line(int argc, char** argv, SceneRun& run) {
   const std::string max_steps_range = "a whole number from " + std::to_string(limits::min_max_steps) + " to " +
                                       std::to_string(limits::max_max_steps) + ", e.g. 10000000";
   const std::string repeat_range = "a whole number from 1 to " + std::to_string(limits::max_repeat) + ", e.g. 10";
-  const std::vector<SimulatorOption> options = simulator_options();
+  const std::vector<SimulatorOption> options = simulator_options(compiled);
   std::optional<std::string> solver_given;  // checked once every option is read, as it always was
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -195,6 +183,7 @@ inline bool parse_command_line(int argc, char** argv, SceneRun& run) {
       }
       case OptionKey::no_csv: run.csv = false; break;
       case OptionKey::quiet: run.quiet = true; break;
+      case OptionKey::help: run.help = true; break;
     }
   }
   if (solver_given) {
@@ -203,7 +192,17 @@ inline bool parse_command_line(int argc, char** argv, SceneRun& run) {
       return usage_error("unknown solver '" + *solver_given + "'; the solvers are " + solver_names(", "));
     run.solver = *solver;
   }
-  if (run.csv) {
+  bool compiled_in = false;
+  for (Solver s : compiled) compiled_in = compiled_in || s == run.solver;
+  if (!compiled_in && !run.help) {
+    const std::string name(solver_name(run.solver));
+    return usage_error(std::string("this simulator was compiled with the solver") + (compiled.size() == 1 ? " " : "s ") +
+                       solver_names(compiled, ", ") + " only, not " +
+                       name + (solver_given ? "" : " (the scene's)") + "; `pogear simulate SCENE --solver " + name +
+                       "` builds and runs one that has it, `pogear generate SCENE --solvers all` writes one with "
+                       "every solver");
+  }
+  if (run.csv && !run.help) {
     std::error_code ec;
     std::filesystem::create_directories(run.out_dir, ec);
     if (ec)

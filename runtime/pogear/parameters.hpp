@@ -3,14 +3,14 @@
 #pragma once
 
 #include <cmath>
-#include <cstdio>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
-#include "pogear/command_line.hpp"
+#include "pogear/number_text.hpp"
+#include "pogear/api.hpp"
 
 namespace pogear::rt {
 
@@ -41,34 +41,9 @@ inline std::optional<double> parameter_value(std::string_view text, const Parame
 }
 
 // Applies every NAME=VALUE in order (a later one wins). On an unknown name or a bad value prints
-// `PROGRAM: error: what; what to do` and returns false (the caller exits with 1).
-inline bool set_parameters(const std::vector<std::pair<std::string, std::string>>& given,
-                           const std::vector<ParameterField>& fields, const char* program) {
-  auto fail = [&](const std::string& message) {
-    std::fprintf(stderr, "%s: error: %s\n", program, message.c_str());
-    return false;
-  };
-  std::string names;
-  for (const ParameterField& f : fields) names += (names.empty() ? "" : ", ") + std::string(f.name);
-  for (const auto& [name, text] : given) {
-    const ParameterField* field = nullptr;
-    for (const ParameterField& f : fields)
-      if (f.name == name) field = &f;
-    if (!field)
-      return fail(fields.empty()
-                      ? "--param " + name + ": this simulator has no tunable parameters; list the parameters to set "
-                            "at run time in the scene's tunable = [...] and generate it again"
-                      : "--param " + name + ": no tunable parameter has this name; the tunable parameters are " + names);
-    std::string accepted = "a number in SI units";
-    for (const ParameterUnit& u : field->units) accepted += ", or NUMBER*" + std::string(u.unit);
-    const std::optional<double> v = parameter_value(text, *field);
-    if (!v) return fail("--param " + name + "=" + text + " is not a value; give " + accepted);
-    if ((field->sign == "positive" && !(*v > 0)) || (field->sign == "non-negative" && !(*v >= 0)))
-      return fail("--param " + name + "=" + text + ": " + name + " must be " + std::string(field->sign) +
-                  "; give " + accepted);
-    *field->value = *v;
-  }
-  return true;
-}
+// `PROGRAM: error: what; what to do` and returns false (the caller exits with 1). Compiled into
+// libpogear_runtime (see api.hpp).
+POGEAR_RT_API bool set_parameters(const std::vector<std::pair<std::string, std::string>>& given,
+                                  const std::vector<ParameterField>& fields, const char* program);
 
 }  // namespace pogear::rt

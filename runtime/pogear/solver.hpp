@@ -3,11 +3,12 @@
 #pragma once
 
 #include <array>
-#include <charconv>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
+
+#include "pogear/number_text.hpp"
 
 namespace pogear::rt {
 
@@ -57,15 +58,5 @@ inline void set_tolerance(SolverOptions& options, double relative) {
   options.rtol = relative;
   options.atol = relative * absolute_per_relative_tolerance;
 }
-
-namespace detail {
-
-// A number in messages: ten significant digits, the shortest form that shows them.
-inline std::string num(double v) {
-  char buf[32];
-  return std::string(buf, std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 10).ptr);
-}
-
-}  // namespace detail
 
 }  // namespace pogear::rt

@@ -2,7 +2,8 @@
 // (Eigen::VectorXd): RK4, Dormand-Prince 5(4) with dense output, and TR-BDF2 for stiff scenes.
 #pragma once
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -53,23 +54,6 @@ struct Rk4 {
     rhs_evals += 4;
   }
 };
-
-// Largest stable RK4 step for x' = A x, as 2.785 / max|lambda(A)|. 2.785 is where RK4's stability
-// region crosses the negative real axis (overdamped, stiff modes); on the imaginary axis (undamped
-// gear oscillations) it reaches 2.83. In between the boundary dips to 2.62 near 122 degrees (damping
-// ratio ~0.5), so for such modes this limit is up to 6% optimistic: it is meant to refuse steps far
-// beyond stability, not to put h on the edge.
-template <class M>
-double rk4_stability_limit(const M& A) {
-  const Eigen::MatrixXd a = A;
-  if (a.rows() == 0) return std::numeric_limits<double>::infinity();
-  Eigen::EigenSolver<Eigen::MatrixXd> es(a, false);
-  // Any induced norm bounds the spectral radius: a safe fallback if the QR iteration fails.
-  const double rho = es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff()
-                                                 : a.cwiseAbs().rowwise().sum().maxCoeff();
-  if (!(rho >= 0)) return 0;  // NaN in A: refuse every step
-  return rho > 0 ? 2.785 / rho : std::numeric_limits<double>::infinity();
-}
 
 // Adaptive steppers share one protocol, driven by run_adaptive in drivers.hpp:
 //   start(t, x)            derivative at the start (again after each breakpoint: f jumps there)

@@ -149,10 +149,11 @@ POGEAR_RT_INLINE RunStatus simulate_exact_batch_lanes(const ExactDiscretization<
   BatchInput<NU, B>*U0 = &Ua, *U1 = &Ub;
   bool u0_valid = false;
   const double h_nom = nominal.h, tol_nom = 1e-9 * nominal.h;
+  auto discretize = [&](double h) { return D(M, N, h); };
   auto advance = [&](double t, double h, bool brk, BatchState<NX, B>& xs) POGEAR_RT_LAMBDA_INLINE {
     const D* disc = &nominal;
     if (!(std::abs(h - h_nom) <= tol_nom)) {
-      refresh_odd(odd, M, N, h, xs);
+      refresh_odd(odd, discretize, h, xs);
       disc = &odd;
     }
     if (!u0_valid) u(t, *U0);
@@ -163,7 +164,7 @@ POGEAR_RT_INLINE RunStatus simulate_exact_batch_lanes(const ExactDiscretization<
   };
   // A step size whose discretization cannot be trusted stops the run (refresh_odd): say so.
   auto reported = [&](RunStatus st) {
-    if (!st.ok && odd.h > 0 && !odd.accurate()) st.message = inaccurate_exact_step(odd);
+    if (!st.ok && odd.h > 0 && !odd.accurate()) st.message = inaccurate_exact_step(odd.h, odd.rounding);
     return st;
   };
   if constexpr (std::is_same_v<Lo, std::nullptr_t>) {

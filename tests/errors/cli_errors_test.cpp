@@ -81,13 +81,31 @@ TEST_F(Cli, CompileFailure) {
   EXPECT_EQ(rest.find("noise"), std::string::npos) << rest;
 }
 
+// A simulator built by `pogear simulate` has the solver it runs (here the scene's, exact) and no
+// other: asked for another, it says how to get one.
+TEST_F(Cli, SolverNotCompiledIn) {
+  ASSERT_EQ(run("POGEAR_CACHE_DIR=cache " + pogear() + " simulate scene.toml -o out >/dev/null").status, 0);
+  std::string simulator;
+  for (const auto& entry : fs::directory_iterator("cache"))
+    if (fs::exists(entry.path() / "simulator")) simulator = fs::absolute(entry.path() / "simulator").string();
+  ASSERT_FALSE(simulator.empty());
+  fs::create_symlink(simulator, "demo");
+  const Command c = run("./demo --solver dopri5 --out out");
+  EXPECT_EQ(c.status, 1);
+  expect_documented(c.err, R"~(./demo: error: this simulator was compiled with the solver exact only, not dopri5; `pogear simulate SCENE --solver dopri5` builds and runs one that has it, `pogear generate SCENE --solvers all` writes one with every solver)~" "\n");
+  const Command help = run("./demo --help");
+  EXPECT_EQ(help.status, 0) << help.err;
+  EXPECT_NE(help.out.find("[--solver exact] [--tolerance R]"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("compiled with the solver exact (the scene's: exact)"), std::string::npos) << help.out;
+}
+
 // The generated simulators' command line (here the paper's one-stage scene, built by CMake).
 class Simulator : public SimulatorTest {};
 
 TEST_F(Simulator, NeedsAValue) { expect_simulator_error("--solver", 1,
     R"~(./paper_one_stage: error: --solver needs a value)~"); }
 TEST_F(Simulator, UnknownOption) { expect_simulator_error("--horizon 2", 1,
-    R"~(./paper_one_stage: error: unknown option '--horizon'; options are --solver, --tolerance, --step, --out, --repeat, --max-steps, --param, --no-csv, --quiet)~"); }
+    R"~(./paper_one_stage: error: unknown option '--horizon'; options are --solver, --tolerance, --step, --out, --repeat, --max-steps, --param, --no-csv, --quiet, --help)~"); }
 TEST_F(Simulator, UnknownSolver) { expect_simulator_error("--solver euler", 1,
     R"~(./paper_one_stage: error: unknown solver 'euler'; the solvers are exact, rk4, dopri5, implicit)~"); }
 TEST_F(Simulator, NotPositive) { expect_simulator_error("--step 0", 1,

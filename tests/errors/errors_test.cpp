@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "pogear/signals.hpp"
+#include "pogear/signal_table.hpp"
 
 #include "error_support.hpp"
 

@@ -135,7 +135,7 @@ TEST(Options, UnknownOptionListsTheTable) {
   EXPECT_FALSE(parse({"--bogus"}).ok);
   EXPECT_EQ(::testing::internal::GetCapturedStderr(),
             "sim: error: unknown option '--bogus'; options are --solver, --tolerance, --step, --out, --repeat, "
-            "--max-steps, --param, --no-csv, --quiet\n");
+            "--max-steps, --param, --no-csv, --quiet, --help\n");
   ::testing::internal::CaptureStderr();
   EXPECT_FALSE(parse({"--solver", "euler"}).ok);
   EXPECT_EQ(::testing::internal::GetCapturedStderr(),
@@ -143,7 +143,7 @@ TEST(Options, UnknownOptionListsTheTable) {
   EXPECT_EQ(rt::usage_lines("PROGRAM", 100),
             (std::vector<std::string>{
                 "Usage: PROGRAM [--solver exact|rk4|dopri5|implicit] [--tolerance R] [--step S] [--out DIR]",
-                "               [--repeat N] [--max-steps N] [--param NAME=VALUE] [--no-csv] [--quiet]"}));
+                "               [--repeat N] [--max-steps N] [--param NAME=VALUE] [--no-csv] [--quiet] [--help]"}));
 }
 
 using V1 = Eigen::Matrix<double, 1, 1>;

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
-#include <pogear/signals.hpp>
+#include <pogear/signal_table.hpp>
 #include <string>
 
 #include <sys/stat.h>

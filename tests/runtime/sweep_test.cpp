@@ -141,7 +141,8 @@ TEST(Sweep, DriverCopiesAgree) {
   ASSERT_TRUE(rt::simulate_exact(disc, M, N, u, Sys::State::Zero().eval(), 0.0, 0.5, 1e-3, opt, obs_a).ok);
   Sys::State x0 = Sys::State::Zero();
   const std::vector<double> none;
-  ASSERT_TRUE(rt::detail::simulate_exact_lanes<2>(disc, M, N, u, x0, 0.0, 0.5, 1e-3, opt, obs_b, none).ok);
+  auto discretize = [&](double h) { return rt::ExactDiscretization<Sys::nx, Sys::nu>(M, N, h); };
+  ASSERT_TRUE(rt::detail::simulate_exact_lanes<2>(disc, discretize, u, x0, 0.0, 0.5, 1e-3, opt, obs_b, none).ok);
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], b[k]) << k;
 }

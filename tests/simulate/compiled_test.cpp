@@ -43,12 +43,12 @@ TEST_P(PaperScenes, GeneratedSourcesHaveNotDrifted) {
   const auto& p = GetParam();
   const auto dir = temp_dir("drift_" + p.name);
   const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " generate " +
-                                source_path("models/scenes/" + p.name + ".toml") + " -o " + dir.string());
+                                source_path("models/scenes/" + p.name + ".toml") + " --solvers all -o " + dir.string());
   ASSERT_EQ(c.status, 0) << c.err;
   for (const std::string& file : {p.name + ".hpp", p.name + "_main.cpp"})
     EXPECT_EQ(read_text((dir / file).string()), read_text(source_path("generated/" + file)))
         << "generated/" << file << " is stale: run build/pogear generate models/scenes/" << p.name
-        << ".toml -o generated";
+        << ".toml --solvers all -o generated";
 }
 
 INSTANTIATE_TEST_SUITE_P(Paper, PaperScenes,

@@ -128,13 +128,14 @@ TEST(ExactRange, AnUntrustworthyOddStepStopsTheRun) {
   using D = rt::ExactDiscretization<Eigen::Dynamic, Eigen::Dynamic>;
   D odd;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(ns.M.rows());
-  rt::detail::refresh_odd(odd, ns.M, ns.N, 1e-12, x);  // 5e4 rad per step: fine
+  auto discretize = [&](double h) { return D(ns.M, ns.N, h); };
+  rt::detail::refresh_odd(odd, discretize, 1e-12, x);  // 5e4 rad per step: fine
   EXPECT_TRUE(odd.accurate()) << odd.rounding;
   EXPECT_TRUE(x.allFinite());
-  rt::detail::refresh_odd(odd, ns.M, ns.N, 1e-3, x);
+  rt::detail::refresh_odd(odd, discretize, 1e-3, x);
   EXPECT_FALSE(odd.accurate()) << odd.rounding;
   EXPECT_FALSE(x.allFinite()) << "the state must stop the run";
-  EXPECT_NE(rt::detail::inaccurate_exact_step(odd).find(kLost), std::string::npos);
+  EXPECT_NE(rt::detail::inaccurate_exact_step(odd.h, odd.rounding).find(kLost), std::string::npos);
 }
 
 // The user-visible result, compiled and interpreted, of the J_p = 1e-30 scene: exit status 3, the
