@@ -3,6 +3,7 @@
 // simulator (command_line) and the generated main's usage comment all come.
 #pragma once
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -29,19 +30,6 @@ struct SimulatorOption {
   std::string name;   // "--solver"
   std::string value;  // what it takes, as the usage line writes it; empty for a flag
 };
-
-// The solvers of `list` joined by `separator` ("exact, dopri5"), in the order of all_solvers.
-inline std::string solver_names(std::span<const Solver> list, std::string_view separator) {
-  std::string names;
-  for (Solver s : all_solvers) {
-    bool in = false;
-    for (Solver c : list) in = in || c == s;
-    if (!in) continue;
-    if (!names.empty()) names += separator;
-    names += solver_name(s);
-  }
-  return names;
-}
 
 // The generated simulators' options, in the order messages and the usage line list them; `--solver`
 // offers the solvers compiled into the simulator.
@@ -192,9 +180,7 @@ inline bool parse_command_line(int argc, char** argv, SceneRun& run, std::span<c
       return usage_error("unknown solver '" + *solver_given + "'; the solvers are " + solver_names(", "));
     run.solver = *solver;
   }
-  bool compiled_in = false;
-  for (Solver s : compiled) compiled_in = compiled_in || s == run.solver;
-  if (!compiled_in && !run.help) {
+  if (std::find(compiled.begin(), compiled.end(), run.solver) == compiled.end() && !run.help) {
     const std::string name(solver_name(run.solver));
     return usage_error(std::string("this simulator was compiled with the solver") + (compiled.size() == 1 ? " " : "s ") +
                        solver_names(compiled, ", ") + " only, not " +

@@ -2,9 +2,11 @@
 // their options: decided here once for the scene reader, the generated simulators and pogear.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -32,15 +34,18 @@ inline constexpr std::optional<Solver> parse_solver(std::string_view name) {
   return std::nullopt;
 }
 
-// The names joined by `separator`, for messages and usage lines ("exact, rk4, dopri5, implicit").
-inline std::string solver_names(std::string_view separator) {
-  std::string list;
+// The names of the solvers of `list` joined by `separator`, in the order of all_solvers ("exact,
+// dopri5"); without a list, all of them ("exact, rk4, dopri5, implicit"), for messages and usage lines.
+inline std::string solver_names(std::span<const Solver> list, std::string_view separator) {
+  std::string names;
   for (Solver s : all_solvers) {
-    if (!list.empty()) list += separator;
-    list += solver_name(s);
+    if (std::find(list.begin(), list.end(), s) == list.end()) continue;
+    if (!names.empty()) names += separator;
+    names += solver_name(s);
   }
-  return list;
+  return names;
 }
+inline std::string solver_names(std::string_view separator) { return solver_names(all_solvers, separator); }
 
 struct SolverOptions {
   double rtol = 1e-8, atol = 1e-10;
