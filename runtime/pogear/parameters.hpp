@@ -43,7 +43,9 @@ inline std::optional<double> parameter_value(std::string_view text, const Parame
 // Applies every NAME=VALUE in order (a later one wins). On an unknown name or a bad value prints
 // `PROGRAM: error: what; what to do` and returns false (the caller exits with 1). Compiled into
 // libpogear_runtime (see api.hpp).
+POGEAR_RT_ABI_BEGIN
 POGEAR_RT_API bool set_parameters(const std::vector<std::pair<std::string, std::string>>& given,
                                   const std::vector<ParameterField>& fields, const char* program);
+POGEAR_RT_ABI_END
 
 }  // namespace pogear::rt

@@ -20,6 +20,10 @@
 
 namespace pogear::rt {
 
+class CsvWriter;
+
+POGEAR_RT_ABI_BEGIN
+
 // Reads a generated simulator's command line into `run` (parse_command_line, with the solvers it was
 // compiled with). Returns -1 when the simulator should run, else its exit status: 0 after --help
 // (usage and solvers printed), 1 after a usage error (printed).
@@ -44,8 +48,6 @@ POGEAR_RT_API EnergyBoundTerms energy_bound_terms(const Eigen::MatrixXd& L, cons
 
 // rk4_stability_limit (stability_limit.hpp) of M.
 POGEAR_RT_API double rk4_step_limit(const Eigen::MatrixXd& M);
-
-class CsvWriter;
 
 // One system's run around its driver: the rk4 step check, the CSV file of each repetition, the
 // divergence message, the timing and the closing report or error, all under the label
@@ -83,6 +85,8 @@ class SystemRunLog {
   std::vector<double> seconds_;
   double start_ = 0;
 };
+
+POGEAR_RT_ABI_END
 
 }  // namespace pogear::rt
 

@@ -13,6 +13,25 @@
 
 namespace pogear::rt {
 
+namespace detail {
+// The largest |u(t)| of a signal over [t0, t1]: a sine's offset plus its amplitude; every other
+// signal is linear between its breakpoints, so its extremes are at the ends and on either side of a
+// breakpoint.
+inline double input_bound(const Signal& s, double t0, double t1) {
+  if (const auto* sine = std::get_if<Sine>(&s)) return std::abs(sine->offset) + std::abs(sine->amplitude);
+  double m = std::max(std::abs(value(s, t0)), std::abs(value(s, t1)));
+  for (double b : breakpoints(s, t0, t1))
+    m = std::max({m, std::abs(value(s, b)), std::abs(value(s, std::nextafter(b, t0)))});
+  return m;
+}
+
+inline double seconds_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace detail
+
+POGEAR_RT_ABI_BEGIN
+
 POGEAR_RT_API int read_command_line(int argc, char** argv, SceneRun& run, std::span<const Solver> compiled) {
   if (!parse_command_line(argc, argv, run, compiled)) return 1;
   if (!run.help) return -1;
@@ -58,20 +77,6 @@ POGEAR_RT_API ExactMatrices exact_matrices(const Eigen::MatrixXd& M, const Eigen
   return {std::move(d.Phi), std::move(d.Gamma0), std::move(d.Gamma1), d.rounding};
 }
 
-namespace detail {
-// The largest |u(t)| of a signal over [t0, t1]: a sine's offset plus its amplitude; every other
-// signal is linear between its breakpoints, so its extremes are at the ends and on either side of a
-// breakpoint.
-inline double input_bound(const Signal& s, double t0, double t1) {
-  if (const auto* sine = std::get_if<Sine>(&s)) return std::abs(sine->offset) + std::abs(sine->amplitude);
-  double m = std::max(std::abs(value(s, t0)), std::abs(value(s, t1)));
-  for (double b : breakpoints(s, t0, t1))
-    m = std::max({m, std::abs(value(s, b)), std::abs(value(s, std::nextafter(b, t0)))});
-  return m;
-}
-
-}  // namespace detail
-
 POGEAR_RT_API EnergyBoundTerms energy_bound_terms(const Eigen::MatrixXd& L, const Eigen::MatrixXd& N,
                                                   const std::vector<Signal>& signals, const Eigen::VectorXd& x0,
                                                   double horizon) {
@@ -86,12 +91,6 @@ POGEAR_RT_API EnergyBoundTerms energy_bound_terms(const Eigen::MatrixXd& L, cons
 }
 
 POGEAR_RT_API double rk4_step_limit(const Eigen::MatrixXd& M) { return rk4_stability_limit(M); }
-
-namespace detail {
-inline double seconds_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace detail
 
 POGEAR_RT_API SystemRunLog::SystemRunLog(const SceneRun& run, const std::string& suffix,
                                          const std::vector<std::string>& names, const std::vector<std::string>& units)
@@ -166,5 +165,7 @@ POGEAR_RT_API int SystemRunLog::finish(const RunStatus& st) const {
                 run_.csv ? (", wrote " + run_.out_dir + "/" + label_ + ".csv").c_str() : "");
   return 0;
 }
+
+POGEAR_RT_ABI_END
 
 }  // namespace pogear::rt

@@ -46,10 +46,17 @@ if(NOT config STREQUAL "")
 endif()
 run_step("installing pogear" "${CMAKE_COMMAND}" --install "${POGEAR_BUILD_DIR}" --prefix "${prefix}" ${config_args})
 
+# CONSUMER_OPT_FLAGS (optional): the consumer's flags for its configuration, pogear's own.
+set(opt_args "")
+if(NOT "${CONSUMER_OPT_FLAGS}" STREQUAL "")
+  string(TOUPPER "${consumer_config}" upper_config)
+  set(opt_args "-DCMAKE_CXX_FLAGS_${upper_config}=${CONSUMER_OPT_FLAGS}")
+endif()
+
 # The package registry is off so that only the fresh prefix can satisfy find_package(pogear).
 run_step("configuring the consumer" "${CMAKE_COMMAND}" -S "${CONSUMER_SOURCE_DIR}" -B "${build}"
   -G "${GENERATOR}" "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}" "-DCMAKE_BUILD_TYPE=${consumer_config}"
-  "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF "-DPOGEAR_SCENE=${SCENE}")
+  "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF "-DPOGEAR_SCENE=${SCENE}" ${opt_args})
 file(STRINGS "${build}/CMakeCache.txt" pogear_dir REGEX "^pogear_DIR:")
 string(REGEX REPLACE "^pogear_DIR:[A-Z]+=" "" pogear_dir "${pogear_dir}")
 string(FIND "${pogear_dir}" "${prefix}/" at)

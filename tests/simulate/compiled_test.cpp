@@ -74,6 +74,30 @@ TEST(SimulatorCache, KeyFollowsSourcesAndRuntimeHeaders) {
   EXPECT_NE(simulator_cache_key(sources, runtime.string()), key);
 }
 
+// Eigen allocates differently with wider vector alignment (-mavx) or under AddressSanitizer, and
+// libpogear_runtime hands matrices across; a program compiled otherwise than the library must fail
+// to link, naming the mismatch, instead of freeing memory with the wrong allocator (api.hpp). The
+// same program with the library's own flags links and runs: the control that the failure is the tag.
+TEST(RuntimeLibrary, ProgramWithOtherEigenAlignmentFailsToLink) {
+  const auto dir = temp_dir("runtime_abi");
+  write_text(dir / "main.cpp",
+             "#include <pogear/run_support.hpp>\n"
+             "int main() { return pogear::rt::rk4_step_limit(-Eigen::MatrixXd::Identity(2, 2)) > 0 ? 0 : 1; }\n");
+  auto compile = [&](const std::string& extra) {
+    std::string cmd = std::string(build_config::cxx_compiler);
+    for (const char* flag : build_config::simulator_flags) cmd += std::string(" ") + flag;
+    cmd += extra + " -I" + std::string(build_config::eigen_include) + " -I" + build_config::runtime_include +
+           " main.cpp " + build_config::runtime_library + " -o main";
+    return run_command(cmd, dir);
+  };
+  const Command same = compile("");
+  ASSERT_EQ(same.status, 0) << same.err;
+  EXPECT_EQ(run_command("./main", dir).status, 0);
+  const Command wider = compile(" -mavx");
+  EXPECT_NE(wider.status, 0);
+  EXPECT_NE(wider.err.find("pogear::rt::eigen_align32"), std::string::npos) << wider.err;
+}
+
 // Done-when of the simulate issue: `pogear simulate --solver exact` end to end, against
 // x(T) = exp(M T) x0 + (integral of exp(M s) ds) N u from the derive report's numbers.
 class SimulateCommand : public ::testing::TestWithParam<std::string> {};
