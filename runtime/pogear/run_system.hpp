@@ -41,7 +41,7 @@ inline double exact_step(const SceneRun& run, const std::vector<Signal>& signals
 
 // The signals' values at t, into u (one entry per signal).
 template <class Input>
-POGEAR_RT_INLINE void input_values(const std::vector<Signal>& signals, double t, Input& u) {
+void input_values(const std::vector<Signal>& signals, double t, Input& u) {
   for (std::size_t i = 0; i < signals.size(); ++i) u(static_cast<Eigen::Index>(i)) = value(signals[i], t);
 }
 
