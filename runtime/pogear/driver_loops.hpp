@@ -84,7 +84,7 @@ struct Run {
              const std::vector<double>& bps) {
     return setup_grid(x.allFinite(), t0, t_end, dt, opt, bps);
   }
-  POGEAR_RT_COLD bool setup_grid(bool x_finite, double t0, double t_end, double dt, const SolverOptions& opt,
+  bool setup_grid(bool x_finite, double t0, double t_end, double dt, const SolverOptions& opt,
                                  const std::vector<double>& bps) {
     st.t_reached = t0;
     if (!std::isfinite(t0) || !std::isfinite(t_end) || !(t_end >= t0) || !(dt > 0))
