@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "exact_algebra.hpp"
+#include "vibration_modes.hpp"
 
 namespace pogear {
 
@@ -33,6 +34,7 @@ Derivation derive_topology(Topology topology, const std::optional<std::vector<st
   const Eigen::MatrixXd M = L.diagonal().cwiseInverse().asDiagonal() * evaluate_matrix(d.elastic.A, at);
   d.rigid_values = exact_rigid_values(d.rigid, d.elastic, at);
   d.diagnostics = diagnose(M, evaluate_matrix(d.rigid_values.L1, {}), evaluate_matrix(d.elastic.R, at));
+  add_natural_frequency(d.diagnostics, d, at);
   return d;
 }
 

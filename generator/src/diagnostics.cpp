@@ -81,6 +81,11 @@ std::string diagnostics_text(const Diagnostics& d, const std::string& in) {
                    d.cond_RRt ? number(*d.cond_RRt) : "singular (redundant meshes)");
   s += fmt::format("{}largest stable rk4 step {} s; suggested solver: {} ({})\n", in, number(d.rk4_max_step),
                    d.suggested_solver, d.reason);
+  if (d.lowest_natural_frequency_hz)
+    s += fmt::format("{}lowest natural frequency {} Hz (undamped elastic model): the rigid model holds for inputs "
+                     "well below it\n", in, fmt::format("{:.6g}", *d.lowest_natural_frequency_hz));
+  else if (!d.natural_frequency_note.empty())
+    s += fmt::format("{}lowest natural frequency not computed: {}\n", in, d.natural_frequency_note);
   return s;
 }
 
@@ -94,7 +99,9 @@ std::string diagnostics_json(const Diagnostics& d, const std::string& in) {
   s += fmt::format("{}  \"cond_L1\": {},\n", in, num(d.cond_L1));
   s += fmt::format("{}  \"cond_RRt\": {},\n", in, d.cond_RRt ? num(*d.cond_RRt) : "null");
   s += fmt::format("{}  \"rk4_max_step\": {},\n", in, num(d.rk4_max_step));
-  s += fmt::format("{}  \"suggested_solver\": \"{}\"\n", in, d.suggested_solver);
+  s += fmt::format("{}  \"suggested_solver\": \"{}\",\n", in, d.suggested_solver);
+  s += fmt::format("{}  \"lowest_natural_frequency_hz\": {}\n", in,
+                   d.lowest_natural_frequency_hz ? num(*d.lowest_natural_frequency_hz) : "null");
   return s + in + "}";
 }
 

@@ -22,6 +22,10 @@ struct Diagnostics {
   std::string suggested_solver;
   std::string adaptive_solver;        // the adaptive method to use: "dopri5", or "implicit" when stiff
   std::string reason;
+  // Of the undamped elastic model (vibration_modes.hpp), at the parameters' values: below it the
+  // rigid model holds. None, with the reason, when it cannot be computed accurately.
+  std::optional<double> lowest_natural_frequency_hz;
+  std::string natural_frequency_note;
 };
 
 // M: the system matrix of the simulated model (elastic or rigid); L1, R: numeric. sample: the

@@ -12,11 +12,14 @@
 #include "build_config.hpp"
 #include "derivation.hpp"
 #include "interrupts.hpp"
+#include "modes_report.hpp"
 #include "output_file.hpp"
 #include "pogear/run_limits.hpp"
+#include "response_report.hpp"
 #include "report.hpp"
 #include "simulate_scene.hpp"
 #include "simulator_cache.hpp"
+#include "vibration_analysis.hpp"
 
 namespace {
 
@@ -105,6 +108,28 @@ int main(int argc, char** argv) {
   simulate->add_flag("--large-output", simulate_options.large_output,
                      fmt::format("Write CSV files even when they may exceed {} GB", pogear::max_csv_bytes >> 30));
 
+  std::string modes_file, modes_format = "text";
+  std::optional<std::string> modes_output;
+  CLI::App* modes = app.add_subcommand("modes", "Natural frequencies, mode shapes and modal energies of the elastic model");
+  modes->add_option("MODEL_OR_SCENE", modes_file, "Model file, or scene file (its parameters and damping)")->required();
+  modes->add_option("--format", modes_format, "Report format")->check(CLI::IsMember({"text", "latex", "markdown", "json"}));
+  modes->add_option("-o,--output", modes_output, "Write the report to FILE instead of standard output")
+      ->check(non_empty_path());
+
+  pogear::ResponseRequest response_request;
+  std::string response_dir = "out";
+  std::string response_inputs, response_outputs;
+  CLI::App* response = app.add_subcommand("response", "Frequency response of a scene: CSV, Bode figure, resonance peaks");
+  response->add_option("SCENE", response_request.scene_file, "Scene file (TOML)")->required();
+  response->add_option("--input", response_inputs, "Input torques, comma-separated, e.g. tau_c")->required();
+  response->add_option("--output", response_outputs, "Outputs, comma-separated: omega_<body> or F_<mesh>")->required();
+  response->add_option("--from", response_request.from, "Lowest frequency, e.g. 1*Hz (default)");
+  response->add_option("--to", response_request.to, "Highest frequency, e.g. 10*kHz (default)");
+  response->add_option("--points", response_request.points, "Frequencies, logarithmically spaced (default 1000)")
+      ->check(CLI::Range(2, 1000000));
+  response->add_option("-o,--output-dir", response_dir, "Directory for the CSV files and figures (default out)")
+      ->check(non_empty_path());
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -140,6 +165,22 @@ int main(int argc, char** argv) {
       std::cout << "wrote " << generate_dir << "/" << sources.header_name << " and " << generate_dir << "/"
                 << sources.main_name << "\n"
                 << pogear::operation_summary(model);
+    } else if (*modes) {
+      const pogear::VibrationModes m = pogear::modes_of_file(modes_file);
+      std::string text;
+      if (modes_format == "json") text = pogear::modes_json(m);
+      else if (modes_format == "latex") text = pogear::modes_latex(m);
+      else if (modes_format == "markdown") text = pogear::modes_markdown(m);
+      else text = pogear::modes_text(m);
+      emit(text, modes_output);
+    } else if (*response) {
+      response_request.inputs = split_list(response_inputs);
+      response_request.outputs = split_list(response_outputs);
+      const pogear::SceneResponse h = pogear::response_of(response_request);
+      std::cout << pogear::response_summary(h.pairs);
+      pogear::ensure_directory(response_dir);
+      for (const std::string& path : pogear::write_response_files(h.scene_name, h.pairs, response_dir))
+        std::cout << "wrote " << path << "\n";
     } else if (*simulate) {
       if (!solver.empty()) simulate_options.solver = pogear::rt::parse_solver(solver);
       simulate_options.repeat = static_cast<int>(repeat);

@@ -19,6 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
+}  // namespace
+
 std::string gnuplot_label(const std::string& name) {
   // omega_c -> {/Symbol w}_{c}, F_ps -> F_{ps}
   const auto us = name.find('_');
@@ -26,6 +28,8 @@ std::string gnuplot_label(const std::string& name) {
   if (base == "omega") base = "{/Symbol w}";
   return sub.empty() ? base : base + "_{" + sub + "}";
 }
+
+namespace {
 
 // One CSV line of numbers, or nothing for the header, a comment or a row cut short.
 bool parse_row(const std::string& line, std::size_t width, std::vector<double>& row) {
@@ -44,7 +48,9 @@ bool parse_row(const std::string& line, std::size_t width, std::vector<double>& 
   return width == 0 || row.size() == width;
 }
 
-std::string datablock(const std::string& name, const std::vector<std::vector<double>>& rows) {
+}  // namespace
+
+std::string gnuplot_datablock(const std::string& name, const std::vector<std::vector<double>>& rows) {
   std::string s = "$" + name + " << EOD\n";
   for (const auto& row : rows) {
     for (std::size_t i = 0; i < row.size(); ++i) s += fmt::format("{}{}", i ? "," : "", row[i]);
@@ -52,8 +58,6 @@ std::string datablock(const std::string& name, const std::vector<std::vector<dou
   }
   return s + "EOD\n";
 }
-
-}  // namespace
 
 std::vector<std::vector<double>> thinned_csv_rows(const std::string& path, double horizon) {
   struct stat st {};
@@ -98,8 +102,27 @@ std::vector<std::vector<double>> thinned_csv_rows(const std::string& path, doubl
   return kept;
 }
 
+std::optional<std::string> gnuplot_program() { return find_program("gnuplot"); }
+
+void draw_svg(const std::string& gnuplot, const std::string& script, const std::string& svg,
+              const std::string& already_written) {
+  ChildRequest request;
+  // The script as a file argument: gnuplot reads a script file in blocks, but its standard input
+  // a few bytes per call (0.28 s instead of 0.04 s for a 2000-sample figure).
+  request.argv = {gnuplot, "/dev/stdin"};
+  request.input = script;
+  request.capture_stdout = true;
+  request.capture_stderr = true;
+  const ChildResult result = run_child(request);
+  const std::size_t end = result.out.rfind("</svg>");
+  if (!result.ok() || end == std::string::npos || result.out.find_first_not_of(" \n", end + 6) != std::string::npos)
+    throw std::runtime_error(fmt::format("gnuplot failed drawing {} ({}){}{}; {}", svg, result.describe(),
+                                         result.err.empty() ? "" : ": ", result.err.substr(0, 2000), already_written));
+  write_file_atomically(svg, result.out);
+}
+
 std::vector<std::string> plot_scene(const SpecializedScene& model, const std::string& dir) {
-  const std::optional<std::string> gnuplot = find_program("gnuplot");
+  const std::optional<std::string> gnuplot = gnuplot_program();
   if (!gnuplot)
     throw std::runtime_error("gnuplot is not installed, so no figures were drawn (the CSV files are written); "
                              "install gnuplot-nox (scripts/install-deps.sh)");
@@ -119,8 +142,8 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
     std::string script;
     script += "set terminal svg size 900,560 dynamic enhanced font 'Helvetica,13' background rgb 'white'\n";
     script += "set datafile separator ','\n";
-    script += datablock("elastic", elastic);
-    if (model.rigid) script += datablock("rigid", rigid);
+    script += gnuplot_datablock("elastic", elastic);
+    if (model.rigid) script += gnuplot_datablock("rigid", rigid);
     script += "set grid\nset key outside right top\n";
     script += fmt::format("set title '{}: {}{}' noenhanced\n", name, kind == "velocities" ? "angular velocities" : "mesh forces",
                           model.rigid ? " (rigid model dashed)" : "");
@@ -139,21 +162,8 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
                               k == 0 ? "title 'rigid'" : "notitle");
     script += "\n";
 
-    ChildRequest request;
-    // The script as a file argument: gnuplot reads a script file in blocks, but its standard input
-    // a few bytes per call (0.28 s instead of 0.04 s for a 2000-sample figure).
-    request.argv = {*gnuplot, "/dev/stdin"};
-    request.input = script;
-    request.capture_stdout = true;
-    request.capture_stderr = true;
-    const ChildResult result = run_child(request);
     const fs::path svg = fs::path(dir) / fmt::format("{}.{}.svg", name, kind);
-    const std::size_t end = result.out.rfind("</svg>");
-    if (!result.ok() || end == std::string::npos || result.out.find_first_not_of(" \n", end + 6) != std::string::npos)
-      throw std::runtime_error(fmt::format("gnuplot failed drawing {} ({}){}{}; the CSV files are written", svg.string(),
-                                           result.describe(), result.err.empty() ? "" : ": ",
-                                           result.err.substr(0, 2000)));
-    write_file_atomically(svg.string(), result.out);
+    draw_svg(*gnuplot, script, svg.string(), "the CSV files are written");
     written.push_back(svg.string());
   }
   return written;

@@ -3,6 +3,7 @@
 // standard output and is written by pogear like any other output.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,18 @@ inline constexpr std::size_t plot_buckets = 2000;
 // buckets over [t_first, t_last] by the rule above. Throws std::runtime_error when `path` cannot be
 // read or holds no row.
 std::vector<std::vector<double>> thinned_csv_rows(const std::string& path, double horizon);
+
+// gnuplot's path, when it is installed.
+std::optional<std::string> gnuplot_program();
+// Runs `script` (which writes an SVG to gnuplot's standard output) and writes the SVG to `svg` once
+// gnuplot has succeeded and the SVG is whole. Throws std::runtime_error otherwise, ending the message
+// with `already_written` (what the user still has).
+void draw_svg(const std::string& gnuplot, const std::string& script, const std::string& svg,
+              const std::string& already_written);
+// `$name << EOD` with the rows as comma-separated numbers.
+std::string gnuplot_datablock(const std::string& name, const std::vector<std::vector<double>>& rows);
+// omega_c -> {/Symbol w}_{c}, F_ps -> F_{ps} (enhanced text).
+std::string gnuplot_label(const std::string& name);
 
 // DIR/<scene>.velocities.svg and, with forces, DIR/<scene>.forces.svg: elastic solid, rigid dashed
 // on top, as in the paper's Figs. 8-9. Returns the files written.

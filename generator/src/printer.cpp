@@ -132,10 +132,15 @@ class Printer {
   }
 
   std::string function(const ex& e) {
-    std::string s = GiNaC::ex_to<GiNaC::function>(e).get_name();
-    s += "(";
-    for (std::size_t i = 0; i < e.nops(); ++i) s += (i ? ", " : "") + print(e.op(i));
-    return s + ")";
+    std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+    std::string args;
+    for (std::size_t i = 0; i < e.nops(); ++i) args += (i ? ", " : "") + print(e.op(i));
+    if (n_ != Notation::latex) return name + "(" + args + ")";
+    // The closed-form eigenvalues of a cubic (vibration_modes.cpp) use cos and acos.
+    if (name == "cos" || name == "sin") name = "\\" + name;
+    else if (name == "acos") name = "\\arccos";
+    else name = "\\operatorname{" + name + "}";
+    return name + "\\left(" + args + "\\right)";
   }
 
   std::string raised(const Factor& f, const std::string& printed_base) {
@@ -300,7 +305,7 @@ class Printer {
 std::string print_expression(const GiNaC::ex& e, Notation notation) { return Printer(notation).print(e); }
 
 std::string latex_symbol(const std::string& name) {
-  static const std::set<std::string> greek{"alpha", "beta", "gamma", "delta", "omega", "tau", "theta", "phi"};
+  static const std::set<std::string> greek{"alpha", "beta", "gamma", "delta", "omega", "tau", "theta", "phi", "lambda"};
   std::string base = name;
   std::string sub;
   if (auto pos = name.find('_'); pos != std::string::npos) {

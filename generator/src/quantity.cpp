@@ -21,13 +21,14 @@ struct Unit {
 };
 
 constexpr double pi = std::numbers::pi;
-constexpr std::array<Unit, 22> units{{
+constexpr std::array<Unit, 23> units{{
     {"m", 1.0, dim(1, 0, 0)},         {"meter", 1.0, dim(1, 0, 0)},
     {"meters", 1.0, dim(1, 0, 0)},    {"metre", 1.0, dim(1, 0, 0)},
     {"cm", 1e-2, dim(1, 0, 0)},       {"mm", 1e-3, dim(1, 0, 0)},
     {"kg", 1.0, dim(0, 1, 0)},        {"gram", 1e-3, dim(0, 1, 0)},
     {"s", 1.0, dim(0, 0, 1)},         {"ms", 1e-3, dim(0, 0, 1)},
     {"minute", 60.0, dim(0, 0, 1)},   {"Hz", 1.0, dim(0, 0, -1)},
+    {"kHz", 1e3, dim(0, 0, -1)},
     {"N", 1.0, dim(1, 1, -2)},        {"Newton", 1.0, dim(1, 1, -2)},
     {"kN", 1e3, dim(1, 1, -2)},       {"Nm", 1.0, dim(2, 1, -2)},
     {"rad", 1.0, dim(0, 0, 0)},       {"deg", pi / 180.0, dim(0, 0, 0)},

@@ -5,6 +5,7 @@
 
 #include "exact_algebra.hpp"
 #include "parameter_folding.hpp"
+#include "vibration_modes.hpp"
 #include "specialization.hpp"
 
 namespace pogear {
@@ -99,8 +100,12 @@ Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedS
   // The specialized system's own M, exact in the tunable parameters, at their values: the numbers
   // numeric_system computes by another formula (the tests compare them), without solving again.
   // L1 holds inertias and radii only, which the folding leaves at the model's values.
-  return diagnose(state_matrix(model, sys), evaluate_matrix(d.rigid_values.L1, {}),
-                  evaluate_matrix(d.elastic.R, values), model.scene.sample);
+  Diagnostics out = diagnose(state_matrix(model, sys), evaluate_matrix(d.rigid_values.L1, {}),
+                             evaluate_matrix(d.elastic.R, values), model.scene.sample);
+  // At the derivation's values (the scene's overrides), not the folded ones: a rigid scene folds
+  // the stiffnesses away, yet the frequency below which it holds is that of its gear.
+  add_natural_frequency(out, d, d.values);
+  return out;
 }
 
 }  // namespace pogear

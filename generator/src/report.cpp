@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "exact_algebra.hpp"
+#include "json_text.hpp"
 #include "printer.hpp"
 
 namespace pogear {
@@ -174,21 +175,6 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
   return s;
 }
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", c);
-        else out += c;
-    }
-  }
-  return out + "\"";
-}
-
 std::string json_strings(const std::vector<std::string>& v) {
   std::vector<std::string> q;
   for (const auto& x : v) q.push_back(json_string(x));
@@ -200,8 +186,6 @@ std::string json_string_matrix(const std::vector<std::vector<std::string>>& m, c
   for (const auto& r : m) rows.push_back(json_strings(r));
   return "[\n" + indent + "  " + join(rows, ",\n" + indent + "  ") + "\n" + indent + "]";
 }
-
-std::string json_number(double v) { return fmt::format("{}", v); }
 
 std::string json_numbers(const Eigen::VectorXd& v) {
   std::vector<std::string> s;

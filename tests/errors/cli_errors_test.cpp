@@ -138,5 +138,44 @@ TEST_F(Simulator, RunStopped) {
   EXPECT_EQ(csv.substr(csv.rfind('#')), "# incomplete: rk4 stopped at t = 0.0015: max_steps = 30 reached\n");
 }
 
+TEST_F(Cli, ModesOfARigidScene) {
+  write_text("scene.toml", edited(base_scene(), {{R"(effects = ["mesh_compliance", "mesh_damping", "bearing_friction", "mesh_forces"])",
+                                                  R"(effects = ["bearing_friction"])"},
+                                                 {"compare_rigid = true", "compare_rigid = false"}}));
+  expect_pogear_error("modes scene.toml", 2,
+      R"~(scene.toml: error: the scene simulates the rigid model (no mesh_compliance in its effects), which has no elastic modes; add mesh_compliance to its effects, or give the model file)~");
+}
+
+TEST_F(Cli, ModesOfFrequenciesTooFarApart) {
+  write_text("gear.toml", edited(base_model(), {{R"(K_sg = "K_ps")", R"(K_sg = "1e13*Newton/mm")"}}));
+  expect_pogear_error("modes gear.toml", 2,
+      R"~(gear.toml: error: the natural frequencies span a ratio of 1.57e+05 (lambda from 2.9e+05 to 7.16e+15 1/s^2), above 1e+04, the widest span whose lowest frequency double precision gives to 8 digits; make the stiffnesses and inertias less disparate)~");
+}
+
+TEST_F(Cli, ResponseUnknownInput) {
+  expect_pogear_error("response scene.toml --input tau_x --output omega_r", 2,
+      R"~(scene.toml: error: --input 'tau_x' is not tau_<body> of the model; give the torque of one of its bodies, e.g. tau_c)~");
+}
+
+TEST_F(Cli, ResponseUnknownOutput) {
+  expect_pogear_error("response scene.toml --input tau_c --output omega_x", 2,
+      R"~(scene.toml: error: --output 'omega_x' is neither omega_<body> nor F_<mesh> of the model)~");
+}
+
+TEST_F(Cli, ResponseEmptyRange) {
+  expect_pogear_error("response scene.toml --input tau_c --output omega_r --from '10*Hz' --to '1*Hz'", 2,
+      R"~(scene.toml: error: the frequency range --from 10*Hz --to 1*Hz is empty; give --from below --to)~");
+}
+
+TEST_F(Cli, ResponseNegativeFrequency) {
+  expect_pogear_error("response scene.toml --input tau_c --output omega_r --from '-1*Hz'", 2,
+      R"~(scene.toml: error: --from '-1*Hz' is not a positive frequency; the response is drawn on a logarithmic axis from a frequency above 0)~");
+}
+
+TEST_F(Cli, ResponseFrequencyNotInHz) {
+  expect_pogear_error("response scene.toml --input tau_c --output omega_r --to '100*rpm'", 2,
+      R"~(scene.toml: error: --to '100*rpm' is not a frequency in Hz; give it in Hz or kHz, e.g. --to 10*Hz)~");
+}
+
 }  // namespace
 }  // namespace pogear::test

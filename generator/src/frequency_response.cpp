@@ -1,0 +1,147 @@
+// See frequency_response.hpp. jw I - H is upper Hessenberg, so Givens rotations make it upper
+// triangular in O(n^2): unitary, hence backward stable, with no pivoting decision to get wrong.
+#include "frequency_response.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "specialization.hpp"
+
+namespace pogear {
+
+HessenbergSystem hessenberg_system(const NumericSystem& s) {
+  const Eigen::HessenbergDecomposition<Eigen::MatrixXd> hd(s.M);
+  const Eigen::MatrixXd Q = hd.matrixQ();
+  HessenbergSystem out;
+  out.H = hd.matrixH();
+  out.N = Q.transpose() * s.N;
+  out.C = (s.C + s.E * s.M) * Q;
+  out.D = s.D + s.E * s.N;
+  return out;
+}
+
+Eigen::MatrixXcd transfer_matrix(const HessenbergSystem& s, double omega) {
+  using cd = std::complex<double>;
+  const Eigen::Index n = s.H.rows();
+  Eigen::MatrixXcd A = -s.H.cast<cd>();
+  A.diagonal().array() += cd(0, omega);
+  Eigen::MatrixXcd X = s.N.cast<cd>();
+  for (Eigen::Index k = 0; k + 1 < n; ++k) {
+    const cd a = A(k, k), b = A(k + 1, k);
+    const double r = std::hypot(std::abs(a), std::abs(b));
+    if (r == 0) continue;
+    const cd c = a / r, sn = b / r;  // [conj(c) conj(s); -s c] [a; b] = [r; 0]
+    for (Eigen::Index j = k; j < n; ++j) {
+      const cd u = A(k, j), v = A(k + 1, j);
+      A(k, j) = std::conj(c) * u + std::conj(sn) * v;
+      A(k + 1, j) = -sn * u + c * v;
+    }
+    for (Eigen::Index j = 0; j < X.cols(); ++j) {
+      const cd u = X(k, j), v = X(k + 1, j);
+      X(k, j) = std::conj(c) * u + std::conj(sn) * v;
+      X(k + 1, j) = -sn * u + c * v;
+    }
+  }
+  A.triangularView<Eigen::Upper>().solveInPlace(X);
+  return s.C.cast<cd>() * X + s.D.cast<cd>();
+}
+
+namespace {
+
+std::vector<double> log_grid(const FrequencyGrid& g) {
+  std::vector<double> f(g.points);
+  const double a = std::log(g.from_hz), b = std::log(g.to_hz);
+  for (int i = 0; i < g.points; ++i)
+    f[i] = g.points == 1 ? g.from_hz : std::exp(a + (b - a) * i / (g.points - 1));
+  if (g.points > 1) f.back() = g.to_hz;
+  return f;
+}
+
+// The maximum of |H| between grid points f0 < f1 < f2 with |H(f1)| the largest of the three:
+// golden section in log f, to a bracket of 1e-12 relative.
+double refine_peak(const HessenbergSystem& s, int out, int in, double f0, double f2) {
+  auto mag = [&](double logf) { return std::abs(transfer_matrix(s, 2 * std::numbers::pi * std::exp(logf))(out, in)); };
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  double a = std::log(f0), b = std::log(f2);
+  double x1 = b - g * (b - a), x2 = a + g * (b - a);
+  double m1 = mag(x1), m2 = mag(x2);
+  while (b - a > 1e-12) {
+    if (m1 < m2) {
+      a = x1, x1 = x2, m1 = m2;
+      x2 = a + g * (b - a), m2 = mag(x2);
+    } else {
+      b = x2, x2 = x1, m2 = m1;
+      x1 = b - g * (b - a), m1 = mag(x1);
+    }
+  }
+  return std::exp((a + b) / 2);
+}
+
+// "rad/s" -> "(rad/s)", "N m" -> "(N m)", "N" -> "N": a unit of H reads (rad/s)/(N m).
+std::string unit_text(Variable v) {
+  const std::string u(unit_of(v.kind));
+  return u.find_first_of("/ ") == std::string::npos ? u : "(" + u + ")";
+}
+
+}  // namespace
+
+std::vector<TransferFunction> frequency_response(const Scene& scene, const std::vector<Variable>& inputs,
+                                                 const std::vector<Variable>& outputs, const FrequencyGrid& grid) {
+  // The scene's system with unit inputs on the asked bodies and the asked outputs: its
+  // specialization gives N, C, D, E for exactly these (a zero input would not be an input).
+  Scene s = scene;
+  s.inputs.clear();
+  for (const Variable u : inputs) s.inputs.push_back(InputSpec{u.index, rt::Constant{1}, {}});
+  s.outputs = outputs;
+  for (const Variable y : outputs) s.effects.mesh_forces = s.effects.mesh_forces || y.kind == VariableKind::force;
+  s.compare_rigid = s.effects.mesh_compliance;
+  s.tunable.clear();
+  const SpecializedScene model = specialize(s);
+  const HessenbergSystem main = hessenberg_system(numeric_system(model, model.main));
+  std::optional<HessenbergSystem> rigid;
+  if (model.rigid) rigid = hessenberg_system(numeric_system(model, *model.rigid));
+
+  const std::vector<double> f = log_grid(grid);
+  const std::size_t nu = inputs.size(), ny = outputs.size();
+  std::vector<TransferFunction> out(nu * ny);
+  for (std::size_t i = 0; i < nu; ++i)
+    for (std::size_t o = 0; o < ny; ++o) {
+      TransferFunction& t = out[i * ny + o];
+      t.input = inputs[i], t.output = outputs[o];
+      t.input_name = variable_name(s.model, t.input);
+      t.output_name = variable_name(s.model, t.output);
+      t.unit = unit_text(t.output) + "/" + unit_text(t.input);
+      t.frequency_hz = f;
+    }
+  for (const double fk : f) {
+    const double w = 2 * std::numbers::pi * fk;
+    const Eigen::MatrixXcd H = transfer_matrix(main, w);
+    Eigen::MatrixXcd Hr;
+    if (rigid) Hr = transfer_matrix(*rigid, w);
+    for (std::size_t i = 0; i < nu; ++i)
+      for (std::size_t o = 0; o < ny; ++o) {
+        out[i * ny + o].value.push_back(H(o, i));
+        if (rigid) out[i * ny + o].rigid.push_back(Hr(o, i));
+      }
+  }
+  for (std::size_t i = 0; i < nu; ++i)
+    for (std::size_t o = 0; o < ny; ++o) {
+      TransferFunction& t = out[i * ny + o];
+      for (std::size_t k = 1; k + 1 < f.size(); ++k) {
+        const double m0 = std::abs(t.value[k - 1]), m1 = std::abs(t.value[k]), m2 = std::abs(t.value[k + 1]);
+        if (!(m1 > m0 && m1 >= m2)) continue;
+        ResonancePeak p;
+        p.frequency_hz = refine_peak(main, static_cast<int>(o), static_cast<int>(i), f[k - 1], f[k + 1]);
+        const double w = 2 * std::numbers::pi * p.frequency_hz;
+        p.magnitude = std::abs(transfer_matrix(main, w)(o, i));
+        if (rigid) {
+          const double r = std::abs(transfer_matrix(*rigid, w)(o, i));
+          if (r > 0) p.over_rigid = p.magnitude / r;
+        }
+        t.peaks.push_back(p);
+      }
+    }
+  return out;
+}
+
+}  // namespace pogear

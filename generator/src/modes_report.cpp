@@ -1,0 +1,192 @@
+// Numbers are printed to 6 significant digits in text, Markdown and LaTeX (the eigenproblem is
+// accurate to ~8, vibration_modes.hpp) and in shortest round-trip form in JSON.
+#include "modes_report.hpp"
+
+#include <fmt/format.h>
+
+#include "json_text.hpp"
+#include "printer.hpp"
+
+namespace pogear {
+namespace {
+
+std::string g6(double v) { return fmt::format("{:.6g}", v); }
+
+std::string zeta_text(const VibrationMode& m) { return m.damping_ratio ? g6(*m.damping_ratio) : "-"; }
+
+// Entries of a per-body or per-mesh vector as "name value" pairs.
+std::string named_values(const std::vector<std::string>& names, const Eigen::VectorXd& v) {
+  std::string s;
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    s += fmt::format("{}{} {}", i ? ", " : "", names[i], g6(std::abs(v(i)) < 1e-12 ? 0.0 : v(i)));
+  return s;
+}
+
+std::string summary(const VibrationModes& m) {
+  int rigid = 0;
+  for (const VibrationMode& mode : m.modes) rigid += mode.kind == ModeKind::rigid;
+  const int elastic = static_cast<int>(m.modes.size()) - rigid;
+  std::string s = fmt::format("{} rigid-body mode{}, {} elastic mode{}", rigid, rigid == 1 ? "" : "s", elastic,
+                              elastic == 1 ? "" : "s");
+  if (elastic > 0) {
+    s += fmt::format("; lowest natural frequency {} Hz: the rigid model holds for inputs well below it",
+                     g6(m.modes[rigid].frequency_hz));
+  }
+  return s;
+}
+
+// det(R^T K R - lambda J) / lambda^(n - rank R), highest power first, each coefficient printed on
+// its own: one printed sum would order the powers of lambda among the parameters' terms.
+std::string characteristic_polynomial(const VibrationModes& m, Notation notation) {
+  const std::string lambda = notation == Notation::latex ? "\\lambda" : "lambda";
+  const std::string times = notation == Notation::latex ? " " : "*";
+  std::string s;
+  for (std::size_t k = m.characteristic.size(); k-- > 0;) {
+    const std::string c = print_expression(m.characteristic[k], notation);
+    const std::string open = notation == Notation::latex ? "\\left(" : "(", close = notation == Notation::latex ? "\\right)" : ")";
+    if (!s.empty()) s += notation == Notation::ginac ? "+" : " + ";
+    s += open + c + close;
+    if (k >= 1) s += times + lambda;
+    if (k >= 2) s += notation == Notation::latex ? fmt::format("^{{{}}}", k) : fmt::format("^{}", k);
+  }
+  return s;
+}
+
+int rigid_count(const VibrationModes& m) {
+  return static_cast<int>(m.modes.size() - m.characteristic.size() + 1);
+}
+
+std::string damping_line(const VibrationModes& m, const char* first_word = "damping") {
+  std::string s = std::string(first_word) + " ratios of: " + m.damping;
+  if (!m.damping_note.empty()) s += " (" + m.damping_note + ")";
+  return s;
+}
+
+}  // namespace
+
+std::string modes_text(const VibrationModes& m) {
+  std::string s = "vibration modes of " + m.model + " (R^T K R phi = lambda J phi, f = sqrt(lambda)/(2 pi))\n";
+  s += summary(m) + "\n" + damping_line(m) + "\n\n";
+  s += fmt::format("{:>4}  {:>14}  {:>13}  {:>12}  {}\n", "mode", "frequency [Hz]", "damping ratio", "multiplicity",
+                   "kind");
+  for (std::size_t i = 0; i < m.modes.size(); ++i) {
+    const VibrationMode& mode = m.modes[i];
+    s += fmt::format("{:>4}  {:>14}  {:>13}  {:>12}  {}\n", i + 1, g6(mode.frequency_hz), zeta_text(mode),
+                     mode.multiplicity, mode_kind_name(mode.kind));
+  }
+  for (std::size_t i = 0; i < m.modes.size(); ++i) {
+    const VibrationMode& mode = m.modes[i];
+    s += fmt::format("\nmode {}: {} Hz, {}\n", i + 1, g6(mode.frequency_hz), mode_kind_name(mode.kind));
+    s += "  shape           " + named_values(m.bodies, mode.shape) + "\n";
+    if (mode.strain_energy.size())
+      s += "  strain energy   " + named_values(m.meshes, mode.strain_energy) + "\n";
+    s += "  kinetic energy  " + named_values(m.bodies, mode.kinetic_energy) + "\n";
+  }
+  if (!m.characteristic.empty()) {
+    s += fmt::format("\ndet(R^T K R - lambda J) = lambda^{} p(lambda), p(lambda) = {}\n", rigid_count(m),
+                     characteristic_polynomial(m, Notation::text));
+    for (std::size_t k = 0; k < m.closed_form.size(); ++k)
+      s += fmt::format("lambda_{} = {}\n", k + 1, print_expression(m.closed_form[k], Notation::text));
+  }
+  return s;
+}
+
+std::string modes_markdown(const VibrationModes& m) {
+  std::string s = "# Vibration modes of " + m.model + "\n\n";
+  s += "$R^T K R \\varphi = \\lambda J \\varphi$, $f = \\sqrt{\\lambda} / 2\\pi$. " + summary(m) + ". " +
+       damping_line(m, "Damping") + ".\n\n";
+  s += "| mode | frequency [Hz] | damping ratio | multiplicity | kind |\n|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < m.modes.size(); ++i) {
+    const VibrationMode& mode = m.modes[i];
+    s += fmt::format("| {} | {} | {} | {} | {} |\n", i + 1, g6(mode.frequency_hz), zeta_text(mode), mode.multiplicity,
+                     mode_kind_name(mode.kind));
+  }
+  for (std::size_t i = 0; i < m.modes.size(); ++i) {
+    const VibrationMode& mode = m.modes[i];
+    s += fmt::format("\n## Mode {}: {} Hz, {}\n\n", i + 1, g6(mode.frequency_hz), mode_kind_name(mode.kind));
+    s += "- shape: " + named_values(m.bodies, mode.shape) + "\n";
+    if (mode.strain_energy.size()) s += "- strain energy: " + named_values(m.meshes, mode.strain_energy) + "\n";
+    s += "- kinetic energy: " + named_values(m.bodies, mode.kinetic_energy) + "\n";
+  }
+  if (!m.characteristic.empty()) {
+    s += fmt::format("\n## Closed form\n\n$$\n\\det(R^T K R - \\lambda J) = \\lambda^{{{}}} \\left({}\\right)\n$$\n\n",
+                     rigid_count(m), characteristic_polynomial(m, Notation::latex));
+    for (std::size_t k = 0; k < m.closed_form.size(); ++k)
+      s += fmt::format("$$\n\\lambda_{{{}}} = {}\n$$\n\n", k + 1, print_expression(m.closed_form[k], Notation::latex));
+  }
+  return s;
+}
+
+std::string modes_latex(const VibrationModes& m) {
+  // Body and mesh names are identifiers (letters, digits, '_'), the model's name too.
+  auto tex = [](const std::string& name) {
+    std::string out;
+    for (char c : name) out += c == '_' ? std::string("\\_") : std::string(1, c);
+    return out;
+  };
+  std::string s = "% Generated by pogear modes. Compile with pdflatex.\n";
+  s += "\\documentclass{article}\n\\usepackage{amsmath,amssymb}\n\\usepackage[margin=2cm,landscape]{geometry}\n";
+  s += "\\allowdisplaybreaks\n\\begin{document}\n";
+  s += "\\section*{Vibration modes of " + tex(m.model) + "}\n";
+  s += "$R^T K R \\varphi = \\lambda J \\varphi$, $f = \\sqrt{\\lambda} / 2\\pi$. " + tex(summary(m)) + ". " +
+       tex(damping_line(m, "Damping")) + ".\n\n";
+  s += "\\begin{tabular}{rrrrl}\nmode & frequency [Hz] & damping ratio & multiplicity & kind \\\\\n\\hline\n";
+  for (std::size_t i = 0; i < m.modes.size(); ++i) {
+    const VibrationMode& mode = m.modes[i];
+    s += fmt::format("{} & {} & {} & {} & {} \\\\\n", i + 1, g6(mode.frequency_hz), zeta_text(mode), mode.multiplicity,
+                     mode_kind_name(mode.kind));
+  }
+  s += "\\end{tabular}\n";
+  for (std::size_t i = 0; i < m.modes.size(); ++i) {
+    const VibrationMode& mode = m.modes[i];
+    s += fmt::format("\\subsection*{{Mode {}: {} Hz, {}}}\n", i + 1, g6(mode.frequency_hz), mode_kind_name(mode.kind));
+    s += "Shape: " + tex(named_values(m.bodies, mode.shape)) + ".\\\\\n";
+    if (mode.strain_energy.size())
+      s += "Strain energy: " + tex(named_values(m.meshes, mode.strain_energy)) + ".\\\\\n";
+    s += "Kinetic energy: " + tex(named_values(m.bodies, mode.kinetic_energy)) + ".\n";
+  }
+  if (!m.characteristic.empty()) {
+    s += "\\subsection*{Closed form}\n";
+    s += fmt::format("\\[\n\\det(R^T K R - \\lambda J) = \\lambda^{{{}}} \\left({}\\right)\n\\]\n", rigid_count(m),
+                     characteristic_polynomial(m, Notation::latex));
+    for (std::size_t k = 0; k < m.closed_form.size(); ++k)
+      s += fmt::format("\\[\n\\lambda_{{{}}} = {}\n\\]\n", k + 1, print_expression(m.closed_form[k], Notation::latex));
+  }
+  return s + "\\end{document}\n";
+}
+
+std::string modes_json(const VibrationModes& m) {
+  auto object = [](const std::vector<std::string>& names, const Eigen::VectorXd& v) {
+    std::string s = "{";
+    for (Eigen::Index i = 0; i < v.size(); ++i)
+      s += fmt::format("{}{}: {}", i ? ", " : "", json_string(names[i]), json_number(v(i)));
+    return s + "}";
+  };
+  std::string j = "{\n  \"model\": " + json_string(m.model) + ",\n";
+  j += "  \"damping\": " + json_string(m.damping) + ",\n";
+  if (!m.characteristic.empty())
+    j += "  \"characteristic_polynomial\": " +
+         json_string(characteristic_polynomial(m, Notation::ginac)) + ",\n";
+  if (!m.closed_form.empty()) {
+    j += "  \"closed_form\": [";
+    for (std::size_t k = 0; k < m.closed_form.size(); ++k)
+      j += (k ? ", " : "") + json_string(print_expression(m.closed_form[k], Notation::ginac));
+    j += "],\n";
+  }
+  j += "  \"modes\": [\n";
+  for (std::size_t i = 0; i < m.modes.size(); ++i) {
+    const VibrationMode& mode = m.modes[i];
+    j += "    {";
+    j += "\"frequency_hz\": " + json_number(mode.frequency_hz);
+    j += ", \"damping_ratio\": " + (mode.damping_ratio ? json_number(*mode.damping_ratio) : std::string("null"));
+    j += fmt::format(", \"multiplicity\": {}", mode.multiplicity);
+    j += ", \"kind\": " + json_string(std::string(mode_kind_name(mode.kind)));
+    j += ", \"shape\": " + object(m.bodies, mode.shape);
+    j += ", \"strain_energy\": " + object(m.meshes, mode.strain_energy);
+    j += ", \"kinetic_energy\": " + object(m.bodies, mode.kinetic_energy);
+    j += i + 1 < m.modes.size() ? "},\n" : "}\n";
+  }
+  return j + "  ]\n}\n";
+}
+
+}  // namespace pogear

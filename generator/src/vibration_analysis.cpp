@@ -1,0 +1,95 @@
+// See vibration_analysis.hpp. Errors of the command line are located at the scene file, as the
+// other commands' option errors are (`pogear derive --keep`).
+#include "vibration_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "parameter_folding.hpp"
+#include "quantity.hpp"
+#include "scene.hpp"
+#include "toml_reader.hpp"
+
+namespace pogear {
+
+bool is_scene_file(const std::string& path) {
+  const std::string text = read_input_file(path, max_model_file_bytes, "file");
+  const toml::table root = parse_toml_document(text, path, max_model_file_bytes, "the file is larger than 1 MB");
+  return root.contains("model");
+}
+
+VibrationModes modes_of_file(const std::string& path) {
+  const SourceLocation where{path, 0, 0};
+  try {
+    if (!is_scene_file(path)) {
+      const Derivation d = derive_model(path, std::nullopt, where);
+      return vibration_modes(d, d.values, "mesh damping and bearing friction, as the model defines them");
+    }
+    const Scene scene = parse_scene(path);
+    if (!scene.effects.mesh_compliance)
+      throw InputError(where, "the scene simulates the rigid model (no mesh_compliance in its effects), which has no "
+                              "elastic modes; add mesh_compliance to its effects, or give the model file");
+    std::optional<std::vector<std::string>> keep;
+    if (!scene.keep.empty()) keep = scene.keep;
+    const Derivation d = derive_topology(scene.model, keep, scene.keep_where, false);
+    std::vector<std::string> damping;
+    if (scene.effects.mesh_damping) damping.push_back("mesh damping");
+    if (scene.effects.bearing_friction) damping.push_back("bearing friction");
+    const std::string which = damping.empty() ? std::string("none (the scene's effects have no damping)")
+                              : damping.size() == 1 ? damping[0] + ", as the scene calls for"
+                                                    : damping[0] + " and " + damping[1] + ", as the scene calls for";
+    return vibration_modes(d, parameter_folding(scene, d, false), which);
+  } catch (const std::domain_error& e) {
+    throw InputError(where, e.what());
+  }
+}
+
+namespace {
+
+double frequency(const std::string& text, const std::string& option, const SourceLocation& where) {
+  Quantity q;
+  try {
+    q = evaluate_quantity(text, {}, where, 0);
+  } catch (const InputError& e) {
+    throw InputError(where, fmt::format("{} '{}': {}", option, text, e.message()));
+  }
+  // Hz, rad/s and rpm are all 1/s, rad being a number; only Hz and kHz count cycles per second.
+  if (q.dimension != angular_velocity_dimension() || text.find("Hz") == std::string::npos)
+    throw InputError(where, fmt::format("{} '{}' is not a frequency in Hz; give it in Hz or kHz, e.g. {} 10*Hz",
+                                        option, text, option));
+  if (!(q.si > 0) || !std::isfinite(q.si))
+    throw InputError(where, fmt::format("{} '{}' is not a positive frequency; the response is drawn on a logarithmic "
+                                        "axis from a frequency above 0", option, text));
+  return q.si;
+}
+
+}  // namespace
+
+SceneResponse response_of(const ResponseRequest& request) {
+  const Scene scene = parse_scene(request.scene_file);
+  const SourceLocation where{request.scene_file, 0, 0};
+  FrequencyGrid grid;
+  grid.from_hz = frequency(request.from, "--from", where);
+  grid.to_hz = frequency(request.to, "--to", where);
+  grid.points = request.points;
+  if (!(grid.from_hz < grid.to_hz))
+    throw InputError(where, fmt::format("the frequency range --from {} --to {} is empty; give --from below --to",
+                                        request.from, request.to));
+  std::vector<Variable> inputs, outputs;
+  for (const std::string& name : request.inputs) {
+    const auto v = find_variable(scene.model, name, {VariableKind::torque});
+    if (!v) throw InputError(where, fmt::format("--input '{}' is not tau_<body> of the model; give the torque of one "
+                                                "of its bodies, e.g. tau_{}", name, scene.model.bodies.front().name));
+    if (std::find(inputs.begin(), inputs.end(), *v) == inputs.end()) inputs.push_back(*v);
+  }
+  for (const std::string& name : request.outputs) {
+    const auto v = find_variable(scene.model, name, {VariableKind::velocity, VariableKind::force});
+    if (!v) throw InputError(where, fmt::format("--output '{}' is neither omega_<body> nor F_<mesh> of the model", name));
+    if (std::find(outputs.begin(), outputs.end(), *v) == outputs.end()) outputs.push_back(*v);
+  }
+  return SceneResponse{scene.name, frequency_response(scene, inputs, outputs, grid)};
+}
+
+}  // namespace pogear

@@ -1,0 +1,32 @@
+// `pogear modes` and `pogear response` as library functions: the file read, the analysis asked
+// for, and what is wrong with the request as an InputError located in the file or command line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "frequency_response.hpp"
+#include "vibration_modes.hpp"
+
+namespace pogear {
+
+// A scene file names its model (`model = "..."`); a model file does not.
+bool is_scene_file(const std::string& path);
+
+// Modes of a model file (every damping it defines) or of a scene (its parameters and the damping
+// its effects call for). A rigid scene has no elastic modes and is refused.
+VibrationModes modes_of_file(const std::string& path);
+
+struct ResponseRequest {
+  std::string scene_file;
+  std::vector<std::string> inputs, outputs;  // tau_<body>; omega_<body> or F_<mesh>
+  std::string from = "1*Hz", to = "10*kHz";   // quantities with units
+  int points = 1000;
+};
+struct SceneResponse {
+  std::string scene_name;
+  std::vector<TransferFunction> pairs;  // input-major
+};
+SceneResponse response_of(const ResponseRequest& request);
+
+}  // namespace pogear

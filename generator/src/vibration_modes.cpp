@@ -1,0 +1,196 @@
+// See vibration_modes.hpp. J is diagonal and positive, so the generalized problem is the ordinary
+// symmetric one of J^-1/2 R^T K R J^-1/2: orthogonal eigenvectors, real eigenvalues, no pairing
+// of complex conjugates, and rounding of order eps * lambda_max.
+#include "vibration_modes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "exact_algebra.hpp"
+
+namespace pogear {
+namespace {
+
+struct Eigenproblem {
+  Eigen::VectorXd J, K;  // diagonals
+  Eigen::MatrixXd R;
+  Eigen::VectorXd lambda;  // ascending; the first n - rank R are the rigid modes, set to 0
+  Eigen::MatrixXd phi;     // columns, J-orthonormal
+  int rigid = 0;
+};
+
+Eigenproblem solve_eigenproblem(const Derivation& d, const GiNaC::exmap& values) {
+  const ElasticModel& e = d.elastic;
+  if (e.R.rows() == 0) throw std::domain_error("the model has no mesh, so it has no vibration modes");
+  Eigenproblem p;
+  p.J = evaluate_matrix(e.J, values).diagonal();
+  p.K = evaluate_matrix(e.K, values).diagonal();
+  p.R = evaluate_matrix(e.R, values);
+  const Eigen::VectorXd s = p.J.cwiseSqrt().cwiseInverse();  // J^-1/2
+  const Eigen::MatrixXd RS = p.R * s.asDiagonal();
+  const Eigen::MatrixXd S = RS.transpose() * p.K.asDiagonal() * RS;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(S);
+  if (es.info() != Eigen::Success) throw std::domain_error("the symmetric eigenvalue solver did not converge");
+  p.lambda = es.eigenvalues();
+  p.phi = s.asDiagonal() * es.eigenvectors();
+  const int n = static_cast<int>(p.J.size());
+  p.rigid = n - d.rigid.rank;
+  const double lambda_max = p.lambda(n - 1);
+  if (p.rigid < n) {
+    const double spread = lambda_max / p.lambda(p.rigid);
+    if (!(p.lambda(p.rigid) > 0) || spread > max_eigenvalue_spread)
+      throw std::domain_error(fmt::format(
+          "the natural frequencies span a ratio of {:.3g} (lambda from {:.3g} to {:.3g} 1/s^2), above {:.0g}, the "
+          "widest span whose lowest frequency double precision gives to 8 digits; make the stiffnesses and inertias "
+          "less disparate",
+          std::sqrt(spread), p.lambda(p.rigid), lambda_max, std::sqrt(max_eigenvalue_spread)));
+  }
+  p.lambda.head(p.rigid).setZero();
+  return p;
+}
+
+double frequency_hz(double lambda) { return std::sqrt(lambda) / (2 * std::numbers::pi); }
+
+// Damping ratios of the elastic modes from the eigenvalues of M = L^-1 A: the oscillatory pairs
+// (Im > 0), by ascending |s|, are the elastic modes by ascending frequency when as many are found.
+std::optional<std::vector<double>> damping_ratios(const Derivation& d, const GiNaC::exmap& values, int elastic,
+                                                  std::string& note) {
+  const Eigen::MatrixXd L = evaluate_matrix(d.elastic.L, values);
+  const Eigen::MatrixXd M = L.diagonal().cwiseInverse().asDiagonal() * evaluate_matrix(d.elastic.A, values);
+  const Eigen::VectorXcd s = Eigen::EigenSolver<Eigen::MatrixXd>(M, false).eigenvalues();
+  std::vector<std::complex<double>> pairs;
+  const double scale = s.cwiseAbs().maxCoeff();
+  for (Eigen::Index i = 0; i < s.size(); ++i)
+    if (s(i).imag() > 1e-12 * scale) pairs.push_back(s(i));  // rounding leaves |Im| ~1e-16 |s|max on real ones
+  if (static_cast<int>(pairs.size()) != elastic) {
+    note = fmt::format("M has {} oscillatory eigenvalue pairs for {} elastic modes (some are overdamped), so the "
+                       "damping ratios are not paired with modes",
+                       pairs.size(), elastic);
+    return std::nullopt;
+  }
+  std::sort(pairs.begin(), pairs.end(), [](auto a, auto b) { return std::abs(a) < std::abs(b); });
+  std::vector<double> zeta;
+  for (const auto& p : pairs) zeta.push_back(-p.real() / std::abs(p));
+  return zeta;
+}
+
+bool has_damping(const Derivation& d, const GiNaC::exmap& values) {
+  return !evaluate_matrix(d.elastic.B_J, values).isZero(0) || !evaluate_matrix(d.elastic.B_K, values).isZero(0);
+}
+
+// det(R^T K R - lambda J) = lambda^(n-r) p(lambda); the coefficients of p, symbolic.
+std::vector<GiNaC::ex> characteristic_polynomial(const Derivation& d, const GiNaC::symbol& lambda) {
+  const ElasticModel& e = d.elastic;
+  const GiNaC::matrix Kt = e.R.transpose().mul(e.K).mul(e.R);
+  const GiNaC::matrix P = Kt.sub(e.J.mul_scalar(lambda));
+  const GiNaC::ex det = P.determinant().expand();
+  const int n = static_cast<int>(e.J.rows()), r = d.rigid.rank;
+  std::vector<GiNaC::ex> c;
+  for (int k = n - r; k <= n; ++k) c.push_back(det.coeff(lambda, k));
+  return c;
+}
+
+// The roots of sum_k a[k] lambda^k of degree 1 or 2 in closed form, ascending at `values`. (The
+// cubic's trigonometric form took GiNaC over ten minutes to normalize for a 5-body gear, so a
+// gear of three elastic modes gets its characteristic polynomial only.)
+std::vector<GiNaC::ex> characteristic_roots(const std::vector<GiNaC::ex>& a, const GiNaC::exmap& values) {
+  using GiNaC::ex;
+  if (a.size() == 2) return {GiNaC::normal(-a[0] / a[1])};
+  if (a.size() != 3) return {};
+  const ex disc = GiNaC::factor(GiNaC::normal(a[1] * a[1] - 4 * a[2] * a[0]));
+  const ex sq = GiNaC::sqrt(disc);
+  const ex lo = (-a[1] - sq) / (2 * a[2]), hi = (-a[1] + sq) / (2 * a[2]);
+  // The sign of a[2] decides which is the smaller.
+  return to_double(exact_value(a[2], values)) > 0 ? std::vector<ex>{lo, hi} : std::vector<ex>{hi, lo};
+}
+
+}  // namespace
+
+std::string_view mode_kind_name(ModeKind kind) {
+  switch (kind) {
+    case ModeKind::rigid: return "rigid";
+    case ModeKind::planet: return "planet";
+    case ModeKind::elastic: break;
+  }
+  return "elastic";
+}
+
+double lowest_natural_frequency(const Derivation& d, const GiNaC::exmap& values) {
+  const Eigenproblem p = solve_eigenproblem(d, values);
+  if (p.rigid >= p.lambda.size()) throw std::domain_error("the model has no elastic mode");
+  return frequency_hz(p.lambda(p.rigid));
+}
+
+void add_natural_frequency(Diagnostics& diagnostics, const Derivation& d, const GiNaC::exmap& values) {
+  try {
+    diagnostics.lowest_natural_frequency_hz = lowest_natural_frequency(d, values);
+  } catch (const std::domain_error& e) {
+    diagnostics.natural_frequency_note = e.what();
+  }
+}
+
+VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, std::string damping) {
+  const Eigenproblem p = solve_eigenproblem(d, values);
+  const Topology& t = d.topology;
+  VibrationModes out;
+  out.model = t.name;
+  for (const Body& b : t.bodies) out.bodies.push_back(b.name);
+  for (const Mesh& m : t.meshes) out.meshes.push_back(m.name);
+  out.damping = std::move(damping);
+  const int n = static_cast<int>(p.lambda.size());
+  const int elastic = n - p.rigid;
+
+  std::optional<std::vector<double>> zeta;
+  if (!has_damping(d, values)) zeta = std::vector<double>(elastic, 0.0);
+  else zeta = damping_ratios(d, values, elastic, out.damping_note);
+
+  for (int i = 0; i < n; ++i) {
+    VibrationMode m;
+    m.frequency_hz = frequency_hz(p.lambda(i));
+    m.kind = i < p.rigid ? ModeKind::rigid : ModeKind::elastic;
+    Eigen::VectorXd phi = p.phi.col(i);
+    Eigen::Index big = 0;
+    phi.cwiseAbs().maxCoeff(&big);
+    phi /= phi(big);
+    m.shape = phi;
+    const Eigen::VectorXd kinetic = p.J.cwiseProduct(phi.cwiseAbs2());
+    m.kinetic_energy = kinetic / kinetic.sum();
+    if (m.kind != ModeKind::rigid) {
+      const Eigen::VectorXd strain = p.K.cwiseProduct((p.R * phi).cwiseAbs2());
+      m.strain_energy = strain / strain.sum();
+      if (zeta) m.damping_ratio = (*zeta)[i - p.rigid];
+      // The shape is exact to ~eps lambda_max / gap; 1e-6 of the largest entry is far above that
+      // for the symmetric planet modes (exactly 0 for the central members) and far below a motion.
+      bool central_at_rest = true, planet_moves = false;
+      for (int b = 0; b < n; ++b) {
+        const bool moves = std::abs(phi(b)) > 1e-6;
+        if (t.bodies[b].axis == AxisKind::central && moves) central_at_rest = false;
+        if (t.bodies[b].axis == AxisKind::carried && moves) planet_moves = true;
+      }
+      if (central_at_rest && planet_moves) m.kind = ModeKind::planet;
+    }
+    out.modes.push_back(std::move(m));
+  }
+  // Multiplicity: clusters of consecutive frequencies within the tolerance (the rigid ones are one).
+  for (int i = 0; i < n;) {
+    int j = i + 1;
+    while (j < n && (out.modes[j].frequency_hz - out.modes[j - 1].frequency_hz) <=
+                        degenerate_tolerance * out.modes[j].frequency_hz)
+      ++j;
+    for (int k = i; k < j; ++k) out.modes[k].multiplicity = j - i;
+    i = j;
+  }
+  // Closed forms for small gears: GiNaC's determinant of an n x n symbolic matrix grows fast.
+  if (d.rigid.rank <= 3 && n <= 8) {
+    out.characteristic = characteristic_polynomial(d, out.lambda);
+    const std::vector<GiNaC::ex>& a = out.characteristic;
+    out.closed_form = characteristic_roots(a, d.values);
+  }
+  return out;
+}
+
+}  // namespace pogear

@@ -1,0 +1,65 @@
+// Vibration modes of the elastic model (docs/vibration.md): natural frequencies and mode shapes
+// from the symmetric problem R^T K R phi = lambda J phi, modal energies, damping ratios from M.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <ginac/ginac.h>
+
+#include "derivation.hpp"
+
+namespace pogear {
+
+enum class ModeKind {
+  rigid,    // a motion of ker R: frequency 0, no mesh is strained
+  planet,   // the central members (sun, ring, carrier: bodies on the central axis) stay at rest
+  elastic,  // any other elastic mode
+};
+std::string_view mode_kind_name(ModeKind kind);
+
+struct VibrationMode {
+  double frequency_hz = 0;               // undamped natural frequency; 0 for a rigid mode
+  std::optional<double> damping_ratio;   // none for a rigid mode, or when M's eigenvalues do not pair (see note)
+  int multiplicity = 1;                  // modes of this frequency, within degenerate_tolerance
+  ModeKind kind = ModeKind::elastic;
+  Eigen::VectorXd shape;                 // per body; the largest |entry| is 1, and positive
+  Eigen::VectorXd strain_energy;         // share of each mesh, summing to 1; empty for a rigid mode
+  Eigen::VectorXd kinetic_energy;        // share of each body, summing to 1
+};
+
+struct VibrationModes {
+  std::string model;
+  std::vector<std::string> bodies, meshes;
+  std::vector<VibrationMode> modes;  // ascending frequency; a degenerate cluster is one entry per mode
+  std::string damping;               // which damping the ratios are of, e.g. "none", "mesh damping"
+  std::string damping_note;          // why damping ratios are missing, when they are
+  // det(R^T K R - lambda J) / lambda^(n - rank R) = sum_k characteristic[k] lambda^k when rank R <= 3
+  // (three elastic modes), and its roots in closed form, ascending at the model's values, when
+  // rank R <= 2.
+  GiNaC::symbol lambda{"lambda"};
+  std::vector<GiNaC::ex> characteristic;
+  std::vector<GiNaC::ex> closed_form;
+};
+
+// Two frequencies closer than this, relative, are one degenerate frequency: rounding leaves equal
+// frequencies ~1e-14 apart, and a mistuning a designer means is far above 1e-6.
+inline constexpr double degenerate_tolerance = 1e-6;
+// lambda is computed to about eps * lambda_max absolute, so the smallest nonzero one to eps times
+// this ratio relative: above 1e8 (a frequency ratio of 1e4) that is over ~1e-8, and it is refused.
+inline constexpr double max_eigenvalue_spread = 1e8;
+
+// Modes of the elastic model at `values` (exact numbers for every parameter; damping parameters
+// at zero for damping left out). Throws std::domain_error when the frequencies cannot be computed
+// to the accuracy above, and when the model has no mesh.
+VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, std::string damping);
+
+// The lowest nonzero natural frequency [Hz] at `values`, by the same computation.
+double lowest_natural_frequency(const Derivation& d, const GiNaC::exmap& values);
+// Sets the diagnostics' lowest natural frequency, or the reason it has none.
+void add_natural_frequency(Diagnostics& diagnostics, const Derivation& d, const GiNaC::exmap& values);
+
+}  // namespace pogear

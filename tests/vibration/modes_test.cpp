@@ -1,0 +1,310 @@
+// Vibration modes against independent references: the closed form of one mesh between two inertias,
+// the planet modes of three equal planets (multiplicity N - 1, central members at rest), and the
+// properties every set of modes has (J-orthogonal shapes, energy balance, shares summing to one).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <unsupported/Eigen/Polynomials>
+
+#include <gtest/gtest.h>
+
+#include "../support/commands.hpp"
+#include "../support/files.hpp"
+#include "../support/json.hpp"
+#include "exact_algebra.hpp"
+#include "vibration_modes.hpp"
+
+namespace pogear::test {
+namespace {
+
+// One mesh between a central wheel and a wheel on a fixed axis.
+const char* pair_model = R"(name = "pair"
+[[body]]
+name = "a"
+
+[[body]]
+name = "b"
+axis = { fixed = "below" }
+
+[[mesh]]
+first = "a"
+second = "b"
+
+[parameters]
+r_a = "10*cm"
+r_b = "25*cm"
+J_a = "0.02*kg*meters^2"
+J_b = "0.3*kg*meters^2"
+b_a = "0*Nm/rpm"
+b_b = "0*Nm/rpm"
+K_ab = "500*Newton/mm"
+b_ab = "2*Newton*s/cm"
+)";
+
+Derivation derive_text(const std::string& text, const std::string& name) {
+  return derive_topology(parse_topology_text(text, name), std::nullopt, SourceLocation{name, 0, 0});
+}
+
+Derivation derive_file(const std::string& model) {
+  return derive_model(source_path("models/" + model + ".toml"), std::nullopt, SourceLocation{model, 0, 0});
+}
+
+double si(const Derivation& d, const std::string& parameter) {
+  for (const Parameter& p : d.topology.parameters)
+    if (p.name == parameter) return p.value.si;
+  ADD_FAILURE() << "no parameter " << parameter;
+  return 0;
+}
+
+TEST(Modes, OneMeshBetweenTwoInertiasHasTheClosedFormFrequencyAndDampingRatio) {
+  const Derivation d = derive_text(pair_model, "pair.toml");
+  const VibrationModes m = vibration_modes(d, d.values, "mesh damping");
+  ASSERT_EQ(m.modes.size(), 2u);
+  EXPECT_EQ(m.modes[0].kind, ModeKind::rigid);
+  EXPECT_EQ(m.modes[0].frequency_hz, 0);
+  EXPECT_EQ(m.modes[1].kind, ModeKind::elastic);
+  // m u'' + c u' + K u = 0 for the mesh deflection u, 1/m = r_a^2/J_a + r_b^2/J_b.
+  const double K = si(d, "K_ab"), c = si(d, "b_ab");
+  const double inv_m = std::pow(si(d, "r_a"), 2) / si(d, "J_a") + std::pow(si(d, "r_b"), 2) / si(d, "J_b");
+  const double f = std::sqrt(K * inv_m) / (2 * std::numbers::pi);
+  const double zeta = c / (2 * std::sqrt(K / inv_m));
+  // Eigenvalues of a 2x2 symmetric problem: a few ulps; ζ from the 3x3 non-symmetric M: ~1e-14.
+  EXPECT_NEAR(m.modes[1].frequency_hz / f, 1, 1e-13);
+  ASSERT_TRUE(m.modes[1].damping_ratio);
+  EXPECT_NEAR(*m.modes[1].damping_ratio / zeta, 1, 1e-12);
+  EXPECT_GT(zeta, 0.01);  // the check sees damping, not a rounding residue
+  // The rigid mode turns both wheels at the mesh's ratio: r_a phi_a = -(±) r_b phi_b, |R phi| = 0.
+  const Eigen::VectorXd v = evaluate_matrix(d.elastic.R, d.values) * m.modes[0].shape;
+  EXPECT_LT(std::abs(v(0)), 1e-15);
+  // The closed form is K (r_a^2/J_a + r_b^2/J_b), symbolically.
+  ASSERT_EQ(m.closed_form.size(), 1u);
+  const auto sym = [&](const std::string& n) { return parameter_symbol(d.symbols, n); };
+  const GiNaC::ex expected =
+      sym("K_ab") * (GiNaC::pow(sym("r_a"), 2) / sym("J_a") + GiNaC::pow(sym("r_b"), 2) / sym("J_b"));
+  EXPECT_TRUE((m.closed_form[0] - expected).normal().is_zero()) << m.closed_form[0];
+}
+
+TEST(Modes, ThreeEqualPlanetsHaveDoublePlanetModesWithTheCentralMembersAtRest) {
+  const Derivation d = derive_file("three_planets");
+  const VibrationModes m = vibration_modes(d, d.values, "none");
+  // sqrt((K_ps + K_pr) r_p^2 / J_p) / 2 pi: a planet spinning between a sun and a ring held still.
+  const double expected =
+      std::sqrt((si(d, "K_p1s") + si(d, "K_p1r")) * std::pow(si(d, "r_p"), 2) / si(d, "J_p")) / (2 * std::numbers::pi);
+  EXPECT_NEAR(expected, 109.38, 0.005);  // the value the issue checked by hand
+  int planet = 0, rigid = 0;
+  for (const VibrationMode& mode : m.modes) {
+    if (mode.kind == ModeKind::rigid) ++rigid;
+    if (mode.kind != ModeKind::planet) continue;
+    ++planet;
+    EXPECT_EQ(mode.multiplicity, 2);
+    // Eigenvalues to ~eps * lambda_max / lambda: 1e-12 relative is far above that.
+    EXPECT_NEAR(mode.frequency_hz / expected, 1, 1e-12);
+    for (std::size_t b = 0; b < m.bodies.size(); ++b)
+      if (d.topology.bodies[b].axis == AxisKind::central) {
+        EXPECT_LT(std::abs(mode.shape(b)), 1e-9) << m.bodies[b];
+      }
+  }
+  EXPECT_EQ(planet, 2);  // N - 1 for N = 3
+  EXPECT_EQ(rigid, 2);   // a planetary gear has two degrees of freedom
+  for (const VibrationMode& mode : m.modes)
+    if (mode.kind == ModeKind::elastic) {
+      EXPECT_EQ(mode.multiplicity, 1) << mode.frequency_hz;
+    }
+}
+
+TEST(Modes, AHeavierPlanetSplitsThePlanetModes) {
+  std::string text = read_text(source_path("models/three_planets.toml"));
+  const std::string from = "name = \"p1\"\naxis = { carrier = \"c\", distance = \"r_c\" }\nwheels = [ { name = \"p1\", "
+                           "radius = \"r_p\" } ]\ninertia = \"J_p\"";
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, from.size(), from.substr(0, from.size() - 1) + "1\"");
+  text.replace(text.find("[parameters]\n"), 13, "[parameters]\nJ_p1 = \"0.012*kg*meters^2\"\n");
+  const Derivation d = derive_text(text, "heavy.toml");
+  const VibrationModes m = vibration_modes(d, d.values, "none");
+  int planet = 0;
+  for (std::size_t i = 0; i < m.modes.size(); ++i) {
+    if (m.modes[i].kind == ModeKind::rigid) continue;
+    EXPECT_EQ(m.modes[i].multiplicity, 1) << m.modes[i].frequency_hz;
+    if (m.modes[i].kind == ModeKind::planet) ++planet;
+    if (i + 1 < m.modes.size()) {
+      EXPECT_GT(m.modes[i + 1].frequency_hz / m.modes[i].frequency_hz, 1.001);
+    }
+  }
+  // p2 against p3 is still a planet mode, at the equal planets' frequency; p1 now moves the centre.
+  EXPECT_EQ(planet, 1);
+}
+
+// phi_i^T J phi_j = 0 for i != j, sum k (R phi)^2 = lambda sum J phi^2, and the shares sum to 1.
+void expect_modal_properties(const Derivation& d) {
+  const VibrationModes m = vibration_modes(d, d.values, "none");
+  const Eigen::VectorXd J = evaluate_matrix(d.elastic.J, d.values).diagonal();
+  const Eigen::VectorXd K = evaluate_matrix(d.elastic.K, d.values).diagonal();
+  const Eigen::MatrixXd R = evaluate_matrix(d.elastic.R, d.values);
+  for (std::size_t i = 0; i < m.modes.size(); ++i) {
+    const VibrationMode& a = m.modes[i];
+    EXPECT_NEAR(a.kinetic_energy.sum(), 1, 1e-14);
+    const double kinetic = a.shape.dot(J.asDiagonal() * a.shape);
+    const double lambda = std::pow(2 * std::numbers::pi * a.frequency_hz, 2);
+    const double strain = (R * a.shape).dot(K.asDiagonal() * (R * a.shape));
+    if (a.kind != ModeKind::rigid) {
+      EXPECT_NEAR(a.strain_energy.sum(), 1, 1e-14);
+      // Rayleigh quotient of an eigenvector: exact to ~eps * lambda_max / lambda (< 1e-12 here).
+      EXPECT_NEAR(strain / (lambda * kinetic), 1, 1e-10) << d.topology.name << " mode " << i;
+    } else {
+      EXPECT_EQ(a.strain_energy.size(), 0);
+      // R phi of a motion of ker R is rounding, ~eps |R| |phi|; a strained mesh has |R phi| ~ |R|.
+      EXPECT_LT(strain, 1e-20 * K.maxCoeff() * std::pow(R.cwiseAbs().maxCoeff(), 2));
+    }
+    for (std::size_t j = i + 1; j < m.modes.size(); ++j) {
+      const VibrationMode& b = m.modes[j];
+      const double cross = a.shape.dot(J.asDiagonal() * b.shape);
+      const double norm = std::sqrt(kinetic * b.shape.dot(J.asDiagonal() * b.shape));
+      // Orthogonal eigenvectors of a symmetric matrix: ~eps * n * lambda_max / gap, 1e-10 here.
+      EXPECT_LT(std::abs(cross) / norm, 1e-10) << d.topology.name << " modes " << i << ", " << j;
+    }
+  }
+}
+
+TEST(Modes, ShapesAreJOrthogonalAndEnergiesBalance) {
+  for (const std::string model : {"paper_one_stage", "paper_two_stage", "three_planets"})
+    expect_modal_properties(derive_file(model));
+  expect_modal_properties(derive_text(pair_model, "pair.toml"));
+}
+
+// A simple planetary gear: sun, one planet, carrier and ring (r_c and r_r follow from the geometry).
+const char* simple_model = R"(name = "simple"
+keep = ["c", "r"]
+[[body]]
+name = "c"
+[[body]]
+name = "p"
+axis = { carrier = "c", distance = "r_c" }
+[[body]]
+name = "s"
+[[body]]
+name = "r"
+wheels = [ { name = "r", radius = "r_r", internal = true } ]
+[[mesh]]
+first = "p"
+second = "s"
+[[mesh]]
+first = "p"
+second = "r"
+[parameters]
+r_s = "10*cm"
+r_p = "4.8*cm"
+J_c = "0.17648*kg*meters^2"
+J_p = "0.009756*kg*meters^2"
+J_s = "0.038617*kg*meters^2"
+J_r = "0.54251*kg*meters^2"
+b_c = "0.08*Nm/rpm"
+b_p = "b_c"
+b_s = "b_c"
+b_r = "b_c"
+K_ps = "1000*Newton/mm"
+K_pr = "1300*Newton/mm"
+b_ps = "0.4*Newton*s/cm"
+b_pr = "b_ps"
+)";
+
+// With one and two elastic modes (the roots of a linear and a quadratic characteristic
+// polynomial) the closed forms at the model's values are the numeric frequencies; with three, the
+// characteristic polynomial's roots are.
+TEST(Modes, ClosedFormsOfSmallGearsGiveTheNumericFrequencies) {
+  const std::vector<Derivation> gears = {derive_text(pair_model, "pair.toml"), derive_text(simple_model, "simple.toml"),
+                                         derive_text(read_text(source_path("tests/errors/gear.toml")), "gear.toml")};
+  for (std::size_t g = 0; g < gears.size(); ++g) {
+    const Derivation& d = gears[g];
+    ASSERT_EQ(d.rigid.rank, static_cast<int>(g) + 1);
+    const VibrationModes m = vibration_modes(d, d.values, "none");
+    std::vector<double> elastic;
+    for (const VibrationMode& mode : m.modes)
+      if (mode.kind != ModeKind::rigid) elastic.push_back(mode.frequency_hz);
+    ASSERT_EQ(elastic.size(), g + 1);
+    ASSERT_EQ(m.characteristic.size(), g + 2);
+    // The roots of p, from its coefficients at the model's values (a companion-matrix solver).
+    Eigen::VectorXd coefficients(m.characteristic.size());
+    for (std::size_t i = 0; i < m.characteristic.size(); ++i)
+      coefficients(i) = to_double(exact_value(m.characteristic[i], d.values));
+    const Eigen::PolynomialSolver<double, Eigen::Dynamic> solver(coefficients);
+    std::vector<double> roots;
+    for (Eigen::Index i = 0; i < solver.roots().size(); ++i) roots.push_back(solver.roots()(i).real());
+    std::sort(roots.begin(), roots.end());
+    for (std::size_t k = 0; k <= g; ++k) {
+      const double lambda = std::pow(2 * std::numbers::pi * elastic[k], 2);
+      // Well separated roots of a polynomial with correctly rounded coefficients: ~1e-14.
+      EXPECT_NEAR(roots[k] / lambda, 1, 1e-10) << d.topology.name << " " << k;
+      if (g == 2) continue;
+      ASSERT_EQ(m.closed_form.size(), g + 1);
+      // The closed form in GiNaC's floats against the symmetric eigensolver: ~1e-15.
+      const double root = to_double(m.closed_form[k].subs(d.values).evalf());
+      EXPECT_NEAR(std::sqrt(root) / (2 * std::numbers::pi) / elastic[k], 1, 1e-12) << d.topology.name << " " << k;
+    }
+  }
+}
+
+TEST(Modes, LowestNaturalFrequencyIsInTheDeriveReport) {
+  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " derive " + source_path("models/three_planets.toml") +
+                                " --format json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  const Json j = parse_json(c.out);
+  const Derivation d = derive_file("three_planets");
+  EXPECT_EQ(j["diagnostics"]["lowest_natural_frequency_hz"].num, lowest_natural_frequency(d, d.values));
+  const Command t = run_command(std::string(POGEAR_EXECUTABLE) + " derive " + source_path("models/three_planets.toml"));
+  EXPECT_NE(t.out.find("lowest natural frequency "), std::string::npos) << t.out;
+}
+
+TEST(Modes, JsonHasOneEntryPerModeWithEveryField) {
+  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " modes " + source_path("models/three_planets.toml") +
+                                " --format json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  const Json j = parse_json(c.out);
+  EXPECT_EQ(j["model"].str, "three_planets");
+  const Json& modes = j["modes"];
+  ASSERT_EQ(modes.size(), 6u);
+  double previous = -1;
+  int planet = 0;
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const Json& m = modes[i];
+    EXPECT_GE(m["frequency_hz"].num, previous);
+    previous = m["frequency_hz"].num;
+    EXPECT_EQ(m["shape"].size(), 6u);
+    EXPECT_EQ(m["kinetic_energy"].size(), 6u);
+    const std::string kind = m["kind"].str;
+    EXPECT_TRUE(kind == "rigid" || kind == "planet" || kind == "elastic") << kind;
+    if (kind == "rigid") {
+      EXPECT_EQ(m["frequency_hz"].num, 0);
+      EXPECT_EQ(m["damping_ratio"].kind, Json::null);
+      EXPECT_EQ(m["strain_energy"].size(), 0u);
+    } else {
+      EXPECT_EQ(m["strain_energy"].size(), 6u);
+      EXPECT_EQ(m["damping_ratio"].kind, Json::number);  // the model defines mesh damping
+    }
+    if (kind == "planet") {
+      ++planet;
+      EXPECT_EQ(m["multiplicity"].num, 2);
+    }
+  }
+  EXPECT_EQ(planet, 2);
+}
+
+// Every format, in separate processes: the closed forms go through pogear's stable printer, so the
+// bytes do not depend on GiNaC's hash order.
+TEST(Modes, EveryFormatIsTheSameBytesInSeparateProcesses) {
+  const auto dir = test_dir("modes_formats");
+  write_text(dir / "simple.toml", simple_model);
+  for (const std::string model : {(dir / "simple.toml").string(), source_path("tests/errors/gear.toml")})
+    for (const std::string format : {"text", "markdown", "latex", "json"}) {
+      const std::string command = std::string(POGEAR_EXECUTABLE) + " modes " + model + " --format " + format;
+      const Command a = run_command(command), b = run_command(command);
+      ASSERT_EQ(a.status, 0) << a.err;
+      EXPECT_TRUE(a.err.empty()) << a.err;
+      EXPECT_EQ(a.out, b.out) << model << " " << format;
+      EXPECT_NE(a.out.find("lambda"), std::string::npos) << format;  // the closed form or polynomial
+    }
+}
+
+}  // namespace
+}  // namespace pogear::test

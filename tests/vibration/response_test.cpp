@@ -1,0 +1,124 @@
+// The frequency response against a time simulation: a sine torque, stepped exactly (the sine as two
+// more states of one linear system) until the transient has gone, gives the amplitude and phase of
+// H at that frequency; and the command line's files and peaks.
+#include <cmath>
+#include <numbers>
+
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include <gtest/gtest.h>
+
+#include "../support/commands.hpp"
+#include "../support/files.hpp"
+#include "frequency_response.hpp"
+#include "specialization.hpp"
+#include "vibration_modes.hpp"
+
+namespace pogear::test {
+namespace {
+
+// Amplitude and phase [rad] of output `out` in steady state under u = sin(2 pi f t) on input `in`:
+// z = (x, sin, cos) is linear, z' = A z, stepped by exp(A h) for `periods`, then the last period's
+// samples fitted by a sin + b cos (least squares; exact for a pure sinusoid).
+std::complex<double> steady_state(const NumericSystem& s, int in, int out, double f, int periods) {
+  const Eigen::Index n = s.M.rows();
+  const double w = 2 * std::numbers::pi * f;
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + 2, n + 2);
+  A.topLeftCorner(n, n) = s.M;
+  A.block(0, n, n, 1) = s.N.col(in);
+  A(n, n + 1) = w;   // sin' = w cos
+  A(n + 1, n) = -w;  // cos' = -w sin
+  const int per_period = 64;
+  const double h = 1 / (f * per_period);
+  const Eigen::MatrixXd Phi = (A * h).exp();
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(n + 2);
+  z(n + 1) = 1;  // sin(0) = 0, cos(0) = 1
+  const Eigen::RowVectorXd C = s.C.row(out) + s.E.row(out) * s.M;  // y = C x + D u + E x'
+  const double D = s.D(out, in) + s.E.row(out).dot(s.N.col(in));
+  Eigen::MatrixXd fit(per_period, 2);
+  Eigen::VectorXd y(per_period);
+  for (int k = 0; k < periods * per_period; ++k) {
+    const int j = k - (periods - 1) * per_period;
+    if (j >= 0) {
+      fit(j, 0) = z(n);
+      fit(j, 1) = z(n + 1);
+      y(j) = C * z.head(n) + D * z(n);
+    }
+    z = Phi * z;
+  }
+  const Eigen::Vector2d ab = fit.colPivHouseholderQr().solve(y);
+  return {ab(0), ab(1)};
+}
+
+TEST(Response, MatchesATimeSimulationAroundTheFirstResonance) {
+  Scene scene = parse_scene(source_path("models/scenes/paper_one_stage.toml"));
+  const Variable tau_c = *find_variable(scene.model, "tau_c"), omega_r = *find_variable(scene.model, "omega_r");
+  const Variable F = *find_variable(scene.model, "F_ps");
+  // The same system as a scene with this input and these outputs, for the time simulation.
+  Scene s = scene;
+  s.inputs = {InputSpec{tau_c.index, rt::Constant{1}, {}}};
+  s.outputs = {omega_r, F};
+  s.compare_rigid = false;
+  const SpecializedScene model = specialize(s);
+  const NumericSystem sys = numeric_system(model, model.main);
+  const Diagnostics diag = system_diagnostics(model, model.main);
+  ASSERT_TRUE(diag.lowest_natural_frequency_hz);
+  const double f1 = *diag.lowest_natural_frequency_hz;
+  // Enough periods that the slowest transient (the bearings' time constant) is down to e^-25.
+  for (const double ratio : {0.8, 0.97, 1.0, 1.03, 1.25}) {
+    const double f = ratio * f1;
+    FrequencyGrid grid{f, f * (1 + 1e-9), 2};
+    const std::vector<TransferFunction> h = frequency_response(scene, {tau_c}, {omega_r, F}, grid);
+    ASSERT_EQ(h.size(), 2u);
+    const int periods = static_cast<int>(std::ceil(25 * diag.slowest_time_constant * f)) + 1;
+    for (int o = 0; o < 2; ++o) {
+      const std::complex<double> H = h[o].value[0];
+      const std::complex<double> ab = steady_state(sys, 0, o, f, periods);
+      // a sin wt + b cos wt = Im((a + j b) e^{jwt}), and the response to sin wt is Im(H e^{jwt}).
+      const std::complex<double> simulated = ab;
+      // The simulation's rounding after ~1e5 exact steps (~1e-11) and the transient left (e^-25 ~
+      // 1e-11): 1e-6 relative, as asked, is far above both.
+      EXPECT_NEAR(std::abs(simulated) / std::abs(H), 1, 1e-6) << "f = " << f << ", output " << o;
+      EXPECT_NEAR(std::arg(simulated / H), 0, 1e-6) << "f = " << f << ", output " << o;
+    }
+  }
+}
+
+TEST(Response, PeaksSitAtTheDampedResonances) {
+  const Scene scene = parse_scene(source_path("models/scenes/paper_one_stage.toml"));
+  const Variable tau_c = *find_variable(scene.model, "tau_c"), omega_r = *find_variable(scene.model, "omega_r");
+  const std::vector<TransferFunction> h = frequency_response(scene, {tau_c}, {omega_r}, FrequencyGrid{1, 1e4, 1000});
+  ASSERT_EQ(h.size(), 1u);
+  ASSERT_FALSE(h[0].peaks.empty());
+  ASSERT_EQ(h[0].rigid.size(), 1000u);
+  // Each peak is a local maximum: |H| a little to either side is lower.
+  for (const ResonancePeak& p : h[0].peaks) {
+    const std::vector<TransferFunction> side =
+        frequency_response(scene, {tau_c}, {omega_r}, FrequencyGrid{p.frequency_hz * 0.999, p.frequency_hz * 1.001, 3});
+    EXPECT_GE(p.magnitude, std::abs(side[0].value[0]));
+    EXPECT_GE(p.magnitude, std::abs(side[0].value[2]));
+    ASSERT_TRUE(p.over_rigid);
+  }
+}
+
+TEST(Response, CommandWritesACsvAndABodeFigurePerPair) {
+  const auto dir = test_dir("response");
+  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " response " +
+                                source_path("models/scenes/paper_one_stage.toml") +
+                                " --input tau_c --output omega_r,F_pr --from 10*Hz --to 2*kHz --points 200 -o " +
+                                dir.string());
+  ASSERT_EQ(c.status, 0) << c.err;
+  for (const std::string pair : {"tau_c.omega_r", "tau_c.F_pr"}) {
+    const std::string csv = read_text(dir / ("paper_one_stage.response." + pair + ".csv"));
+    EXPECT_EQ(csv.substr(0, csv.find('\n')), pair == "tau_c.omega_r"
+                                                 ? "f [Hz],magnitude [(rad/s)/(N m)],magnitude [dB],phase [deg]"
+                                                 : "f [Hz],magnitude [N/(N m)],magnitude [dB],phase [deg]");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 201);
+    const std::string svg = read_text(dir / ("paper_one_stage.response." + pair + ".svg"));
+    EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  }
+  EXPECT_NE(c.out.find("resonance peak"), std::string::npos) << c.out;
+}
+
+}  // namespace
+}  // namespace pogear::test
