@@ -58,7 +58,7 @@ int rigid_count(const VibrationModes& m) {
 
 std::string damping_line(const VibrationModes& m, const char* first_word = "damping") {
   std::string s = std::string(first_word) + " ratios of: " + m.damping;
-  if (!m.damping_note.empty()) s += " (" + m.damping_note + ")";
+  if (!m.damping_note.empty()) s += "; " + m.damping_note;
   return s;
 }
 
@@ -73,6 +73,10 @@ std::string modes_text(const VibrationModes& m) {
     const VibrationMode& mode = m.modes[i];
     s += fmt::format("{:>4}  {:>14}  {:>13}  {:>12}  {}\n", i + 1, g6(mode.frequency_hz), zeta_text(mode),
                      mode.multiplicity, mode_kind_name(mode.kind));
+  }
+  if (!m.damping_note.empty() && !m.damped.empty()) {
+    s += "\ndamped modes (eigenvalues s of M): frequency |s|/2pi [Hz], damping ratio -Re s/|s|\n";
+    for (const DampedMode& dm : m.damped) s += fmt::format("  {:>14}  {:>13}\n", g6(dm.frequency_hz), g6(dm.damping_ratio));
   }
   for (std::size_t i = 0; i < m.modes.size(); ++i) {
     const VibrationMode& mode = m.modes[i];
@@ -100,6 +104,10 @@ std::string modes_markdown(const VibrationModes& m) {
     const VibrationMode& mode = m.modes[i];
     s += fmt::format("| {} | {} | {} | {} | {} |\n", i + 1, g6(mode.frequency_hz), zeta_text(mode), mode.multiplicity,
                      mode_kind_name(mode.kind));
+  }
+  if (!m.damping_note.empty() && !m.damped.empty()) {
+    s += "\nDamped modes (eigenvalues s of M):\n\n| frequency \\|s\\|/2π [Hz] | damping ratio −Re s/\\|s\\| |\n|---|---|\n";
+    for (const DampedMode& dm : m.damped) s += fmt::format("| {} | {} |\n", g6(dm.frequency_hz), g6(dm.damping_ratio));
   }
   for (std::size_t i = 0; i < m.modes.size(); ++i) {
     const VibrationMode& mode = m.modes[i];
@@ -173,6 +181,11 @@ std::string modes_json(const VibrationModes& m) {
       j += (k ? ", " : "") + json_string(print_expression(m.closed_form[k], Notation::ginac));
     j += "],\n";
   }
+  j += "  \"damped_modes\": [";
+  for (std::size_t k = 0; k < m.damped.size(); ++k)
+    j += fmt::format("{}{{\"frequency_hz\": {}, \"damping_ratio\": {}}}", k ? ", " : "", json_number(m.damped[k].frequency_hz),
+                     json_number(m.damped[k].damping_ratio));
+  j += "],\n";
   j += "  \"modes\": [\n";
   for (std::size_t i = 0; i < m.modes.size(); ++i) {
     const VibrationMode& mode = m.modes[i];

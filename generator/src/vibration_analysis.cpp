@@ -68,8 +68,17 @@ double frequency(const std::string& text, const std::string& option, const Sourc
 }  // namespace
 
 SceneResponse response_of(const ResponseRequest& request) {
-  const Scene scene = parse_scene(request.scene_file);
   const SourceLocation where{request.scene_file, 0, 0};
+  if (!is_scene_file(request.scene_file))
+    throw InputError(where, "this is a model file; response needs a scene, which says the effects and parameters to "
+                            "analyse: write one that names this model (docs/scene-format.md)");
+  const Scene scene = parse_scene(request.scene_file);
+  if (request.inputs.empty())
+    throw InputError(where, "--input names no torque; give one or more, comma-separated, e.g. tau_" +
+                                scene.model.bodies.front().name);
+  if (request.outputs.empty())
+    throw InputError(where, "--output names no variable; give one or more, comma-separated, e.g. omega_" +
+                                scene.model.bodies.front().name);
   FrequencyGrid grid;
   grid.from_hz = frequency(request.from, "--from", where);
   grid.to_hz = frequency(request.to, "--to", where);
@@ -86,7 +95,10 @@ SceneResponse response_of(const ResponseRequest& request) {
   }
   for (const std::string& name : request.outputs) {
     const auto v = find_variable(scene.model, name, {VariableKind::velocity, VariableKind::force});
-    if (!v) throw InputError(where, fmt::format("--output '{}' is neither omega_<body> nor F_<mesh> of the model", name));
+    if (!v)
+      throw InputError(where, fmt::format("--output '{}' is neither omega_<body> nor F_<mesh> of the model; give the "
+                                          "velocity of a body or the force of a mesh, e.g. omega_{}",
+                                          name, scene.model.bodies.front().name));
     if (std::find(outputs.begin(), outputs.end(), *v) == outputs.end()) outputs.push_back(*v);
   }
   return SceneResponse{scene.name, frequency_response(scene, inputs, outputs, grid)};

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -55,26 +57,88 @@ Eigenproblem solve_eigenproblem(const Derivation& d, const GiNaC::exmap& values)
 
 double frequency_hz(double lambda) { return std::sqrt(lambda) / (2 * std::numbers::pi); }
 
-// Damping ratios of the elastic modes from the eigenvalues of M = L^-1 A: the oscillatory pairs
-// (Im > 0), by ascending |s|, are the elastic modes by ascending frequency when as many are found.
-std::optional<std::vector<double>> damping_ratios(const Derivation& d, const GiNaC::exmap& values, int elastic,
-                                                  std::string& note) {
+// Clusters of modes (index ranges of p.lambda) whose frequencies lie within degenerate_tolerance of
+// the cluster's first: the rigid modes are one, each degenerate frequency another.
+std::vector<std::pair<int, int>> frequency_clusters(const Eigenproblem& p) {
+  const int n = static_cast<int>(p.lambda.size());
+  std::vector<std::pair<int, int>> clusters;
+  if (p.rigid > 0) clusters.push_back({0, p.rigid});
+  for (int i = p.rigid; i < n;) {
+    int j = i + 1;
+    while (j < n && std::sqrt(p.lambda(j)) - std::sqrt(p.lambda(i)) <= degenerate_tolerance * std::sqrt(p.lambda(j))) ++j;
+    clusters.push_back({i, j});
+    i = j;
+  }
+  return clusters;
+}
+
+// Damping ratios of the elastic modes, indexed as p.lambda, from the eigenvalues s of M = L^-1 A:
+// zeta = -Re s / |s|. Each oscillatory eigenvector (Im s > 0) belongs to the cluster of undamped
+// shapes that holds at least 90 % of its kinetic energy (J-projection of its velocities); each
+// cluster must receive as many as it has modes, else damping couples the modes and no ratio is
+// given. A ratio whose Re s is within 1e6 rounding errors of M's eigenvalues (eps n |M|) is not
+// resolved to 6 digits and is left out.
+std::vector<std::optional<double>> damping_ratios(const Derivation& d, const GiNaC::exmap& values, const Eigenproblem& p,
+                                                  const std::vector<std::pair<int, int>>& clusters, std::string& note,
+                                                  std::vector<DampedMode>& damped) {
+  const int n = static_cast<int>(p.lambda.size());
+  std::vector<std::optional<double>> zeta(n);
   const Eigen::MatrixXd L = evaluate_matrix(d.elastic.L, values);
   const Eigen::MatrixXd M = L.diagonal().cwiseInverse().asDiagonal() * evaluate_matrix(d.elastic.A, values);
-  const Eigen::VectorXcd s = Eigen::EigenSolver<Eigen::MatrixXd>(M, false).eigenvalues();
-  std::vector<std::complex<double>> pairs;
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(M);
+  const Eigen::VectorXcd s = es.eigenvalues();
+  const double rounding = std::numeric_limits<double>::epsilon() * static_cast<double>(M.rows()) * M.norm();
+  std::vector<std::vector<std::complex<double>>> assigned(clusters.size());
+  int oscillatory = 0;
+  bool coupled = false;
   const double scale = s.cwiseAbs().maxCoeff();
-  for (Eigen::Index i = 0; i < s.size(); ++i)
-    if (s(i).imag() > 1e-12 * scale) pairs.push_back(s(i));  // rounding leaves |Im| ~1e-16 |s|max on real ones
-  if (static_cast<int>(pairs.size()) != elastic) {
-    note = fmt::format("M has {} oscillatory eigenvalue pairs for {} elastic modes (some are overdamped), so the "
-                       "damping ratios are not paired with modes",
-                       pairs.size(), elastic);
-    return std::nullopt;
+  for (Eigen::Index k = 0; k < s.size(); ++k) {
+    if (!(s(k).imag() > 1e-12 * scale)) continue;  // real ones keep |Im| ~1e-16 of the largest |s|
+    ++oscillatory;
+    damped.push_back(DampedMode{std::abs(s(k)) / (2 * std::numbers::pi), -s(k).real() / std::abs(s(k))});
+    const Eigen::VectorXcd v = es.eigenvectors().col(k).head(n);
+    const double total = (v.adjoint() * p.J.asDiagonal() * v)(0).real();
+    std::size_t best = 0;
+    double best_share = -1;
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+      double share = 0;
+      for (int m = clusters[c].first; m < clusters[c].second; ++m)
+        share += std::norm((p.phi.col(m).cwiseProduct(p.J).transpose() * v)(0));
+      if (share / total > best_share) best_share = share / total, best = c;
+    }
+    if (best_share < 0.9 || clusters[best].first < p.rigid) {
+      note = "damping couples the modes: an oscillating eigenvector of M is less than 90 % one undamped mode, so "
+             "damping ratios are not paired with modes (the damped modes are listed instead)";
+      coupled = true;
+    }
+    assigned[best].push_back(s(k));
   }
-  std::sort(pairs.begin(), pairs.end(), [](auto a, auto b) { return std::abs(a) < std::abs(b); });
-  std::vector<double> zeta;
-  for (const auto& p : pairs) zeta.push_back(-p.real() / std::abs(p));
+  std::sort(damped.begin(), damped.end(), [](auto a, auto b) { return a.frequency_hz < b.frequency_hz; });
+  if (coupled) return std::vector<std::optional<double>>(n);
+  bool unresolved = false;
+  for (std::size_t c = 0; c < clusters.size(); ++c) {
+    const auto [first, last] = clusters[c];
+    if (first < p.rigid) continue;
+    std::vector<std::complex<double>>& pairs = assigned[c];
+    if (static_cast<int>(pairs.size()) != last - first) {
+      note = fmt::format("M has {} oscillating eigenvalue pair{} for {} elastic mode{}: some are overdamped, so "
+                         "damping ratios are not paired with modes (the damped modes are listed instead)", oscillatory, oscillatory == 1 ? "" : "s", n - p.rigid,
+                         n - p.rigid == 1 ? "" : "s");
+      return std::vector<std::optional<double>>(n);
+    }
+    std::sort(pairs.begin(), pairs.end(), [](auto x, auto y) { return std::abs(x) < std::abs(y); });
+    for (int m = first; m < last; ++m) {
+      const std::complex<double> e = pairs[m - first];
+      if (std::abs(e.real()) < 1e6 * rounding) {
+        unresolved = true;
+        continue;
+      }
+      zeta[m] = -e.real() / std::abs(e);
+    }
+  }
+  if (unresolved)
+    note = fmt::format("damping ratios whose decay rate is below {:.2g} 1/s are not resolved to 6 digits in double "
+                       "precision and are left out", 1e6 * rounding);
   return zeta;
 }
 
@@ -142,11 +206,10 @@ VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, 
   for (const Mesh& m : t.meshes) out.meshes.push_back(m.name);
   out.damping = std::move(damping);
   const int n = static_cast<int>(p.lambda.size());
-  const int elastic = n - p.rigid;
 
-  std::optional<std::vector<double>> zeta;
-  if (!has_damping(d, values)) zeta = std::vector<double>(elastic, 0.0);
-  else zeta = damping_ratios(d, values, elastic, out.damping_note);
+  const std::vector<std::pair<int, int>> clusters = frequency_clusters(p);
+  std::vector<std::optional<double>> zeta(n, 0.0);
+  if (has_damping(d, values)) zeta = damping_ratios(d, values, p, clusters, out.damping_note, out.damped);
 
   for (int i = 0; i < n; ++i) {
     VibrationMode m;
@@ -156,13 +219,17 @@ VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, 
     Eigen::Index big = 0;
     phi.cwiseAbs().maxCoeff(&big);
     phi /= phi(big);
+    phi(big) = 1;  // not 0.9999999999999997
+    // Entries at rounding level of the largest (a body the mode leaves at rest) are 0, not noise.
+    for (Eigen::Index b = 0; b < phi.size(); ++b)
+      if (std::abs(phi(b)) < 1e-12) phi(b) = 0;
     m.shape = phi;
     const Eigen::VectorXd kinetic = p.J.cwiseProduct(phi.cwiseAbs2());
     m.kinetic_energy = kinetic / kinetic.sum();
     if (m.kind != ModeKind::rigid) {
       const Eigen::VectorXd strain = p.K.cwiseProduct((p.R * phi).cwiseAbs2());
       m.strain_energy = strain / strain.sum();
-      if (zeta) m.damping_ratio = (*zeta)[i - p.rigid];
+      m.damping_ratio = zeta[i];
       // The shape is exact to ~eps lambda_max / gap; 1e-6 of the largest entry is far above that
       // for the symmetric planet modes (exactly 0 for the central members) and far below a motion.
       bool central_at_rest = true, planet_moves = false;
@@ -175,15 +242,8 @@ VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, 
     }
     out.modes.push_back(std::move(m));
   }
-  // Multiplicity: clusters of consecutive frequencies within the tolerance (the rigid ones are one).
-  for (int i = 0; i < n;) {
-    int j = i + 1;
-    while (j < n && (out.modes[j].frequency_hz - out.modes[j - 1].frequency_hz) <=
-                        degenerate_tolerance * out.modes[j].frequency_hz)
-      ++j;
-    for (int k = i; k < j; ++k) out.modes[k].multiplicity = j - i;
-    i = j;
-  }
+  for (const auto& [first, last] : clusters)
+    for (int k = first; k < last; ++k) out.modes[k].multiplicity = last - first;
   // Closed forms for small gears: GiNaC's determinant of an n x n symbolic matrix grows fast.
   if (d.rigid.rank <= 3 && n <= 8) {
     out.characteristic = characteristic_polynomial(d, out.lambda);

@@ -31,12 +31,19 @@ struct VibrationMode {
   Eigen::VectorXd kinetic_energy;        // share of each body, summing to 1
 };
 
+// An oscillating eigenvalue s of the damped state matrix M: |s| / 2 pi and -Re s / |s|.
+struct DampedMode {
+  double frequency_hz = 0;
+  double damping_ratio = 0;
+};
+
 struct VibrationModes {
   std::string model;
   std::vector<std::string> bodies, meshes;
   std::vector<VibrationMode> modes;  // ascending frequency; a degenerate cluster is one entry per mode
   std::string damping;               // which damping the ratios are of, e.g. "none", "mesh damping"
   std::string damping_note;          // why damping ratios are missing, when they are
+  std::vector<DampedMode> damped;    // every oscillating eigenvalue of M, by ascending |s|; empty undamped
   // det(R^T K R - lambda J) / lambda^(n - rank R) = sum_k characteristic[k] lambda^k when rank R <= 3
   // (three elastic modes), and its roots in closed form, ascending at the model's values, when
   // rank R <= 2.

@@ -159,7 +159,7 @@ TEST_F(Cli, ResponseUnknownInput) {
 
 TEST_F(Cli, ResponseUnknownOutput) {
   expect_pogear_error("response scene.toml --input tau_c --output omega_x", 2,
-      R"~(scene.toml: error: --output 'omega_x' is neither omega_<body> nor F_<mesh> of the model)~");
+      R"~(scene.toml: error: --output 'omega_x' is neither omega_<body> nor F_<mesh> of the model; give the velocity of a body or the force of a mesh, e.g. omega_c)~");
 }
 
 TEST_F(Cli, ResponseEmptyRange) {
@@ -175,6 +175,16 @@ TEST_F(Cli, ResponseNegativeFrequency) {
 TEST_F(Cli, ResponseFrequencyNotInHz) {
   expect_pogear_error("response scene.toml --input tau_c --output omega_r --to '100*rpm'", 2,
       R"~(scene.toml: error: --to '100*rpm' is not a frequency in Hz; give it in Hz or kHz, e.g. --to 10*Hz)~");
+}
+
+TEST_F(Cli, ResponseOfAModelFile) {
+  expect_pogear_error("response gear.toml --input tau_c --output omega_r", 2,
+      R"~(gear.toml: error: this is a model file; response needs a scene, which says the effects and parameters to analyse: write one that names this model (docs/scene-format.md))~");
+}
+
+TEST_F(Cli, ResponseWithoutInput) {
+  expect_pogear_error("response scene.toml --input '' --output omega_r", 2,
+      R"~(scene.toml: error: --input names no torque; give one or more, comma-separated, e.g. tau_c)~");
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include <unsupported/Eigen/Polynomials>
 
@@ -295,7 +296,7 @@ TEST(Modes, JsonHasOneEntryPerModeWithEveryField) {
 TEST(Modes, EveryFormatIsTheSameBytesInSeparateProcesses) {
   const auto dir = test_dir("modes_formats");
   write_text(dir / "simple.toml", simple_model);
-  for (const std::string model : {(dir / "simple.toml").string(), source_path("tests/errors/gear.toml")})
+  for (const std::string& model : {(dir / "simple.toml").string(), source_path("tests/errors/gear.toml")})
     for (const std::string format : {"text", "markdown", "latex", "json"}) {
       const std::string command = std::string(POGEAR_EXECUTABLE) + " modes " + model + " --format " + format;
       const Command a = run_command(command), b = run_command(command);
@@ -304,6 +305,45 @@ TEST(Modes, EveryFormatIsTheSameBytesInSeparateProcesses) {
       EXPECT_EQ(a.out, b.out) << model << " " << format;
       EXPECT_NE(a.out.find("lambda"), std::string::npos) << format;  // the closed form or polynomial
     }
+}
+
+// Heavy bearing friction and one heavily damped mesh (the others undamped) mix the modes: a damped
+// mode is then no longer one undamped mode, and pairing eigenvalues by frequency order gave the
+// friction's 16 Hz motion the damping ratio of the 74 Hz mode. No ratio is printed then.
+TEST(Modes, DampingThatMixesTheModesGivesNoRatios) {
+  std::string text = read_text(source_path("tests/errors/gear.toml"));
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"b_c = \"0.08*Nm/rpm\"", "b_c = \"7*N*m*s\""},
+                                 {"b_ps = \"0.4*Newton*s/cm\"", "b_ps = \"7000*N*s/m\""},
+                                 {"b_pr = \"b_ps\"", "b_pr = \"0*N*s/m\""},
+                                 {"b_sg = \"b_ps\"", "b_sg = \"0*N*s/m\""}}) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  const Derivation d = derive_text(text, "mixed.toml");
+  const VibrationModes m = vibration_modes(d, d.values, "as defined");
+  for (const VibrationMode& mode : m.modes) EXPECT_FALSE(mode.damping_ratio) << mode.frequency_hz;
+  EXPECT_NE(m.damping_note.find("couples the modes"), std::string::npos) << m.damping_note;
+  // The paper's two-stage gear is damped as heavily (its damped modes have ratios 0.6 to 1, one is
+  // overdamped): its ratios are listed per damped mode instead.
+  const Derivation two = derive_file("paper_two_stage");
+  const VibrationModes heavy = vibration_modes(two, two.values, "as defined");
+  EXPECT_FALSE(heavy.damping_note.empty());
+  ASSERT_EQ(heavy.damped.size(), 4u);
+  for (const DampedMode& dm : heavy.damped) {
+    EXPECT_GT(dm.damping_ratio, 0.5);
+    EXPECT_LT(dm.damping_ratio, 1);
+  }
+  // The lightly damped ones keep a ratio for every elastic mode.
+  for (const std::string model : {"paper_one_stage", "three_planets"}) {
+    const Derivation p = derive_file(model);
+    for (const VibrationMode& mode : vibration_modes(p, p.values, "as defined").modes)
+      if (mode.kind != ModeKind::rigid) {
+        ASSERT_TRUE(mode.damping_ratio) << model;
+        EXPECT_GT(*mode.damping_ratio, 0);
+        EXPECT_LT(*mode.damping_ratio, 0.2);
+      }
+  }
 }
 
 }  // namespace
