@@ -20,7 +20,7 @@ ForceRecovery recover_mesh_forces(const Topology& t, const ElasticModel& e, cons
   const unsigned k = kept.size();
   ForceRecovery out;
   // Eq. (8) needs R R^T invertible; with redundant meshes it is not (docs/design.md §4).
-  const int m = static_cast<int>(t.meshes.size());
+  const int m = static_cast<int>(e.R.rows());  // meshes, and stuck elements when engaged
   out.redundant_meshes = rank < m;
   if (out.redundant_meshes) {
     // docs/design.md §4: the elastic model's limit splits the load as F = K R (R^T K R)^+ g. On the

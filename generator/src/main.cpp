@@ -11,9 +11,11 @@
 
 #include "build_config.hpp"
 #include "derivation.hpp"
+#include "engagement.hpp"
 #include "interrupts.hpp"
 #include "modes_report.hpp"
 #include "output_file.hpp"
+#include "ratios_report.hpp"
 #include "pogear/run_limits.hpp"
 #include "response_report.hpp"
 #include "report.hpp"
@@ -58,6 +60,8 @@ int main(int argc, char** argv) {
   CLI::App* derive = app.add_subcommand("derive", "Derive R, the elastic and the rigid reduced model of a gear");
   derive->add_option("MODEL", model, "Model file (TOML)")->required();
   derive->add_option("--keep", keep, "Velocities kept in the rigid model, e.g. c,r");
+  std::string engaged;
+  derive->add_option("--engaged", engaged, "Brakes and clutches stuck: the rigid model of that mode, e.g. B1,C2");
   derive->add_option("--format", format, "Report format")
       ->check(CLI::IsMember({"text", "latex", "markdown", "json"}));
   derive->add_option("-o,--output", output, "Write the report to FILE instead of standard output")
@@ -130,6 +134,16 @@ int main(int argc, char** argv) {
   response->add_option("-o,--output-dir", response_dir, "Directory for the CSV files and figures (default out)")
       ->check(non_empty_path());
 
+  std::string ratios_model, ratios_input, ratios_output, ratios_format = "text";
+  std::optional<std::string> ratios_file;
+  CLI::App* ratios = app.add_subcommand("ratios", "Gear ratio of every set of engaged brakes and clutches");
+  ratios->add_option("MODEL", ratios_model, "Model file (TOML)")->required();
+  ratios->add_option("--input", ratios_input, "Input body, e.g. i")->required();
+  ratios->add_option("--output", ratios_output, "Output body, e.g. o")->required();
+  ratios->add_option("--format", ratios_format, "Report format")->check(CLI::IsMember({"text", "latex", "markdown", "json"}));
+  ratios->add_option("-o,--output-file", ratios_file, "Write the report to FILE instead of standard output")
+      ->check(non_empty_path());
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -142,7 +156,11 @@ int main(int argc, char** argv) {
     if (*derive) {
       std::optional<std::vector<std::string>> kept;
       if (!keep.empty()) kept = split_list(keep);
-      const pogear::Derivation d = pogear::derive_model(model, kept, pogear::SourceLocation{model, 0, 0});
+      const pogear::SourceLocation where{model, 0, 0};
+      pogear::Topology topology = pogear::parse_topology(model);
+      std::vector<int> stuck;
+      if (derive->count("--engaged")) stuck = pogear::parse_engaged(topology, engaged, where);
+      const pogear::Derivation d = pogear::derive_topology(std::move(topology), kept, where, true, stuck);
       std::string text;
       if (format == "json") text = pogear::report_json(d);
       else if (format == "latex") text = pogear::report_latex(d);
@@ -173,6 +191,16 @@ int main(int argc, char** argv) {
       else if (modes_format == "markdown") text = pogear::modes_markdown(m);
       else text = pogear::modes_text(m);
       emit(text, modes_output);
+    } else if (*ratios) {
+      const pogear::SourceLocation where{ratios_model, 0, 0};
+      const pogear::Derivation d = pogear::derive_topology(pogear::parse_topology(ratios_model), std::nullopt, where, false);
+      const pogear::GearRatios g = pogear::gear_ratios(d, ratios_input, ratios_output, where);
+      std::string text;
+      if (ratios_format == "json") text = pogear::ratios_json(g, d.topology);
+      else if (ratios_format == "latex") text = pogear::ratios_latex(g, d.topology);
+      else if (ratios_format == "markdown") text = pogear::ratios_markdown(g, d.topology);
+      else text = pogear::ratios_text(g, d.topology);
+      emit(text, ratios_file);
     } else if (*response) {
       response_request.inputs = split_list(response_inputs);
       response_request.outputs = split_list(response_outputs);

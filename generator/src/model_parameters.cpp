@@ -61,6 +61,9 @@ void check_parameter_roles(const Topology& t) {
     for (WheelRef w : {m.first, m.second})
       roles.push_back({wheel(t, w).radius_parameter, length_dimension(), true, "a radius", m.where});
   }
+  for (const auto& e : t.friction_elements)
+    roles.push_back({e.capacity_parameter, torque_dimension(), true,
+                     e.is_brake() ? "a brake's torque capacity" : "a clutch's torque capacity", e.where});
   for (const auto& role : roles) {
     const Parameter* p = find_parameter(t, role.name);
     if (!p) {
@@ -89,6 +92,21 @@ void check_parameter_roles(const Topology& t) {
                                              "with, {:g} to {:g}; check the value and its unit",
                                              role.name, role.what, v, smallest, largest));
   }
+  for (const auto& e : t.friction_elements) static_friction_ratio(t, e);
+}
+
+double static_friction_ratio(const Topology& t, const FrictionElement& e) {
+  std::map<std::string, Quantity> known;
+  for (const auto& p : t.parameters) known[p.name] = p.value;
+  const Quantity q = evaluate_quantity(e.static_ratio, known, e.static_ratio_where, e.static_ratio_column_offset);
+  if (q.has_unit && !(q.dimension == Dimension{}))
+    throw InputError(e.static_ratio_where, fmt::format("static_ratio of '{}' has unit {}; it is a plain number, static "
+                                                       "over kinetic friction", e.name, describe(q.dimension)));
+  // Static friction is at least the kinetic one; a ratio above 10 is no material pair's.
+  if (!(q.si >= 1.0 && q.si <= 10.0))
+    throw InputError(e.static_ratio_where, fmt::format("static_ratio of '{}' is {}; static over kinetic friction is from "
+                                                       "1 to 10 (1 when they are equal)", e.name, q.si));
+  return q.si;
 }
 
 }  // namespace pogear

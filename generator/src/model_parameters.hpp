@@ -15,6 +15,9 @@ void evaluate_parameters(std::vector<Parameter>& parameters);
 // right unit and a sensible sign; also after a scene's overrides, which may change any of them.
 void check_parameter_roles(const Topology& t);
 
+// A friction element's static_ratio (static over kinetic friction), from 1 to 10; throws InputError
+// at its value otherwise.
+double static_friction_ratio(const Topology& t, const FrictionElement& e);
 const Parameter* find_parameter(const Topology& t, const std::string& name);
 double parameter_value(const Topology& t, const std::string& name);  // SI; throws if absent
 

@@ -246,7 +246,14 @@ class Printer {
     if (!den.empty() && !p.down.empty()) bottom += n_ == Notation::latex ? " " : "*";
     append_product(bottom, p.down);
     if (n_ == Notation::latex) return fmt::format("\\frac{{{}}}{{{}}}", top, bottom);
-    if (bottom.find_first_of("*/") != std::string::npos) return top + "/(" + bottom + ")";
+    // A product or quotient below the bar needs parentheses; a lone parenthesized sum has them.
+    int depth = 0;
+    bool compound = false;
+    for (char ch : bottom) {
+      depth += ch == '(' ? 1 : ch == ')' ? -1 : 0;
+      compound = compound || (depth == 0 && (ch == '*' || ch == '/'));
+    }
+    if (compound) return top + "/(" + bottom + ")";
     return top + "/" + bottom;
   }
 

@@ -274,13 +274,11 @@ std::string describe(const Dimension& d) {
     const int e = d.exponent[i];
     if (e == 0) continue;
     std::string& side = e > 0 ? num : den;
-    if (!side.empty()) side += "*";
-    side += names[i];
-    if (std::abs(e) != 1) side += "^" + std::to_string(std::abs(e));
+    side += fmt::format("{}{}", side.empty() ? "" : "*", names[i]);
+    if (std::abs(e) != 1) side += fmt::format("^{}", std::abs(e));
   }
   if (num.empty() && den.empty()) return "no unit";
-  if (num.empty()) num = "1";
-  return den.empty() ? num : num + "/" + den;
+  return den.empty() ? num : fmt::format("{}/{}", num.empty() ? "1" : num, den);
 }
 
 Dimension length_dimension() { return dim(1, 0, 0); }

@@ -22,6 +22,9 @@ struct Printed {
   std::vector<std::vector<std::string>> R, Q1, L1, A1, B1;
   std::vector<std::pair<std::string, std::string>> closed_form;
   std::vector<std::string> force_recovery;
+  std::vector<std::string> reactions;  // what force_recovery gives: F_<mesh>..., T_<element>...
+  std::vector<std::string> engaged;
+  std::vector<std::vector<std::string>> E;  // rows of the engaged elements under R
 };
 
 std::vector<std::vector<std::string>> print_matrix(const GiNaC::matrix& m, Notation n) {
@@ -56,6 +59,13 @@ Printed print_all(const Derivation& d, Notation n) {
   // print as decimals, each correctly rounded.
   for (const auto& f : d.rigid.force_recovery)
     p.force_recovery.push_back(print_expression(d.rigid.redundant_meshes ? f.evalf() : f, n));
+  for (const auto& r : d.rigid.reactions) p.reactions.push_back(name(r));
+  for (int k : d.engaged) p.engaged.push_back(d.topology.friction_elements[k].name);
+  const unsigned meshes = d.elastic.R.rows();
+  for (unsigned i = meshes; i < d.constraints.rows(); ++i) {
+    p.E.emplace_back();
+    for (unsigned j = 0; j < d.constraints.cols(); ++j) p.E.back().push_back(print_expression(d.constraints(i, j), n));
+  }
   return p;
 }
 
@@ -136,11 +146,18 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
                  "\\mathbf{A} = \\begin{bmatrix} -\\mathbf{B}_J - \\mathbf{R}^{\\mathsf{T}} \\mathbf{B}_K \\mathbf{R} & "
                  "-\\mathbf{R}^{\\mathsf{T}} \\\\ \\mathbf{R} & 0 \\end{bmatrix}, \\quad "
                  "\\mathbf{B} = \\begin{bmatrix} \\mathbf{I} \\\\ 0 \\end{bmatrix}");
+  if (!p.engaged.empty()) {
+    s += w.heading("Engaged: " + join(p.engaged, ", "));
+    s += w.paragraph("Each engaged brake or clutch is stuck: its row $\\mathbf{e}_k$ ($\\mathbf{e}_k \\boldsymbol{\\omega}$ "
+                     "is its slip) joins the constraints, $\\mathbf{C} = [\\mathbf{R}; \\mathbf{E}_S]$, and the rigid "
+                     "model below is that of this mode; its torques $T$ are recovered with the mesh forces.");
+    s += w.display("\\mathbf{E}_S = " + latex_matrix(p.E));
+  }
   s += w.heading("Rigid reduced model");
-  s += w.paragraph(fmt::format("Rank of $\\mathbf{{R}}$: {}; kept velocities $\\mathbf{{x}}_1 = ({})$, "
+  s += w.paragraph(fmt::format("Rank of $\\mathbf{{{}}}$: {}; kept velocities $\\mathbf{{x}}_1 = ({})$, "
                                "$\\boldsymbol{{\\omega}} = \\mathbf{{Q}}_1 \\mathbf{{x}}_1$, "
                                "$\\mathbf{{L}}_1 \\dot{{\\mathbf{{x}}}}_1 = \\mathbf{{A}}_1 \\mathbf{{x}}_1 + \\mathbf{{B}}_1 \\boldsymbol{{\\tau}}$.",
-                               d.rigid.rank, join(p.kept, ", ")));
+                               p.engaged.empty() ? "R" : "C", d.rigid.rank, join(p.kept, ", ")));
   s += w.display("\\mathbf{Q}_1 = " + latex_matrix(p.Q1));
   if (!p.closed_form.empty()) {
     s += w.display("\\mathbf{L}_1 = \\begin{bmatrix} J_{1} & J_{3} \\\\ J_{3} & J_{2} \\end{bmatrix}, \\quad "
@@ -155,21 +172,25 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
     s += w.display("\\mathbf{A}_1 = " + latex_matrix(p.A1));
     s += w.display("\\mathbf{B}_1 = \\mathbf{Q}_1^{\\mathsf{T}}");
   }
-  s += w.heading("Mesh forces from the rigid model");
+  s += w.heading(p.engaged.empty() ? "Mesh forces from the rigid model"
+                                   : "Mesh forces and engaged torques from the rigid model");
   if (d.rigid.redundant_meshes) {
     s += w.paragraph("$\\mathbf{R}\\mathbf{R}^{\\mathsf{T}}$ is singular (redundant meshes): the rigid model "
                      "splits the load as $\\mathbf{F} = \\mathbf{K}\\mathbf{R}(\\mathbf{R}^{\\mathsf{T}}\\mathbf{K}\\mathbf{R})^{+}\\mathbf{g}$, "
                      "with weights at the model's parameter values:");
     std::string f = "\\begin{aligned}\n";
-    for (std::size_t i = 0; i < p.forces.size(); ++i) f += fmt::format("  {} &= {} \\\\\n", p.forces[i], p.force_recovery[i]);
+    for (std::size_t i = 0; i < p.reactions.size(); ++i) f += fmt::format("  {} &= {} \\\\\n", p.reactions[i], p.force_recovery[i]);
     s += w.display(f + "\\end{aligned}");
   } else {
-    s += w.paragraph("Eq. (8): $\\mathbf{F} = (\\mathbf{R}\\mathbf{R}^{\\mathsf{T}})^{-1}\\mathbf{R}(\\boldsymbol{\\tau} - "
+    // With elements engaged the constraints are C = [R; E_S] and the torques T join F.
+    const std::string C = p.engaged.empty() ? "\\mathbf{R}" : "\\mathbf{C}";
+    const std::string lhs = p.engaged.empty() ? "\\mathbf{F}" : "[\\mathbf{F}; \\mathbf{T}]";
+    s += w.paragraph("Eq. (8): $" + lhs + " = (" + C + C + "^{\\mathsf{T}})^{-1}" + C + "(\\boldsymbol{\\tau} - "
                      "\\mathbf{J}\\mathbf{Q}_1\\dot{\\mathbf{x}}_1 - \\mathbf{B}_J\\mathbf{Q}_1\\mathbf{x}_1)$. "
-                     "On the rigid model the bracket lies in the range of $\\mathbf{R}^{\\mathsf{T}}$, so this equals "
-                     "$(\\mathbf{R}_S^{\\mathsf{T}})^{-1}$ applied to the rows $S$ = (" + force_bodies(d) + ") of the bracket:");
+                     "On the rigid model the bracket lies in the range of $" + C + "^{\\mathsf{T}}$, so this equals "
+                     "$(" + C + "_S^{\\mathsf{T}})^{-1}$ applied to the rows $S$ = (" + force_bodies(d) + ") of the bracket:");
     std::string f = "\\begin{aligned}\n";
-    for (std::size_t i = 0; i < p.forces.size(); ++i) f += fmt::format("  {} &= {} \\\\\n", p.forces[i], p.force_recovery[i]);
+    for (std::size_t i = 0; i < p.reactions.size(); ++i) f += fmt::format("  {} &= {} \\\\\n", p.reactions[i], p.force_recovery[i]);
     s += w.display(f + "\\end{aligned}");
   }
   return s;
@@ -217,7 +238,12 @@ std::string report_text(const Derivation& d) {
     s += "\n";
   }
   s += "diagnostics (elastic model, every effect, at the model's values):\n" + diagnostics_text(d.diagnostics, "  ") + "\n";
-  s += fmt::format("rank R = {}, degrees of freedom = {}, kept x1 = ({})\n\n", d.rigid.rank,
+  if (!p.engaged.empty()) {
+    s += "engaged: " + join(p.engaged, ", ") + ", stuck: their rows E_S (E_S omega is each one's slip) join R, and\n"
+         "the rigid model below is that of this mode, C = [R; E_S]; their torques are recovered with the mesh forces\n";
+    s += text_matrix("E_S", p.E) + "\n";
+  }
+  s += fmt::format("rank {} = {}, degrees of freedom = {}, kept x1 = ({})\n\n", p.engaged.empty() ? "R" : "C", d.rigid.rank,
                    d.elastic.velocities.size() - d.rigid.rank, join(p.kept, ", "));
   s += text_matrix("Q1", p.Q1) + "\n";
   if (!p.closed_form.empty()) {
@@ -231,13 +257,17 @@ std::string report_text(const Derivation& d) {
     s += "mesh forces: R R^T is singular (redundant meshes), so eq. (8) does not apply; the elastic model's\n"
          "limit splits the load by stiffness, F = K R (R^T K R)^+ g, g = tau - J Q1 dx1/dt - B_J Q1 x1\n"
          "(weights at the model's parameter values; domega = d omega/dt):\n";
-    for (std::size_t i = 0; i < p.forces.size(); ++i) s += fmt::format("  {} = {}\n", p.forces[i], p.force_recovery[i]);
+    for (std::size_t i = 0; i < p.reactions.size(); ++i) s += fmt::format("  {} = {}\n", p.reactions[i], p.force_recovery[i]);
   } else {
     std::vector<std::string> S;
     for (int b : d.rigid.force_bodies) S.push_back(d.topology.bodies[b].name);
-    s += "mesh forces, eq. (8): F = (R R^T)^-1 R g, g = tau - J Q1 dx1/dt - B_J Q1 x1, which on the rigid\n"
-         "model equals (R_S^T)^-1 g_S for S = (" + join(S, ", ") + "); domega = d omega/dt:\n";
-    for (std::size_t i = 0; i < p.forces.size(); ++i) s += fmt::format("  {} = {}\n", p.forces[i], p.force_recovery[i]);
+    if (p.engaged.empty())
+      s += "mesh forces, eq. (8): F = (R R^T)^-1 R g, g = tau - J Q1 dx1/dt - B_J Q1 x1, which on the rigid\n"
+           "model equals (R_S^T)^-1 g_S for S = (" + join(S, ", ") + "); domega = d omega/dt:\n";
+    else
+      s += "mesh forces and engaged torques, eq. (8) with C: [F; T] = (C C^T)^-1 C g, g = tau - J Q1 dx1/dt - B_J Q1 x1,\n"
+           "which on the rigid model equals (C_S^T)^-1 g_S for S = (" + join(S, ", ") + "); domega = d omega/dt:\n";
+    for (std::size_t i = 0; i < p.reactions.size(); ++i) s += fmt::format("  {} = {}\n", p.reactions[i], p.force_recovery[i]);
   }
   return s;
 }
@@ -286,6 +316,9 @@ std::string report_json(const Derivation& d) {
     for (const auto& [name, value] : p.closed_form) cf.push_back(json_string(name) + ": " + json_string(value));
     j += "  \"closed_form\": {" + join(cf, ", ") + "},\n";
   }
+  j += "  \"engaged\": " + json_strings(p.engaged) + ",\n";
+  j += "  \"E\": " + (p.E.empty() ? std::string("[]") : json_string_matrix(p.E, "  ")) + ",\n";
+  j += "  \"reactions\": " + json_strings(p.reactions) + ",\n";
   j += "  \"force_recovery\": " + json_strings(p.force_recovery) + ",\n";
   j += "  \"numeric\": {\n";
   j += "    \"J\": " + json_numbers(diag(d.elastic.J)) + ",\n";

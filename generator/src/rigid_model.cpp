@@ -65,6 +65,7 @@ RigidModel reduce_to_rigid(const Topology& t, const ElasticModel& e, const GiNaC
 
   ForceRecovery forces = recover_mesh_forces(t, e, r.Q1, r.kept, r.rank, Rn, values, s);
   r.force_recovery = std::move(forces.forces);
+  r.reactions = e.forces;
   r.force_bodies = std::move(forces.force_bodies);
   r.redundant_meshes = forces.redundant_meshes;
   return r;

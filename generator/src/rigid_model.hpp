@@ -26,11 +26,13 @@ struct RigidModel {
   // singular (redundant meshes) eq. (8) does not exist; then F = K R (R^T K R)^+ g, the
   // stiffness-weighted split of docs/design.md §4, with its weights as numbers.
   std::vector<GiNaC::ex> force_recovery;
+  std::vector<std::string> reactions;  // what force_recovery recovers: F_<mesh>, then T_<element> when engaged
   std::vector<int> force_bodies;
   bool redundant_meshes = false;
 };
 
-// The reduction for one set of kept velocities; `values` are the model's parameters as exact
+// The reduction for one set of kept velocities, under the constraints elastic.R (the gear's R, or
+// [R; E_S] with friction elements S stuck, whose rows then recover their torques); `values` are the model's parameters as exact
 // numbers (Derivation::values), for ranks and valid sets. It reads the elastic model and the
 // symbol table and changes neither, so another set of constraints costs one more call, sharing R
 // and the elastic model. Throws InputError (at `keep_where`) when the number kept is not

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -197,6 +198,116 @@ void check_carriers(Topology& t) {
   }
 }
 
+// Whether two bodies turn about one axis, as a clutch needs. Central bodies do; planets do when one
+// carrier holds them at one distance on one side. Fixed axes are placed by the wheels they mesh
+// with, which a clutch's pair of bodies need not share, so two fixed-axis bodies are taken at
+// the file's word.
+bool coaxial(const Body& a, const Body& b) {
+  if (a.axis != b.axis) return false;
+  if (a.axis != AxisKind::carried) return true;
+  return a.carrier == b.carrier && a.distance_parameter == b.distance_parameter && a.side == b.side;
+}
+
+const char* axis_description(const Body& b) {
+  switch (b.axis) {
+    case AxisKind::central: return "the central axis";
+    case AxisKind::fixed: return "a fixed axis";
+    case AxisKind::carried: return "a planet axis";
+  }
+  return "";
+}
+
+// [[brake]] and [[clutch]] tables, each checked as it is read; duplicates once all are read.
+void read_friction_elements(const Reader& r, const toml::table& root, Topology& t) {
+  for (const bool brake : {true, false}) {
+    const char* key = brake ? "brake" : "clutch";
+    const toml::node* list = root.get(key);
+    if (!list) continue;
+    if (!list->is_array_of_tables()) r.fail(*list, fmt::format("'{}' must be written as [[{}]] tables", key, key));
+    for (const toml::node& n : *list->as_array()) {
+      const toml::table& et = *n.as_table();
+      if (brake) r.only_keys(et, {"name", "body", "capacity", "static_ratio"}, "a [[brake]]");
+      else r.only_keys(et, {"name", "bodies", "capacity", "static_ratio"}, "a [[clutch]]");
+      FrictionElement e;
+      const toml::node* name = et.get("name");
+      if (!name) r.fail(et, fmt::format("a [[{}]] needs a name, e.g. name = \"{}\"", key, brake ? "B1" : "C1"));
+      e.name = r.identifier(*name, fmt::format("a {} name", key));
+      e.where = r.loc(*name);
+      auto body_of = [&](const toml::node& b) {
+        const std::string body = r.identifier(b, "a body");
+        const int i = find_body(t, body);
+        if (i < 0) {
+          std::string list;
+          for (const auto& x : t.bodies) list += (list.empty() ? "" : ", ") + x.name;
+          r.fail(b, fmt::format("{} '{}' names '{}', which is not a body; the bodies are {}", key, e.name, body, list));
+        }
+        return i;
+      };
+      if (brake) {
+        const toml::node* b = et.get("body");
+        if (!b) r.fail(et, fmt::format("brake '{}' needs the body it holds, e.g. body = \"r\"", e.name));
+        e.first = body_of(*b);
+        if (t.bodies[e.first].axis == AxisKind::carried)
+          r.fail(*b, fmt::format("brake '{}' holds '{}', a planet, whose axis moves with its carrier; a brake holds a "
+                                 "body on the central axis or on a fixed axis", e.name, t.bodies[e.first].name));
+      } else {
+        const toml::node* b = et.get("bodies");
+        if (!b || !b->is_array() || b->as_array()->size() != 2)
+          r.fail(b ? *b : static_cast<const toml::node&>(et),
+                 fmt::format("clutch '{}' needs the two bodies it joins, e.g. bodies = [\"s\", \"c\"]", e.name));
+        const toml::array& pair = *b->as_array();
+        e.first = body_of(pair[0]);
+        e.second = body_of(pair[1]);
+        const Body& f = t.bodies[e.first];
+        const Body& g = t.bodies[e.second];
+        if (e.first == e.second) r.fail(pair[1], fmt::format("clutch '{}' joins body '{}' to itself; name two bodies", e.name, f.name));
+        if (!coaxial(f, g))
+          r.fail(pair[1], fmt::format("clutch '{}' joins '{}' on {} and '{}' on {}; a clutch joins two bodies that turn "
+                                      "about one axis", e.name, f.name, axis_description(f), g.name, axis_description(g)));
+      }
+      e.capacity_parameter = "T_" + e.name;
+      if (const toml::node* c = et.get("capacity")) e.capacity_parameter = r.identifier(*c, "capacity");
+      if (const toml::node* m = et.get("static_ratio")) {
+        e.static_ratio_where = r.loc(*m);
+        if (m->is_string()) {
+          e.static_ratio = *m->value<std::string>();
+          e.static_ratio_column_offset = 1;
+        } else if (m->is_integer() || m->is_floating_point()) {
+          const double v = *m->value<double>();
+          if (!std::isfinite(v)) r.fail(*m, "static_ratio is not finite");
+          e.static_ratio = fmt::format("{}", v);
+        } else {
+          r.fail(*m, "static_ratio must be a number or a string such as \"1.2\" or \"mu_s/mu_k\"");
+        }
+      } else {
+        e.static_ratio_where = e.where;
+      }
+      t.friction_elements.push_back(std::move(e));
+      if (t.friction_elements.size() > max_friction_elements)
+        r.fail(n, fmt::format("more than {} brakes and clutches; pogear looks at every set of engaged elements, 2^k "
+                              "of them; model fewer", max_friction_elements));
+    }
+  }
+  // File order, for deterministic output whichever of [[brake]] and [[clutch]] comes first.
+  std::sort(t.friction_elements.begin(), t.friction_elements.end(), [](const FrictionElement& a, const FrictionElement& b) {
+    return std::tie(a.where.line, a.where.column) < std::tie(b.where.line, b.where.column);
+  });
+  std::map<std::string, const FrictionElement*> names;
+  std::map<std::pair<int, int>, const FrictionElement*> pairs;
+  for (const auto& e : t.friction_elements) {
+    if (auto [it, fresh] = names.emplace(e.name, &e); !fresh)
+      throw InputError(e.where, fmt::format("duplicate name '{}' (brake or clutch); it is already used at line {}", e.name,
+                                            it->second->where.line));
+    const std::pair<int, int> key{std::min(e.first, e.second), std::max(e.first, e.second)};
+    if (auto [it, fresh] = pairs.emplace(key, &e); !fresh)
+      throw InputError(e.where, fmt::format("'{}' {} as '{}' (line {}) does; one element per pair of bodies, or remove one",
+                                            e.name, e.is_brake() ? fmt::format("holds '{}'", t.bodies[e.first].name)
+                                                                 : fmt::format("joins '{}' and '{}'", t.bodies[e.first].name,
+                                                                               t.bodies[e.second].name),
+                                            it->second->name, it->second->where.line));
+  }
+}
+
 // Reads [parameters] as written; evaluate_parameters gives them values.
 void read_parameters(const Reader& r, const toml::table& params, Topology& t) {
   if (params.size() > max_parameters)
@@ -245,7 +356,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   const toml::table root = parse_toml_document(
       text, path, max_model_file_bytes,
       fmt::format("the file is larger than {} bytes; a model or scene file is a few kilobytes", max_model_file_bytes));
-  r.only_keys(root, {"name", "title", "keep", "body", "mesh", "parameters"}, "the model file");
+  r.only_keys(root, {"name", "title", "keep", "body", "mesh", "brake", "clutch", "parameters"}, "the model file");
 
   Topology t;
   t.file = path;
@@ -291,6 +402,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
     t.meshes.push_back(std::move(m));
   }
   check_unique_names(t, true);
+  read_friction_elements(r, root, t);
 
   if (const toml::node* p = root.get("parameters")) read_parameters(r, as_table(r, *p, "[parameters]"), t);
   evaluate_parameters(t.parameters);
@@ -315,6 +427,12 @@ Topology parse_topology(const std::string& path) {
 int find_body(const Topology& t, const std::string& name) {
   for (int i = 0; i < static_cast<int>(t.bodies.size()); ++i)
     if (t.bodies[i].name == name) return i;
+  return -1;
+}
+
+int find_friction_element(const Topology& t, const std::string& name) {
+  for (int i = 0; i < static_cast<int>(t.friction_elements.size()); ++i)
+    if (t.friction_elements[i].name == name) return i;
   return -1;
 }
 

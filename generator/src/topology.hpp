@@ -52,6 +52,22 @@ struct Mesh {
   SourceLocation where;
 };
 
+// A brake (holds a body against the housing) or a clutch (joins two bodies on one axis). Its
+// slip is s = a_first omega_first - a_second omega_second (a: the bodies' arrows, so that s is
+// in one rotation sense; a brake's second is the housing, at rest); its torque T acts as -T on
+// the first body and +T on the second, in that sense.
+struct FrictionElement {
+  std::string name;
+  int first = -1;   // body index
+  int second = -1;  // body index; -1 for a brake
+  std::string capacity_parameter;  // kinetic torque capacity at full engagement (N m): T_<name> unless set
+  std::string static_ratio = "1";  // static / kinetic friction, an expression of the parameters
+  SourceLocation where;            // the name
+  SourceLocation static_ratio_where;
+  int static_ratio_column_offset = 0;
+  bool is_brake() const { return second < 0; }
+};
+
 struct Parameter {
   std::string name;
   std::string text;  // as written, e.g. "4.8*cm"
@@ -67,6 +83,7 @@ struct Topology {
   std::string title;
   std::vector<Body> bodies;  // in the order of the velocity vector omega
   std::vector<Mesh> meshes;  // in the order of the force vector F
+  std::vector<FrictionElement> friction_elements;  // brakes and clutches, in file order
   std::vector<Parameter> parameters;
   std::vector<std::string> default_keep;
   SourceLocation keep_where;
@@ -87,6 +104,9 @@ inline constexpr std::size_t max_meshes = 256;
 // stiffness and a damping per mesh, a radius per wheel, an axis distance per planet: at most
 // 1408; the 40-stage chain names 562), and a bound on how deep parameters may refer to one another.
 inline constexpr std::size_t max_parameters = 2048;
+// `pogear ratios` looks at every set of engaged elements (2^k of them); automatic transmissions
+// have 5 to 7 shift elements.
+inline constexpr std::size_t max_friction_elements = 12;
 // Names become C++ identifiers and column headers; 64 characters is generous for `J_planet_3`.
 inline constexpr std::size_t max_name_length = 64;
 
@@ -98,6 +118,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path);
 
 
 int find_body(const Topology& t, const std::string& name);  // -1 when absent
+int find_friction_element(const Topology& t, const std::string& name);  // -1 when absent
 const Wheel& wheel(const Topology& t, WheelRef w);
 std::string wheel_label(const Topology& t, WheelRef w);  // "s1 (body s)" or "p"
 

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "exact_algebra.hpp"
+#include "numeric_rank.hpp"
 
 namespace pogear {
 namespace {
@@ -24,6 +25,11 @@ struct Eigenproblem {
   Eigen::MatrixXd phi;     // columns, J-orthonormal
   int rigid = 0;
 };
+
+// The rank of the gear's R: that of the rigid model's constraints only when nothing is engaged.
+int rank_of_R(const Derivation& d) {
+  return d.engaged.empty() ? d.rigid.rank : numeric_rank(evaluate_matrix(d.elastic.R, d.values));
+}
 
 Eigenproblem solve_eigenproblem(const Derivation& d, const GiNaC::exmap& values) {
   const ElasticModel& e = d.elastic;
@@ -40,7 +46,7 @@ Eigenproblem solve_eigenproblem(const Derivation& d, const GiNaC::exmap& values)
   p.lambda = es.eigenvalues();
   p.phi = s.asDiagonal() * es.eigenvectors();
   const int n = static_cast<int>(p.J.size());
-  p.rigid = n - d.rigid.rank;
+  p.rigid = n - rank_of_R(d);
   const double lambda_max = p.lambda(n - 1);
   if (p.rigid < n) {
     const double spread = lambda_max / p.lambda(p.rigid);
@@ -152,7 +158,7 @@ std::vector<GiNaC::ex> characteristic_polynomial(const Derivation& d, const GiNa
   const GiNaC::matrix Kt = e.R.transpose().mul(e.K).mul(e.R);
   const GiNaC::matrix P = Kt.sub(e.J.mul_scalar(lambda));
   const GiNaC::ex det = P.determinant().expand();
-  const int n = static_cast<int>(e.J.rows()), r = d.rigid.rank;
+  const int n = static_cast<int>(e.J.rows()), r = rank_of_R(d);
   std::vector<GiNaC::ex> c;
   for (int k = n - r; k <= n; ++k) c.push_back(det.coeff(lambda, k));
   return c;
@@ -245,7 +251,7 @@ VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, 
   for (const auto& [first, last] : clusters)
     for (int k = first; k < last; ++k) out.modes[k].multiplicity = last - first;
   // Closed forms for small gears: GiNaC's determinant of an n x n symbolic matrix grows fast.
-  if (d.rigid.rank <= 3 && n <= 8) {
+  if (rank_of_R(d) <= 3 && n <= 8) {
     out.characteristic = characteristic_polynomial(d, out.lambda);
     const std::vector<GiNaC::ex>& a = out.characteristic;
     out.closed_form = characteristic_roots(a, d.values);

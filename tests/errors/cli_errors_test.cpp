@@ -187,5 +187,80 @@ TEST_F(Cli, ResponseWithoutInput) {
       R"~(scene.toml: error: --input names no torque; give one or more, comma-separated, e.g. tau_c)~");
 }
 
+// gear.toml with a brake on the ring, a clutch joining sun and carrier, and brakes on the sun and
+// on g, which meshes the sun: holding both adds nothing to holding one.
+class Engaged : public ErrorTest {
+ protected:
+  void SetUp() override {
+    ErrorTest::SetUp();
+    write_text("shift.toml", edited(base_model(), {{"[parameters]", R"([[brake]]
+name = "B1"
+body = "r"
+
+[[clutch]]
+name = "C1"
+bodies = ["s", "c"]
+
+[[brake]]
+name = "B2"
+body = "s"
+
+[[brake]]
+name = "B3"
+body = "g"
+
+[parameters])"}, {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nT_B1 = \"50*N*m\"\nT_C1 = \"50*N*m\"\nT_B2 = \"50*N*m\"\nT_B3 = \"50*N*m\""}}));
+  }
+};
+
+TEST_F(Engaged, UnknownElement) {
+  expect_pogear_error("derive shift.toml --engaged B9", 2,
+      R"~(shift.toml: error: --engaged names 'B9', which is not a brake or clutch of the model; its elements are B1, C1, B2, B3)~");
+}
+
+TEST_F(Engaged, RepeatedElement) {
+  expect_pogear_error("derive shift.toml --engaged B1,B1", 2,
+      R"~(shift.toml: error: --engaged names 'B1' twice; name each element once)~");
+}
+
+TEST_F(Engaged, Empty) {
+  expect_pogear_error("derive shift.toml --engaged ''", 2,
+      R"~(shift.toml: error: --engaged is empty; name the engaged elements, e.g. --engaged B1)~");
+}
+
+TEST_F(Engaged, ModelWithoutElements) {
+  expect_pogear_error("derive gear.toml --engaged B1", 2,
+      R"~(gear.toml: error: --engaged names brakes or clutches, and the model has none; add [[brake]] or [[clutch]] tables to it, or leave --engaged out)~");
+}
+
+TEST_F(Engaged, LocksTheGear) {
+  expect_pogear_error("derive shift.toml --engaged B1,C1", 2,
+      R"~(shift.toml: error: engaging B1, C1 locks the gear: no body can turn, so there is no rigid model; engage fewer elements (pogear ratios lists the sets))~");
+}
+
+TEST_F(Engaged, AddsNoConstraint) {
+  expect_pogear_error("derive shift.toml --engaged B2,B3", 2,
+      R"~(shift.toml: error: engaging B3 adds no constraint that B2 and the meshes do not already impose, so its torque is not determined; engage fewer elements (pogear ratios lists the sets))~");
+}
+
+TEST_F(Engaged, RatiosOfAnUnknownBody) {
+  expect_pogear_error("ratios shift.toml --input x --output c", 2,
+      R"~(shift.toml: error: --input 'x' is not a body of the model; its bodies are c, p, s, r, g)~");
+}
+
+TEST_F(Engaged, RatiosOfOneBody) {
+  expect_pogear_error("ratios shift.toml --input c --output c", 2,
+      R"~(shift.toml: error: --input and --output are both 'c'; give two bodies)~");
+}
+
+TEST_F(Engaged, RedundantMeshes) {
+  // The three explicit planets of models/three_planets.toml, with a brake on the ring.
+  std::string model = read_text(source_path("models/three_planets.toml"));
+  model = edited(model, {{"[parameters]", "[[brake]]\nname = \"B\"\nbody = \"r\"\n\n[parameters]\nT_B = \"100*N*m\""}});
+  write_text("planets.toml", model);
+  expect_pogear_error("derive planets.toml --engaged B", 2,
+      R"~(planets.toml: error: the gear's meshes are redundant (rank of R 4 for 6 meshes), and pogear does not split their load with brakes or clutches engaged; leave --engaged out)~");
+}
+
 }  // namespace
 }  // namespace pogear::test

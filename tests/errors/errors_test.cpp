@@ -49,7 +49,7 @@ TEST_F(ModelFiles, TomlSyntax) {
 
 TEST_F(ModelFiles, UnknownTopLevelKey) {
   expect_model_error({{R"(keep = ["c", "r"])", "keep = [\"c\", \"r\"]\ngears = 2"}},
-      R"~(gear.toml:4:1: error: unknown key 'gears' in the model file; the keys are name, title, keep, body, mesh, parameters)~");
+      R"~(gear.toml:4:1: error: unknown key 'gears' in the model file; the keys are name, title, keep, body, mesh, brake, clutch, parameters)~");
 }
 
 // ---------------------------------------------------------------- model files: structure
@@ -258,6 +258,93 @@ TEST_F(ModelStructure, KeepNotAList) {
 TEST_F(ModelStructure, KeepNotABody) {
   expect_model_error({{R"(keep = ["c", "r"])", R"(keep = ["c", "x"])"}},
       R"~(gear.toml:3:14: error: keep names 'x', which is not a body)~");
+}
+
+// ---------------------------------------------------------------- model files: brakes and clutches
+
+class FrictionElements : public ErrorTest {
+ protected:
+  // gear.toml with `elements` written before [parameters] (line 36) and `parameters` after b_sg.
+  void expect_error(const std::string& elements, const std::string& parameters, const std::string& expected) {
+    Edits edits{{"[parameters]", elements + "\n[parameters]"}};
+    if (!parameters.empty()) edits.push_back({R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\n" + parameters});
+    expect_model_error(edits, expected);
+  }
+};
+
+TEST_F(FrictionElements, ClutchJoinsABodyToItself) {
+  expect_error("[[clutch]]\nname = \"C1\"\nbodies = [\"s\", \"s\"]\n", "",
+      R"~(gear.toml:38:16: error: clutch 'C1' joins body 's' to itself; name two bodies)~");
+}
+
+TEST_F(FrictionElements, UnknownBody) {
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"x\"\n", "",
+      R"~(gear.toml:38:8: error: brake 'B1' names 'x', which is not a body; the bodies are c, p, s, r, g)~");
+}
+
+TEST_F(FrictionElements, SamePairTwice) {
+  expect_error("[[clutch]]\nname = \"C1\"\nbodies = [\"s\", \"c\"]\n\n[[clutch]]\nname = \"C2\"\nbodies = [\"c\", \"s\"]\n",
+               "T_C1 = \"100*N*m\"\nT_C2 = \"100*N*m\"",
+      R"~(gear.toml:41:8: error: 'C2' joins 'c' and 's' as 'C1' (line 37) does; one element per pair of bodies, or remove one)~");
+}
+
+TEST_F(FrictionElements, DuplicateName) {
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n\n[[clutch]]\nname = \"B1\"\nbodies = [\"s\", \"c\"]\n", "",
+      R"~(gear.toml:41:8: error: duplicate name 'B1' (brake or clutch); it is already used at line 37)~");
+}
+
+TEST_F(FrictionElements, ClutchAcrossAxes) {
+  expect_error("[[clutch]]\nname = \"C1\"\nbodies = [\"s\", \"g\"]\n", "",
+      R"~(gear.toml:38:16: error: clutch 'C1' joins 's' on the central axis and 'g' on a fixed axis; a clutch joins two bodies that turn about one axis)~");
+}
+
+TEST_F(FrictionElements, BrakeOnAPlanet) {
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"p\"\n", "",
+      R"~(gear.toml:38:8: error: brake 'B1' holds 'p', a planet, whose axis moves with its carrier; a brake holds a body on the central axis or on a fixed axis)~");
+}
+
+TEST_F(FrictionElements, ClutchWithoutTwoBodies) {
+  expect_error("[[clutch]]\nname = \"C1\"\nbodies = [\"s\"]\n", "",
+      R"~(gear.toml:38:10: error: clutch 'C1' needs the two bodies it joins, e.g. bodies = ["s", "c"])~");
+}
+
+TEST_F(FrictionElements, BrakeWithoutBody) {
+  expect_error("[[brake]]\nname = \"B1\"\n", "",
+      R"~(gear.toml:36:1: error: brake 'B1' needs the body it holds, e.g. body = "r")~");
+}
+
+TEST_F(FrictionElements, WithoutName) {
+  expect_error("[[brake]]\nbody = \"r\"\n", "", R"~(gear.toml:36:1: error: a [[brake]] needs a name, e.g. name = "B1")~");
+}
+
+TEST_F(FrictionElements, UnknownKey) {
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\ntorque = \"T\"\n", "",
+      R"~(gear.toml:39:1: error: unknown key 'torque' in a [[brake]]; the keys are name, body, capacity, static_ratio)~");
+}
+
+TEST_F(FrictionElements, MissingCapacity) {
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n", "",
+      R"~(gear.toml:37:8: error: missing parameter 'T_B1' (a brake's torque capacity); add it under [parameters], e.g. T_B1 = "...")~");
+}
+
+TEST_F(FrictionElements, NegativeCapacity) {
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n", "T_B1 = \"-50*N*m\"",
+      R"~(gear.toml:62:8: error: parameter 'T_B1' is a brake's torque capacity and must be positive (it is -50))~");
+}
+
+TEST_F(FrictionElements, CapacityNotATorque) {
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n", "T_B1 = \"50*N\"",
+      R"~(gear.toml:62:8: error: parameter 'T_B1' is a brake's torque capacity but has unit kg*m/s^2; it needs kg*m^2/s^2)~");
+}
+
+TEST_F(FrictionElements, StaticRatioBelowOne) {
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\nstatic_ratio = \"0.8\"\n", "T_B1 = \"50*N*m\"",
+      R"~(gear.toml:39:16: error: static_ratio of 'B1' is 0.8; static over kinetic friction is from 1 to 10 (1 when they are equal))~");
+}
+
+TEST_F(FrictionElements, StaticRatioWithAUnit) {
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\nstatic_ratio = \"2*m\"\n", "T_B1 = \"50*N*m\"",
+      R"~(gear.toml:39:16: error: static_ratio of 'B1' has unit m; it is a plain number, static over kinetic friction)~");
 }
 
 // ---------------------------------------------------------------- model files: parameters

@@ -1,0 +1,120 @@
+// See gear_ratios.hpp. Ranks are numeric at the model's values, as for the rigid model; each ratio
+// is solved twice, symbolically for its closed form and exactly at the values for its number, and
+// the two are checked against each other.
+#include "gear_ratios.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "block_triangular_solve.hpp"
+#include "engagement.hpp"
+#include "exact_algebra.hpp"
+#include "numeric_rank.hpp"
+
+namespace pogear {
+
+const char* status_name(EngagementStatus s) {
+  switch (s) {
+    case EngagementStatus::ratio: return "ratio";
+    case EngagementStatus::output_held: return "output held";
+    case EngagementStatus::input_held: return "input held";
+    case EngagementStatus::free: return "free";
+    case EngagementStatus::locked: return "locked";
+  }
+  return "";
+}
+
+namespace {
+
+int body_named(const Topology& t, const std::string& name, const char* option, const SourceLocation& where) {
+  const int b = find_body(t, name);
+  if (b >= 0) return b;
+  std::string list;
+  for (const auto& x : t.bodies) list += (list.empty() ? "" : ", ") + x.name;
+  throw InputError(where, fmt::format("{} '{}' is not a body of the model; its bodies are {}", option, name, list));
+}
+
+// The sets of k elements out of m, each ascending, in lexicographic order.
+void subsets_of_size(int m, int k, int from, std::vector<int>& current, std::vector<std::vector<int>>& out) {
+  if (static_cast<int>(current.size()) == k) {
+    out.push_back(current);
+    return;
+  }
+  for (int i = from; i < m; ++i) {
+    current.push_back(i);
+    subsets_of_size(m, k, i + 1, current, out);
+    current.pop_back();
+  }
+}
+
+}  // namespace
+
+GearRatios gear_ratios(const Derivation& d, const std::string& input, const std::string& output,
+                       const SourceLocation& where) {
+  const Topology& t = d.topology;
+  GearRatios g;
+  g.model = t.name;
+  g.input = input;
+  g.output = output;
+  const int in = body_named(t, input, "--input", where);
+  const int out = body_named(t, output, "--output", where);
+  if (in == out) throw InputError(where, fmt::format("--input and --output are both '{}'; give two bodies", input));
+  const int n = static_cast<int>(t.bodies.size());
+  const Eigen::MatrixXd Rn = evaluate_matrix(d.elastic.R, d.values);
+  const int gear_rank = numeric_rank(Rn);
+  g.gear_freedoms = n - gear_rank;
+  const GiNaC::exmap geometry = geometry_substitutions(d.radius, d.symbols);
+  // One rotation sense for both: omega times its arrow.
+  const int sense = t.bodies[in].arrow * t.bodies[out].arrow;
+
+  const int m = static_cast<int>(t.friction_elements.size());
+  for (int size = 0; size <= m; ++size) {
+    std::vector<std::vector<int>> sets;
+    std::vector<int> current;
+    subsets_of_size(m, size, 0, current, sets);
+    for (const std::vector<int>& S : sets) {
+      const GiNaC::matrix E = engagement_rows(t, S);
+      const Eigen::MatrixXd Cn = stacked_for_rank(Rn, E);
+      const int rank = numeric_rank(Cn);
+      if (rank != gear_rank + size) {
+        ++g.redundant_sets;
+        continue;
+      }
+      EngagementRatio r;
+      r.engaged = S;
+      r.freedoms = n - rank;
+      if (r.freedoms == 0) r.status = EngagementStatus::locked;
+      else if (r.freedoms > 1) r.status = EngagementStatus::free;
+      else {
+        std::vector<int> elim;
+        for (int b = 0; b < n; ++b)
+          if (b != in) elim.push_back(b);
+        if (numeric_rank(columns(Cn, elim)) < n - 1) {
+          r.status = EngagementStatus::input_held;
+        } else {
+          const GiNaC::matrix C = stacked(d.elastic.R, E);
+          const std::vector<int> rows = independent_rows(Cn, elim);
+          const GiNaC::ex closed = (sense * kernel_basis(C, rows, {in}, elim)(out, 0)).subs(geometry).normal();
+          const GiNaC::ex value = exact_value(closed, d.values);
+          // The same ratio from R at the file's radii, which meet the geometry relations to the
+          // parser's 1e-9 (relative) and not exactly: a check of the closed form's algebra, which
+          // a wrong sign or a lost term would fail by far more than that.
+          const double direct = to_double(sense * kernel_basis(exact_matrix(C, d.values), rows, {in}, elim)(out, 0));
+          r.value = to_double(value);
+          if (!(std::abs(r.value - direct) <= 1e-7 * std::max(1.0, std::abs(direct))))
+            throw std::logic_error(fmt::format("the closed-form ratio with {} engaged, {}, disagrees with R at the "
+                                               "model's values, {}", engaged_names(t, S, ","), r.value, direct));
+          r.status = value.is_zero() ? EngagementStatus::output_held : EngagementStatus::ratio;
+          r.ratio = closed;
+        }
+      }
+      g.engagements.push_back(std::move(r));
+    }
+  }
+  return g;
+}
+
+}  // namespace pogear

@@ -1,0 +1,197 @@
+// Gear ratios of every engagement against an independent reference: Willis' equation per
+// planetary set, written in the test from tooth counts, solved with the engaged elements' equations.
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include "../support/commands.hpp"
+#include "../support/files.hpp"
+#include "../support/json.hpp"
+#include "engagement.hpp"
+#include "gear_ratios.hpp"
+
+namespace pogear::test {
+namespace {
+
+Derivation derive_file(const std::string& model) {
+  const std::string path = source_path("models/" + model + ".toml");
+  return derive_topology(parse_topology(path), std::nullopt, SourceLocation{path, 0, 0}, false);
+}
+
+// A planetary set of the reference: sun, carrier and ring as indices of the central members, and
+// its basic ratio k = z_ring / z_sun. Willis: (w_s - w_c) = -k (w_r - w_c).
+struct WillisSet {
+  int sun, carrier, ring;
+  double k;
+};
+
+// One reference engagement: what an element equates, over the central members (-1: the housing).
+struct Joint {
+  std::string name;
+  int a, b;
+};
+
+struct Reference {
+  std::string status;
+  double ratio = 0;  // w_out / w_in when status is "ratio" or "output held"
+  int freedoms = 0;
+};
+
+// The central members' motion with `engaged` stuck, solved in doubles from Willis' equations.
+Reference willis_reference(int members, const std::vector<WillisSet>& sets, const std::vector<Joint>& joints,
+                           const std::set<std::string>& engaged, int in, int out) {
+  std::vector<Eigen::RowVectorXd> rows;
+  for (const WillisSet& s : sets) {
+    Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(members);
+    r(s.sun) += 1;
+    r(s.carrier) += -1 - s.k;
+    r(s.ring) += s.k;
+    rows.push_back(r);
+  }
+  for (const Joint& j : joints)
+    if (engaged.count(j.name)) {
+      Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(members);
+      r(j.a) = 1;
+      if (j.b >= 0) r(j.b) = -1;
+      rows.push_back(r);
+    }
+  Eigen::MatrixXd W(rows.size(), members);
+  for (std::size_t i = 0; i < rows.size(); ++i) W.row(i) = rows[i];
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(W);
+  lu.setThreshold(1e-10);
+  Reference ref;
+  ref.freedoms = members - static_cast<int>(lu.rank());
+  if (ref.freedoms == 0) ref.status = "locked";
+  else if (ref.freedoms > 1) ref.status = "free";
+  else {
+    const Eigen::VectorXd v = lu.kernel().col(0);
+    const double scale = v.cwiseAbs().maxCoeff();
+    if (std::abs(v(in)) < 1e-12 * scale) ref.status = "input held";
+    else {
+      ref.ratio = v(out) / v(in);
+      ref.status = std::abs(ref.ratio) < 1e-12 ? "output held" : "ratio";
+    }
+  }
+  return ref;
+}
+
+// Both sets of the Simpson gear: sun 30, planets 21, ring 72 teeth (models/simpson_3speed.toml).
+TEST(Ratios, SimpsonSetMatchesWillisEquationsForEveryEngagement) {
+  const Derivation d = derive_file("simpson_3speed");
+  const GearRatios g = gear_ratios(d, "i", "o", SourceLocation{"test", 0, 0});
+  // Central members: 0 i, 1 r1, 2 s, 3 o (front carrier and rear ring), 4 c2.
+  const double k = 72.0 / 30.0;
+  const std::vector<WillisSet> sets{{2, 3, 1, k}, {2, 4, 3, k}};
+  const std::vector<Joint> joints{{"C1", 0, 1}, {"C2", 0, 2}, {"B1", 2, -1}, {"B2", 4, -1}};
+  EXPECT_EQ(g.gear_freedoms, 3);
+
+  std::set<std::set<std::string>> listed;
+  for (const EngagementRatio& e : g.engagements) {
+    std::set<std::string> names;
+    for (int i : e.engaged) names.insert(d.topology.friction_elements[i].name);
+    listed.insert(names);
+    const Reference ref = willis_reference(5, sets, joints, names, 0, 3);
+    SCOPED_TRACE(engaged_names(d.topology, e.engaged, ","));
+    EXPECT_EQ(status_name(e.status), ref.status);
+    EXPECT_EQ(e.freedoms, ref.freedoms);
+    // pogear's value is its exact closed form correctly rounded; the reference's LU solve of a 5x5
+    // system of small integers and k: a few ulps.
+    if (ref.status == "ratio") {
+      EXPECT_NEAR(e.value, ref.ratio, 1e-14);
+    }
+    if (ref.status == "output held") {
+      EXPECT_EQ(e.value, 0.0);
+    }
+  }
+  // Every set is listed but the one of all four elements: any three lock the gear already.
+  EXPECT_EQ(listed.size(), 15u);
+  EXPECT_EQ(g.redundant_sets, 1);
+
+  // The textbook ratios of the Simpson set, output over input: 1st k/(2k+1), 2nd k/(k+1), 3rd 1,
+  // reverse -1/k.
+  const std::map<std::set<std::string>, double> textbook{
+      {{"C1", "B2"}, k / (2 * k + 1)}, {{"C1", "B1"}, k / (k + 1)}, {{"C1", "C2"}, 1.0}, {{"C2", "B2"}, -1 / k}};
+  int found = 0;
+  for (const EngagementRatio& e : g.engagements) {
+    std::set<std::string> names;
+    for (int i : e.engaged) names.insert(d.topology.friction_elements[i].name);
+    if (auto it = textbook.find(names); it != textbook.end()) {
+      ++found;
+      EXPECT_EQ(e.status, EngagementStatus::ratio);
+      EXPECT_NEAR(e.value, it->second, 1e-15) << "engaged " << engaged_names(d.topology, e.engaged, ",");
+    }
+  }
+  EXPECT_EQ(found, 4);
+}
+
+TEST(Ratios, ClosedFormOfFirstGearIsTheTextbookFormulaInTheRadii) {
+  const Derivation d = derive_file("simpson_3speed");
+  const GearRatios g = gear_ratios(d, "i", "o", SourceLocation{"test", 0, 0});
+  const auto r = [&](const std::string& name) { return parameter_symbol(d.symbols, name); };
+  // k = r_ring / r_sun with the ring's radius from the geometry, r_s + 2 r_p.
+  const GiNaC::ex k = (r("r_s") + 2 * r("r_p")) / r("r_s");
+  for (const EngagementRatio& e : g.engagements)
+    if (engaged_names(d.topology, e.engaged, ",") == "C1,B2") {
+      ASSERT_TRUE(e.ratio);
+      EXPECT_TRUE((*e.ratio - k / (2 * k + 1)).normal().is_zero()) << *e.ratio;
+      return;
+    }
+  ADD_FAILURE() << "C1,B2 is not listed";
+}
+
+// Modelica's SimpleGearShift situation: the engine on the sun, the load on the carrier; the ring
+// braked gives the reduction 1/(1 + z_r/z_s), the ring clutched to the sun direct drive.
+TEST(Ratios, GearshiftPlanetaryIsAReductionWithTheBrakeAndDirectWithTheClutch) {
+  const Derivation d = derive_file("gearshift_planetary");
+  const GearRatios g = gear_ratios(d, "s", "c", SourceLocation{"test", 0, 0});
+  std::map<std::string, const EngagementRatio*> by_name;
+  for (const EngagementRatio& e : g.engagements) by_name[engaged_names(d.topology, e.engaged, ",")] = &e;
+  ASSERT_TRUE(by_name.count("") && by_name.count("brake") && by_name.count("clutch") && by_name.count("brake,clutch"));
+  const double zs = 100, zr = 150;  // the model's tooth counts (pitch radii in mm at module 1)
+  EXPECT_EQ(by_name["brake"]->status, EngagementStatus::ratio);
+  EXPECT_NEAR(by_name["brake"]->value, 1 / (1 + zr / zs), 1e-16);  // 0.4, correctly rounded: within an ulp
+  EXPECT_EQ(by_name["clutch"]->status, EngagementStatus::ratio);
+  EXPECT_EQ(by_name["clutch"]->value, 1.0);
+  EXPECT_EQ(by_name["brake,clutch"]->status, EngagementStatus::locked);
+  EXPECT_EQ(by_name[""]->status, EngagementStatus::free);
+}
+
+TEST(Ratios, JsonListsEveryEngagementWithStatusClosedFormAndValue) {
+  const std::filesystem::path dir = test_dir("ratios_json");
+  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " ratios " + source_path("models/simpson_3speed.toml") +
+                                " --input i --output o --format json", dir);
+  ASSERT_EQ(c.status, 0) << c.err;
+  const Json j = parse_json(c.out);
+  EXPECT_EQ(j["model"].str, "simpson_3speed");
+  EXPECT_EQ(j["input"].str, "i");
+  EXPECT_EQ(j["output"].str, "o");
+  const Derivation d = derive_file("simpson_3speed");
+  const GearRatios g = gear_ratios(d, "i", "o", SourceLocation{"test", 0, 0});
+  ASSERT_EQ(j["engagements"].size(), g.engagements.size());
+  for (std::size_t i = 0; i < g.engagements.size(); ++i) {
+    const Json& e = j["engagements"][i];
+    const EngagementRatio& x = g.engagements[i];
+    ASSERT_EQ(e["engaged"].size(), x.engaged.size());
+    for (std::size_t k = 0; k < x.engaged.size(); ++k)
+      EXPECT_EQ(e["engaged"][k].str, d.topology.friction_elements[x.engaged[k]].name);
+    EXPECT_EQ(e["status"].str, status_name(x.status));
+    if (x.ratio) {
+      EXPECT_EQ(e["value"].num, x.value);  // shortest round-trip form: the same double
+      // The closed form reads back to the same value.
+      GiNaC::symtab table;
+      for (const auto& p : d.topology.parameters) table[p.name] = parameter_symbol(d.symbols, p.name);
+      GiNaC::parser reader(table, true);
+      const GiNaC::ex closed = reader(e["ratio"].str);
+      EXPECT_TRUE((closed - *x.ratio).normal().is_zero()) << e["ratio"].str;
+    } else {
+      EXPECT_TRUE(e["ratio"].kind == Json::null);
+      EXPECT_TRUE(e["value"].kind == Json::null);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pogear::test
