@@ -1,6 +1,6 @@
-// See gear_ratios.hpp. Ranks are numeric at the model's values, as for the rigid model; each ratio
-// is solved twice, symbolically for its closed form and exactly at the values for its number, and
-// the two are checked against each other.
+// See gear_ratios.hpp. Ranks are numeric at the model's values, as for the rigid model. Each ratio's
+// number is its closed form evaluated exactly; a second, exact solve with R at the file's radii
+// checks the closed form's algebra.
 #include "gear_ratios.hpp"
 
 #include <algorithm>
