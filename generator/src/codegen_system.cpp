@@ -217,6 +217,16 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
   s += rhs_function(sys, fixed) + outputs_function(sys, t, fixed) + matrices_function(sys, fixed) +
        output_matrices_function(sys, d, fixed);
 
+  if (!sys.friction_elements.empty()) {
+    s += code("  // Brakes and clutches: the last {} inputs are their torques (-T on an element's first body, +T on\n"
+              "  // its second); their slips are s = S x. pogear/hybrid.hpp runs the modes of stick and slip.\n",
+              index_code(sys.friction_elements.size()));
+    s += code("  static void slip_matrix([[maybe_unused]] const Params& p, Eigen::MatrixXd& S) {{\n");
+    s += aliases(sys, symbols_in(entries({&sys.slip})), code("x"));
+    s += code("    S.setZero({}, nx);\n", index_code(sys.friction_elements.size()));
+    s += matrix_entries(sys.slip, code("S"));
+    s += code("  }}\n\n");
+  }
   // energy_matrix: what pogear/run_system.hpp checks a run against (see SpecializedSystem::L).
   s += code("  // The stored energy E = x^T L x / 2. The power balance bounds it by the initial energy and the\n"
             "  // inputs' work; a run that outgrows the bound has diverged (the runner checks each sample).\n");

@@ -7,6 +7,7 @@
 
 #include <Eigen/SparseCore>
 
+#include "pogear/hybrid.hpp"
 #include "reference_model.hpp"
 
 namespace pogear {
@@ -46,7 +47,14 @@ struct InterpretedSystem {
     N = ns.N;
   }
   void energy_matrix(const Params&, StateMatrix& L) const { L = ns.L; }
+  void slip_matrix(const Params&, Eigen::MatrixXd& S) const { S = ns.S; }
 };
+
+std::vector<rt::FrictionElementData> friction_data(const SpecializedScene& model) {
+  std::vector<rt::FrictionElementData> out;
+  for (const FrictionRun& f : model.friction) out.push_back({f.name, f.capacity, f.static_ratio, f.command});
+  return out;
+}
 
 std::vector<rt::Signal> signals_of(const SpecializedScene& model, const SpecializedSystem& sys) {
   std::vector<rt::Signal> signals;
@@ -57,6 +65,8 @@ std::vector<rt::Signal> signals_of(const SpecializedScene& model, const Speciali
 int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run,
                         const std::string& suffix) {
   InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
+  if (!sys.friction_elements.empty())
+    return rt::run_hybrid_system(is, {}, signals_of(model, sys), friction_data(model), is.ns.x0, run, suffix);
   return rt::run_system(is, {}, signals_of(model, sys), is.ns.x0, run, suffix);
 }
 

@@ -20,13 +20,14 @@ KindText text_of(VariableKind kind) {
     case VariableKind::force_rate: return {"dF_", "N/s"};
     case VariableKind::mesh_velocity: return {"v_", "m/s"};
     case VariableKind::transmitted_force: return {"w_", "N"};
+    case VariableKind::friction_torque: return {"Tf_", "N m"};
   }
   return {"", ""};
 }
 
 constexpr std::array all_kinds{VariableKind::velocity,  VariableKind::acceleration,  VariableKind::torque,
                                VariableKind::force,     VariableKind::force_rate,    VariableKind::mesh_velocity,
-                               VariableKind::transmitted_force};
+                               VariableKind::transmitted_force, VariableKind::friction_torque};
 
 }  // namespace
 
@@ -34,9 +35,16 @@ bool of_body(VariableKind kind) {
   return kind == VariableKind::velocity || kind == VariableKind::acceleration || kind == VariableKind::torque;
 }
 
+std::size_t variable_count(const Topology& t, VariableKind kind) {
+  if (kind == VariableKind::friction_torque) return t.friction_elements.size();
+  return of_body(kind) ? t.bodies.size() : t.meshes.size();
+}
+
 std::string variable_name(const Topology& t, Variable v) {
-  const std::string& owner = of_body(v.kind) ? t.bodies.at(static_cast<std::size_t>(v.index)).name
-                                             : t.meshes.at(static_cast<std::size_t>(v.index)).name;
+  const auto i = static_cast<std::size_t>(v.index);
+  const std::string& owner = v.kind == VariableKind::friction_torque ? t.friction_elements.at(i).name
+                             : of_body(v.kind)                       ? t.bodies.at(i).name
+                                                                     : t.meshes.at(i).name;
   return std::string(text_of(v.kind).prefix) + owner;
 }
 
@@ -49,7 +57,7 @@ std::string_view unit_of(VariableKind kind) { return text_of(kind).unit; }
 std::optional<Variable> find_variable(const Topology& t, std::string_view name,
                                       std::initializer_list<VariableKind> kinds) {
   for (const VariableKind kind : kinds) {
-    const std::size_t count = of_body(kind) ? t.bodies.size() : t.meshes.size();
+    const std::size_t count = variable_count(t, kind);
     for (std::size_t i = 0; i < count; ++i) {
       const Variable v{kind, static_cast<int>(i)};
       if (variable_name(t, v) == name) return v;

@@ -19,6 +19,7 @@ enum class VariableKind {
   force_rate,         // dF_<mesh> = dF/dt [N/s]
   mesh_velocity,      // v_<mesh> = R omega, a temporary of the generated rhs [m/s]
   transmitted_force,  // w_<mesh> = F + b v, the force a damped mesh passes on [N]
+  friction_torque,    // Tf_<element> [N m]: a brake's or clutch's torque, -T on its first body, +T on its second
 };
 
 // A variable of body or mesh `index`, as the kind says.
@@ -28,7 +29,9 @@ struct Variable {
   friend auto operator<=>(const Variable&, const Variable&) = default;
 };
 
-bool of_body(VariableKind kind);  // velocity, acceleration, torque; the others are of a mesh
+bool of_body(VariableKind kind);  // velocity, acceleration, torque; friction_torque is of a friction element, the others of a mesh
+// How many variables of this kind the model has (its bodies, meshes or friction elements).
+std::size_t variable_count(const Topology& t, VariableKind kind);
 std::string variable_name(const Topology& t, Variable v);
 std::string_view unit_of(VariableKind kind);  // SI, as CSV headers write it: "rad/s", "N", ...
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "engagement.hpp"
 #include "exact_algebra.hpp"
 #include "parameter_folding.hpp"
 #include "vibration_modes.hpp"
@@ -19,14 +20,9 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
   auto exact = [&](const GiNaC::matrix& m) { return exact_matrix(m, values); };
   auto doubles = [](const GiNaC::matrix& m) { return evaluate_matrix(m, {}); };
   NumericSystem out;
-  std::vector<int> input_bodies;
-  for (const Variable tau : sys.input_variables) input_bodies.push_back(tau.index);
-  auto input_columns = [&](const GiNaC::matrix& B) {
-    GiNaC::matrix out(B.rows(), input_bodies.size());
-    for (unsigned i = 0; i < B.rows(); ++i)
-      for (std::size_t j = 0; j < input_bodies.size(); ++j) out(i, j) = B(i, input_bodies[j]);
-    return out;
-  };
+  // The torque of each input on each body (tau_: a unit column; friction torques: -e_k^T).
+  const GiNaC::matrix G_in = input_torques(d.topology, sys.input_variables);
+  auto input_columns = [&](const GiNaC::matrix& B) { return exact_product(B, G_in); };
   const std::size_t nx = sys.states.size(), ny = sys.outputs.size(), nu = sys.inputs.size();
   out.C = Eigen::MatrixXd::Zero(ny, nx);
   out.D = Eigen::MatrixXd::Zero(ny, nu);
@@ -36,7 +32,13 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
     return static_cast<Eigen::Index>(std::find(sys.state_variables.begin(), sys.state_variables.end(), v) -
                                      sys.state_variables.begin());
   };
+  const GiNaC::matrix E_rows = engagement_rows(d.topology, sys.friction_elements);
+  out.S = Eigen::MatrixXd::Zero(E_rows.rows(), nx);
   if (sys.kind == SystemKind::elastic) {
+    for (unsigned r = 0; r < E_rows.rows(); ++r)
+      for (std::size_t i = 0; i < nx; ++i)
+        if (sys.state_variables[i].kind == VariableKind::velocity)
+          out.S(r, i) = to_double(as_number(E_rows(r, sys.state_variables[i].index)));
     const GiNaC::matrix L = exact(e.L);
     out.L = doubles(L);
     out.M = doubles(exact_solve(L, exact(e.A)));
@@ -61,7 +63,8 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
         G(b, j) = BJ(b, b) * Q1(b, j);
         G(b, k + j) = J(b, b) * Q1(b, j);
       }
-    for (std::size_t j = 0; j < nu; ++j) G(input_bodies[j], 2 * k + j) = 1;
+    for (unsigned b = 0; b < n; ++b)
+      for (std::size_t j = 0; j < nu; ++j) G(b, 2 * k + j) = G_in(b, j);
     GiNaC::matrix PG;  // P G
     if (!d.rigid.redundant_meshes) {
       PG = exact_solve(exact_product(R, R.transpose()), exact_product(R, G));
@@ -71,6 +74,7 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
       PG = exact_product(exact_product(K, R), exact_solve(S, G));
     }
     const Eigen::MatrixXd PGn = doubles(PG), Q1n = doubles(Q1);
+    if (E_rows.rows() > 0) out.S = doubles(exact_product(E_rows, Q1));
     const Eigen::MatrixXd C_F = -PGn.leftCols(k), E_F = -PGn.middleCols(k, k);
     for (std::size_t i = 0; i < ny; ++i) {
       const Variable y = sys.output_variables[i];

@@ -17,6 +17,7 @@ struct NumericSystem {
   Eigen::MatrixXd M, N;        // dx/dt = M x + N u
   Eigen::MatrixXd L;           // energy E = x^T L x / 2
   Eigen::MatrixXd C, D, E;     // y = C x + D u + E dx/dt
+  Eigen::MatrixXd S;           // slips of the engaged brakes and clutches, s = S x
   Eigen::VectorXd x0;
 };
 NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& system);

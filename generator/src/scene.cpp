@@ -60,13 +60,13 @@ struct Reader : TomlReader {
 
 // A table signal from its CSV file; `at` is the `table =` value, where complaints about the whole
 // file point (a complaint about one line points into the table).
-rt::Signal read_table_signal(const Reader& r, const toml::node& at, const std::string& table_file) {
+rt::Signal read_table_signal(const Reader& r, const toml::node& at, const std::string& table_file,
+                             const std::string& layout = "the table needs two columns: time [s], torque [N m]") {
   rt::TableError error;
   const auto table = rt::load_table_csv(table_file, error);
   if (!table) {
     // A row's complaint points into the table; one about the whole file (missing, empty, too
     // large) points at this `table =`.
-    const std::string layout = "the table needs two columns: time [s], torque [N m]";
     if (error.line > 0)
       throw InputError(SourceLocation{table_file, static_cast<int>(error.line), 0}, error.message + "; " + layout);
     std::string advice;
@@ -77,9 +77,11 @@ rt::Signal read_table_signal(const Reader& r, const toml::node& at, const std::s
   return rt::Table{table->t, table->v};
 }
 
-rt::Signal read_signal(const Reader& r, const toml::node& n, const fs::path& scene_dir) {
-  const Dimension torque = torque_dimension();
-  if (!n.is_table()) return rt::Constant{r.quantity(n, torque, "an input torque")};
+// An input torque, or (`engagement`) a dimensionless engagement command, whose sine form is refused:
+// the exact method is exact for piecewise linear commands, and events are located on them.
+rt::Signal read_signal(const Reader& r, const toml::node& n, const fs::path& scene_dir, bool engagement = false) {
+  const Dimension torque = engagement ? Dimension{} : torque_dimension();
+  if (!n.is_table()) return rt::Constant{r.quantity(n, torque, engagement ? "an engagement command" : "an input torque")};
   const toml::table& t = *n.as_table();
   auto get = [&](std::string_view key) { return t.get(key); };
   if (const toml::node* v = get("constant")) {
@@ -100,11 +102,14 @@ rt::Signal read_signal(const Reader& r, const toml::node& n, const fs::path& sce
     rt::Ramp s;
     Dimension slope = torque;
     slope.exponent[2] -= 1;
-    s.slope = r.quantity(*v, slope, "ramp (a slope, e.g. \"50*Nm/s\")");
+    s.slope = r.quantity(*v, slope, engagement ? "ramp (a slope, e.g. \"2/s\")" : "ramp (a slope, e.g. \"50*Nm/s\")");
     if (get("start")) s.start_time = r.quantity(*get("start"), time_dimension(), "start");
     if (get("initial")) s.initial = r.quantity(*get("initial"), torque, "initial");
     return s;
   }
+  if (const toml::node* v = get("sine"); v && engagement)
+    r.fail(*v, "an engagement command is constant, a step, a ramp or a table (piecewise linear, so that events are "
+               "located exactly); give the sine as a table");
   if (const toml::node* v = get("sine")) {
     r.only_keys(t, {"sine", "frequency", "phase", "offset"}, "a sine signal");
     rt::Sine s;
@@ -121,7 +126,9 @@ rt::Signal read_signal(const Reader& r, const toml::node& n, const fs::path& sce
     r.only_keys(t, {"table"}, "a table signal");
     const std::string file = r.string(*v, "table");
     const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : scene_dir / file;
-    return read_table_signal(r, *v, path.lexically_normal().string());
+    return engagement ? read_table_signal(r, *v, path.lexically_normal().string(),
+                                          "the table needs two columns: time [s], engagement command [0 to 1]")
+                      : read_table_signal(r, *v, path.lexically_normal().string());
   }
   r.fail(n, "a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., "
             "frequency = ... } or { table = \"file.csv\" }");
@@ -207,7 +214,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       fmt::format("the scene file is larger than {} bytes; a model or scene file is a few kilobytes",
                   max_model_file_bytes));
   r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
-                     "parameters", "simulation"},
+                     "parameters", "simulation", "engagement"},
               "the scene file");
   Scene s;
   s.file = path;
@@ -301,6 +308,26 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     std::sort(s.inputs.begin(), s.inputs.end(), [](const InputSpec& a, const InputSpec& b) { return a.body < b.body; });
   }
 
+  if (const toml::node* n = root.get("engagement")) {
+    if (!n->is_table()) r.fail(*n, "[engagement] must be a table of <element> = command");
+    if (topology.friction_elements.empty())
+      r.fail(*n, fmt::format("[engagement] commands brakes and clutches, but the model {} has none; add [[brake]] or "
+                             "[[clutch]] to the model, or drop [engagement]", topology.name));
+    for (const auto& [key, value] : *n->as_table()) {
+      const std::string name(key.str());
+      const int k = find_friction_element(topology, name);
+      if (k < 0) {
+        std::string names;
+        for (const auto& e : topology.friction_elements) names += (names.empty() ? "" : ", ") + e.name;
+        throw InputError(toml_location(path, key.source()),
+                         fmt::format("'{}' is not a brake or clutch of the model; its elements are {}", name, names));
+      }
+      s.engagement.push_back(EngagementSpec{k, read_signal(r, value, scene_dir, true), r.loc(value)});
+    }
+    std::sort(s.engagement.begin(), s.engagement.end(),
+              [](const EngagementSpec& a, const EngagementSpec& b) { return a.element < b.element; });
+  }
+
   if (const toml::node* n = root.get("initial")) {
     if (!n->is_table()) r.fail(*n, "[initial] must be a table of omega_<body> and F_<mesh> values");
     for (const auto& [key, value] : *n->as_table()) {
@@ -372,6 +399,19 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                                              rt::limits::min_step, rt::limits::max_step));
     if (s.horizon / s.sample > rt::limits::max_samples)
       r.fail(*n, fmt::format("{} samples requested; at most 1e7 (raise sample or shorten the horizon)", s.horizon / s.sample));
+  }
+  // A command is piecewise linear: its extremes over the run are at 0, the horizon and its breakpoints.
+  for (const EngagementSpec& e : s.engagement) {
+    std::vector<double> times = rt::breakpoints(e.command, 0.0, s.horizon);
+    times.push_back(0.0);
+    times.push_back(s.horizon);
+    for (double t : times)
+      for (double p : {rt::value(e.command, t), rt::value(e.command, std::nextafter(t, 0.0))})
+        if (!(p >= 0 && p <= 1))
+          throw InputError(e.where, fmt::format("the command of {} is {} at t = {} s; an engagement command is from 0 "
+                                                "(open) to 1 (fully engaged) over the whole run",
+                                                topology.friction_elements[static_cast<std::size_t>(e.element)].name,
+                                                p, t));
   }
   return s;
 }

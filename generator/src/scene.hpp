@@ -27,6 +27,13 @@ struct InputSpec {
   SourceLocation where;
 };
 
+// The engagement command p(t) in [0, 1] of a brake or clutch of the model.
+struct EngagementSpec {
+  int element = -1;  // index into Topology::friction_elements
+  rt::Signal command;
+  SourceLocation where;
+};
+
 // Whether the signal is zero at every time: such an input is no input.
 bool identically_zero(const rt::Signal& signal);
 
@@ -45,6 +52,9 @@ struct Scene {
   std::vector<std::string> keep;  // empty: the model's default
   bool compare_rigid = false;
   std::vector<InputSpec> inputs;
+  // Commands of the brakes and clutches the scene engages, in the model's order; an element not
+  // listed, or whose command is zero at every time, is open throughout and leaves no term.
+  std::vector<EngagementSpec> engagement;
   std::map<Variable, double> initial;  // velocities [rad/s] and forces [N]
   std::vector<std::string> tunable;
   std::vector<Variable> outputs;  // velocities and forces; empty: every velocity, and every force with mesh_forces

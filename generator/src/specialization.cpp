@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "engagement.hpp"
 #include "exact_algebra.hpp"
 #include "linear_form.hpp"
 #include "model_parameters.hpp"
@@ -46,9 +47,24 @@ void inputs_of(const Scene& sc, const Topology& t, SpecializedSystem& sys) {
   }
 }
 
-ex input_or_zero(const SymbolTable& s, const SpecializedSystem& sys, std::size_t body) {
-  const Variable tau{VariableKind::torque, static_cast<int>(body)};
-  return contains(sys.input_variables, tau) ? ex(variable_symbol(s, tau)) : ex(0);
+// Engaged brakes and clutches: their torques are inputs after the scene's (an element whose command
+// is zero at every time stays open and leaves no term).
+void friction_inputs_of(const Scene& sc, const Topology& t, SpecializedSystem& sys) {
+  for (const EngagementSpec& e : sc.engagement) {
+    if (identically_zero(e.command)) continue;
+    const Variable torque{VariableKind::friction_torque, e.element};
+    sys.input_variables.push_back(torque);
+    sys.inputs.push_back(variable_name(t, torque));
+    sys.friction_elements.push_back(e.element);
+  }
+}
+
+// The torque on a body from every input: its own tau_ and the engaged elements' -e_k^T Tf_k.
+ex body_torque(const SymbolTable& s, const SpecializedSystem& sys, const GiNaC::matrix& torques, std::size_t body) {
+  ex sum = 0;
+  for (std::size_t j = 0; j < sys.input_variables.size(); ++j)
+    if (!torques(body, j).is_zero()) sum += torques(body, j) * variable_symbol(s, sys.input_variables[j]);
+  return sum;
 }
 
 // What `--param` accepts for a tunable, and the sign its roles in the model ask for.
@@ -133,6 +149,8 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
   sys.kind = elastic ? SystemKind::elastic : SystemKind::rigid;
   for (const auto& name : sc.tunable) sys.params.push_back(tunable_parameter(t, name, parameter_value(t, name)));
   inputs_of(sc, t, sys);
+  friction_inputs_of(sc, t, sys);
+  const GiNaC::matrix torques_of_inputs = input_torques(t, sys.input_variables);
 
   // Readers of the generated code would take a temporary for the parameter of the same name.
   auto temporary = [&](Variable v) {
@@ -164,7 +182,8 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
       }
     }
     for (std::size_t k = 0; k < n; ++k) {
-      ex torque = input_or_zero(s, sys, k) - d.elastic.B_J(k, k) * variable_symbol(s, {VariableKind::velocity, static_cast<int>(k)});
+      ex torque = body_torque(s, sys, torques_of_inputs, k) -
+                  d.elastic.B_J(k, k) * variable_symbol(s, {VariableKind::velocity, static_cast<int>(k)});
       for (std::size_t i = 0; i < m; ++i) torque -= d.elastic.R(i, k) * w[i];
       sys.rhs.push_back(folded(torque / d.elastic.J(k, k)));
     }
@@ -189,22 +208,20 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
       // velocity) and to the inputs' unit vectors: one sparse exact solve (exact_rigid_response),
       // neither L1 nor A1 formed (the closed forms of a long chain are megabytes to substitute into).
       const GiNaC::matrix Q1 = exact_matrix(d.rigid.Q1, fold);
-      std::vector<std::size_t> driven;  // bodies with an input torque
-      for (std::size_t b = 0; b < n; ++b)
-        if (!input_or_zero(s, sys, b).is_zero()) driven.push_back(b);
-      GiNaC::matrix torques(n, k1 + driven.size());
+      const std::size_t nu = sys.inputs.size();
+      GiNaC::matrix torques(n, k1 + nu);
       for (std::size_t b = 0; b < n; ++b) {
         const GiNaC::numeric friction = as_number(exact_value(d.elastic.B_J(b, b), fold));
         for (std::size_t j = 0; j < k1 && !friction.is_zero(); ++j)
           if (!Q1(b, j).is_zero()) torques(b, j) = -friction.mul(as_number(Q1(b, j)));
       }
-      for (std::size_t c = 0; c < driven.size(); ++c) torques(driven[c], k1 + c) = 1;
+      for (std::size_t b = 0; b < n; ++b)
+        for (std::size_t c = 0; c < nu; ++c) torques(b, k1 + c) = torques_of_inputs(b, c);
       const GiNaC::matrix X = exact_rigid_response(d.rigid, d.elastic, fold, torques);
       for (std::size_t j = 0; j < k1; ++j) {
         GiNaC::exvector f;
         for (std::size_t i = 0; i < k1; ++i) f.push_back(X(j, i) * variable_symbol(s, sys.state_variables[i]));
-        for (std::size_t c = 0; c < driven.size(); ++c)
-          f.push_back(X(j, k1 + c) * variable_symbol(s, {VariableKind::torque, static_cast<int>(driven[c])}));
+        for (std::size_t c = 0; c < nu; ++c) f.push_back(X(j, k1 + c) * variable_symbol(s, sys.input_variables[c]));
         sys.rhs.push_back(folded(GiNaC::add(f)));
       }
     } else {
@@ -226,10 +243,12 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
           f.L(i, j) = folded(l);
           f.A(i, j) = folded(a);
         }
-      for (std::size_t c = 0; c < sys.inputs.size(); ++c) {
-        const auto b = static_cast<std::size_t>(sys.input_variables[c].index);
-        for (std::size_t i = 0; i < k1; ++i) f.B(i, c) = Q1(b, i);
-      }
+      for (std::size_t c = 0; c < sys.inputs.size(); ++c)
+        for (std::size_t i = 0; i < k1; ++i) {
+          ex sum = 0;
+          for (std::size_t b = 0; b < n; ++b) sum += Q1(b, i) * torques_of_inputs(b, c);
+          f.B(i, c) = folded(sum);
+        }
       sys.implicit = std::move(f);
     }
   }
@@ -253,10 +272,12 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
         w += d.rigid.Q1(out.index, j) * variable_symbol(s, sys.state_variables[j]);
       sys.output_values.push_back(folded(w));
     } else {
-      GiNaC::exmap zero_inputs;
+      // Eq. (8) reads the torque on each body: the inputs', friction torques included.
+      GiNaC::exmap body_torques;
       for (std::size_t b = 0; b < n; ++b)
-        if (input_or_zero(s, sys, b).is_zero()) zero_inputs[variable_symbol(s, {VariableKind::torque, static_cast<int>(b)})] = 0;
-      sys.output_values.push_back(folded(d.rigid.force_recovery.at(out.index).subs(zero_inputs)));
+        body_torques[variable_symbol(s, {VariableKind::torque, static_cast<int>(b)})] =
+            body_torque(s, sys, torques_of_inputs, b);
+      sys.output_values.push_back(folded(d.rigid.force_recovery.at(out.index).subs(body_torques)));
       need_derivatives = true;
     }
   }
@@ -268,7 +289,35 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
     sys.output_ops.additions += sys.rhs_ops.additions;
   }
   sys.L = energy_matrix(d, fold, elastic);
+
+  // Slips s_k = e_k omega in the system's states: omega itself (elastic), omega = Q1 x1 (rigid).
+  const GiNaC::matrix E = engagement_rows(t, sys.friction_elements);
+  sys.slip = GiNaC::matrix(E.rows(), sys.states.size());
+  for (unsigned r = 0; r < E.rows(); ++r)
+    for (std::size_t j = 0; j < sys.states.size(); ++j) {
+      ex sum = 0;
+      for (std::size_t b = 0; b < n; ++b) {
+        if (E(r, b).is_zero()) continue;
+        const Variable v = sys.state_variables[j];
+        if (elastic) sum += v == Variable{VariableKind::velocity, static_cast<int>(b)} ? E(r, b) : ex(0);
+        else sum += E(r, b) * d.rigid.Q1(b, j);
+      }
+      sys.slip(r, j) = folded(sum);
+    }
   return sys;
+}
+
+GiNaC::matrix input_torques(const Topology& t, const std::vector<Variable>& inputs) {
+  GiNaC::matrix G(t.bodies.size(), inputs.size());
+  for (std::size_t j = 0; j < inputs.size(); ++j) {
+    if (inputs[j].kind == VariableKind::torque) {
+      G(inputs[j].index, j) = 1;
+    } else {
+      const GiNaC::matrix e = engagement_rows(t, {inputs[j].index});
+      for (std::size_t b = 0; b < t.bodies.size(); ++b) G(b, j) = -e(0, b);
+    }
+  }
+  return G;
 }
 
 SpecializedScene specialize(const Scene& scene) {
@@ -287,6 +336,13 @@ SpecializedScene specialize(const Scene& scene) {
   if (!scene.tunable.empty()) check_tunable_geometry(scene, model.derivation);
   model.main = specialize_system(scene, model.derivation, scene.effects.mesh_compliance);
   if (scene.compare_rigid) model.rigid = specialize_system(scene, model.derivation, false);
+  const Topology& t = model.derivation.topology;
+  for (const EngagementSpec& e : scene.engagement) {
+    if (identically_zero(e.command)) continue;
+    const FrictionElement& f = t.friction_elements[static_cast<std::size_t>(e.element)];
+    model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter),
+                                         static_friction_ratio(t, f), e.command});
+  }
   return model;
 }
 

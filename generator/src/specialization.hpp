@@ -56,6 +56,10 @@ struct SpecializedSystem {
   std::vector<std::string> inputs;    // tau_<body> of the nonzero signals
   std::vector<Variable> input_variables;
   std::vector<int> input_signal;      // index into Scene::inputs
+  // Brakes and clutches the scene engages (indices into Topology::friction_elements): their torques
+  // Tf_<element> are the last inputs, after the scene's, and their slips are s = slip x.
+  std::vector<int> friction_elements;
+  GiNaC::matrix slip;
   std::vector<TunableParameter> params;
   std::vector<Assignment> rhs_temporaries;
   std::vector<GiNaC::ex> rhs;  // dx/dt, one per state
@@ -72,8 +76,17 @@ struct SpecializedSystem {
   GiNaC::matrix L;  // energy E = x^T L x / 2 (symmetric positive definite), for the runner's divergence check
 };
 
+// A brake or clutch of a scene at the scene's values: capacity [N m], static ratio, and command.
+struct FrictionRun {
+  int element = -1;
+  std::string name;
+  double capacity = 0, static_ratio = 1;
+  rt::Signal command;
+};
+
 struct SpecializedScene {
   Scene scene;
+  std::vector<FrictionRun> friction;  // the engaged elements, in the order of the systems' Tf_ inputs
   Derivation derivation;  // with the scene's overrides applied
   SpecializedSystem main;
   std::optional<SpecializedSystem> rigid;  // the comparison, when the scene asks for it
@@ -81,5 +94,10 @@ struct SpecializedScene {
 
 SpecializedScene specialize(const Scene& scene);
 SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, bool elastic);
+
+// The torque each input applies to each body (bodies x inputs, exact): a unit column for tau_<body>,
+// -e_k^T for a friction torque Tf_<k> (-T on the element's first body, +T on its second, arrows
+// taken into account).
+GiNaC::matrix input_torques(const Topology& t, const std::vector<Variable>& inputs);
 
 }  // namespace pogear

@@ -30,8 +30,8 @@ SymbolTable make_symbol_table(const Topology& t) {
   }
   for (const VariableKind kind : {VariableKind::torque, VariableKind::acceleration, VariableKind::velocity,
                                   VariableKind::force, VariableKind::force_rate, VariableKind::mesh_velocity,
-                                  VariableKind::transmitted_force}) {
-    const std::size_t count = of_body(kind) ? t.bodies.size() : t.meshes.size();
+                                  VariableKind::transmitted_force, VariableKind::friction_torque}) {
+    const std::size_t count = variable_count(t, kind);
     for (std::size_t i = 0; i < count; ++i) {
       const Variable v{kind, static_cast<int>(i)};
       s.variables.emplace(v, GiNaC::realsymbol(variable_name(t, v)));
