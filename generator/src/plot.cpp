@@ -121,6 +121,51 @@ void draw_svg(const std::string& gnuplot, const std::string& script, const std::
   write_file_atomically(svg, result.out);
 }
 
+namespace {
+
+// Three panels over time: the bodies' speeds, the brakes' and clutches' torques, and their slips
+// (the columns run_hybrid_system writes after the system's outputs: T_, slip_, E_ per element).
+std::string shift_script(const SpecializedScene& model, const std::vector<std::vector<double>>& rows) {
+  const std::size_t ny = model.main.outputs.size(), ne = model.friction.size();
+  std::string script;
+  script += "set terminal svg size 900,900 dynamic enhanced font 'Helvetica,13' background rgb 'white'\n";
+  script += "set datafile separator ','\n";
+  script += gnuplot_datablock("run", rows);
+  script += "set grid\nset key outside right top\nset multiplot layout 3,1\n";
+  script += "set lmargin 12\nset rmargin 22\n";
+  auto panel = [&](const std::string& title, const std::string& ylabel, const std::vector<std::size_t>& columns,
+                   const std::vector<std::string>& labels, bool last) {
+    script += fmt::format("set title '{}' noenhanced\nset ylabel '{}'\n", title, ylabel);
+    script += last ? "set xlabel 't [s]'\n" : "unset xlabel\n";
+    script += "plot ";
+    for (std::size_t i = 0; i < columns.size(); ++i)
+      script += fmt::format("{}$run using 1:{} with lines lw 2 title '{}'", i ? ", \\\n     " : "", columns[i],
+                            gnuplot_label(labels[i]));
+    script += "\n";
+  };
+  std::vector<std::size_t> speeds, torques, slips;
+  std::vector<std::string> speed_names, torque_names, slip_names;
+  for (std::size_t i = 0; i < ny; ++i)
+    if (model.main.output_variables[i].kind == VariableKind::velocity) {
+      speeds.push_back(i + 2);
+      speed_names.push_back(model.main.outputs[i]);
+    }
+  for (std::size_t k = 0; k < ne; ++k) {
+    torques.push_back(ny + k + 2);
+    torque_names.push_back("T_" + model.friction[k].name);
+    slips.push_back(ny + ne + k + 2);
+    slip_names.push_back("slip_" + model.friction[k].name);
+  }
+  // The scene's name and the elements' names are identifiers, checked when the files were read.
+  if (!speeds.empty())
+    panel(model.scene.name + ": angular velocities", "{/Symbol w} [rad/s]", speeds, speed_names, false);
+  panel("brake and clutch torques", "T [N m]", torques, torque_names, false);
+  panel("slips", "slip [rad/s]", slips, slip_names, true);
+  return script + "unset multiplot\n";
+}
+
+}  // namespace
+
 std::vector<std::string> plot_scene(const SpecializedScene& model, const std::string& dir) {
   const std::optional<std::string> gnuplot = gnuplot_program();
   if (!gnuplot)
@@ -164,6 +209,11 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
 
     const fs::path svg = fs::path(dir) / fmt::format("{}.{}.svg", name, kind);
     draw_svg(*gnuplot, script, svg.string(), "the CSV files are written");
+    written.push_back(svg.string());
+  }
+  if (!model.friction.empty()) {
+    const fs::path svg = fs::path(dir) / fmt::format("{}.shift.svg", name);
+    draw_svg(*gnuplot, shift_script(model, elastic), svg.string(), "the CSV files are written");
     written.push_back(svg.string());
   }
   return written;

@@ -33,7 +33,8 @@ std::string gnuplot_datablock(const std::string& name, const std::vector<std::ve
 std::string gnuplot_label(const std::string& name);
 
 // DIR/<scene>.velocities.svg and, with forces, DIR/<scene>.forces.svg: elastic solid, rigid dashed
-// on top, as in the paper's Figs. 8-9. Returns the files written.
+// on top, as in the paper's Figs. 8-9; with brakes or clutches, DIR/<scene>.shift.svg (speeds,
+// element torques, slips). Returns the files written.
 std::vector<std::string> plot_scene(const SpecializedScene& model, const std::string& dir);
 
 }  // namespace pogear
