@@ -70,13 +70,13 @@ CppText signals_function(const SpecializedScene& model, const SpecializedSystem&
 // command p(t).
 CppText friction_function(const SpecializedScene& model) {
   CppText s = code("// Brakes and clutches engaged by the scene, in the order of the systems' friction torque inputs:\n"
-                   "// name, kinetic torque capacity [N m], static / kinetic friction, engagement command p(t).\n");
+                   "// name, kinetic torque capacity [N m], static / kinetic friction, engagement command p(t), one-way.\n");
   s += code("std::vector<pogear::rt::FrictionElementData> friction_elements() {{\n  return {{");
   for (std::size_t i = 0; i < model.friction.size(); ++i) {
     const FrictionRun& f = model.friction[i];
     s += (i ? code(",\n          ") : CppText{}) +
-         code("{{{}, {}, {}, {}}}", string_literal(f.name), number_code(f.capacity), number_code(f.static_ratio),
-              signal_code(f.command));
+         code("{{{}, {}, {}, {}, {}}}", string_literal(f.name), number_code(f.capacity), number_code(f.static_ratio),
+              signal_code(f.command), f.one_way ? code("true") : code("false"));
   }
   s += code("}};\n}}\n");
   return s;
@@ -270,6 +270,15 @@ std::string operation_summary(const SpecializedScene& model) {
   };
   one(model.main);
   if (model.rigid) one(*model.rigid);
+  if (!model.friction.empty()) {
+    std::string names;
+    for (const FrictionRun& f : model.friction) names += (names.empty() ? "" : ", ") + f.name + (f.one_way ? " (one-way)" : "");
+    const Topology& t = model.derivation.topology;
+    s += fmt::format("brakes and clutches: {} engaged ({}), {} open throughout; modes (sets of stuck elements): at "
+                     "most {}, each formed by the simulator when a run first reaches it\n",
+                     model.friction.size(), names, t.friction_elements.size() - model.friction.size(),
+                     std::size_t{1} << model.friction.size());
+  }
   return s;
 }
 

@@ -400,6 +400,20 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     if (s.horizon / s.sample > rt::limits::max_samples)
       r.fail(*n, fmt::format("{} samples requested; at most 1e7 (raise sample or shorten the horizon)", s.horizon / s.sample));
   }
+  const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(),
+                                   [](const EngagementSpec& e) { return !identically_zero(e.command); });
+  if (engaged && s.solver != Solver::exact)
+    throw InputError(s.solver_where, fmt::format("the scene engages brakes or clutches, which are simulated with the "
+                                                 "exact method only (it locates their events on its exact "
+                                                 "trajectory); use solver = \"exact\""));
+  for (const EngagementSpec& e : s.engagement) {
+    const FrictionElement& f = topology.friction_elements[static_cast<std::size_t>(e.element)];
+    if (std::find(s.tunable.begin(), s.tunable.end(), f.capacity_parameter) != s.tunable.end())
+      throw InputError(s.tunable_where,
+                       fmt::format("'{}' is the torque capacity of {}, which a simulation takes at the scene's value; "
+                                   "it cannot be tunable: set it in [parameters] instead",
+                                   f.capacity_parameter, f.name));
+  }
   // A command is piecewise linear: its extremes over the run are at 0, the horizon and its breakpoints.
   for (const EngagementSpec& e : s.engagement) {
     std::vector<double> times = rt::breakpoints(e.command, 0.0, s.horizon);

@@ -341,7 +341,7 @@ SpecializedScene specialize(const Scene& scene) {
     if (identically_zero(e.command)) continue;
     const FrictionElement& f = t.friction_elements[static_cast<std::size_t>(e.element)];
     model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter),
-                                         static_friction_ratio(t, f), e.command});
+                                         static_friction_ratio(t, f), e.command, f.one_way});
   }
   return model;
 }

@@ -82,6 +82,7 @@ struct FrictionRun {
   std::string name;
   double capacity = 0, static_ratio = 1;
   rt::Signal command;
+  bool one_way = false;
 };
 
 struct SpecializedScene {

@@ -226,8 +226,8 @@ void read_friction_elements(const Reader& r, const toml::table& root, Topology& 
     if (!list->is_array_of_tables()) r.fail(*list, fmt::format("'{}' must be written as [[{}]] tables", key, key));
     for (const toml::node& n : *list->as_array()) {
       const toml::table& et = *n.as_table();
-      if (brake) r.only_keys(et, {"name", "body", "capacity", "static_ratio"}, "a [[brake]]");
-      else r.only_keys(et, {"name", "bodies", "capacity", "static_ratio"}, "a [[clutch]]");
+      if (brake) r.only_keys(et, {"name", "body", "capacity", "static_ratio", "one_way"}, "a [[brake]]");
+      else r.only_keys(et, {"name", "bodies", "capacity", "static_ratio", "one_way"}, "a [[clutch]]");
       FrictionElement e;
       const toml::node* name = et.get("name");
       if (!name) r.fail(et, fmt::format("a [[{}]] needs a name, e.g. name = \"{}\"", key, brake ? "B1" : "C1"));
@@ -264,6 +264,10 @@ void read_friction_elements(const Reader& r, const toml::table& root, Topology& 
         if (!coaxial(f, g))
           r.fail(pair[1], fmt::format("clutch '{}' joins '{}' on {} and '{}' on {}; a clutch joins two bodies that turn "
                                       "about one axis", e.name, f.name, axis_description(f), g.name, axis_description(g)));
+      }
+      if (const toml::node* o = et.get("one_way")) {
+        if (!o->is_boolean()) r.fail(*o, "one_way must be true or false");
+        e.one_way = **o->as_boolean();
       }
       e.capacity_parameter = "T_" + e.name;
       if (const toml::node* c = et.get("capacity")) e.capacity_parameter = r.identifier(*c, "capacity");

@@ -65,6 +65,9 @@ struct FrictionElement {
   SourceLocation where;            // the name
   SourceLocation static_ratio_where;
   int static_ratio_column_offset = 0;
+  // A one-way element (freewheel, sprag): its slip may be positive freely (no torque); it holds
+  // against negative slip only. A one-way brake lets its body turn forward and stops it turning back.
+  bool one_way = false;
   bool is_brake() const { return second < 0; }
 };
 

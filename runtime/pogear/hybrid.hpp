@@ -24,10 +24,13 @@ namespace pogear::rt {
 
 // A brake or clutch as a run sees it: torque capacity c (kinetic, at full engagement), the static
 // friction ratio mu_s / mu_k, and the engagement command p(t) in [0, 1] (piecewise linear).
+// A one-way element (freewheel) carries no torque while its slip is positive and holds against
+// negative slip only.
 struct FrictionElementData {
   std::string name;
   double capacity = 0, static_ratio = 1;
   Signal command;
+  bool one_way = false;
 };
 
 // The system with its friction elements: dx/dt = M x + N w, w = [u; T], the scene's nu inputs u and
@@ -208,6 +211,13 @@ class HybridEngine {
 
   double command(int k, double t) const { return value(sys_.elements[static_cast<std::size_t>(k)].command, t); }
 
+  // The torque per unit command of element k while it slips: its capacity, or zero for a one-way
+  // element overrunning in its free direction.
+  double torque_scale(int k) const {
+    const auto K = static_cast<std::size_t>(k);
+    return sys_.elements[K].one_way && dir_[K] > 0 ? 0.0 : sys_.elements[K].capacity;
+  }
+
   // Whether element k's command is zero from t until the next breakpoint (it is linear there).
   bool open_after(int k, double t) const {
     const auto next = std::upper_bound(breaks_.begin(), breaks_.end(), t);
@@ -224,7 +234,7 @@ class HybridEngine {
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
       // + 0.0: an open element's torque is 0, not -0, in the CSV.
-      v(nu_ + k) = state_[K] == ElementState::stuck ? 0.0 : sys_.elements[K].capacity * command(k, at) * dir_[K] + 0.0;
+      v(nu_ + k) = state_[K] == ElementState::stuck ? 0.0 : torque_scale(k) * command(k, at) * dir_[K] + 0.0;
     }
     return v;
   }
@@ -258,7 +268,9 @@ class HybridEngine {
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
       const int k = m.stuck[j];
       const auto& e = sys_.elements[static_cast<std::size_t>(k)];
-      g(k) = e.static_ratio * e.capacity * command(k, at) - std::abs(T(static_cast<Eigen::Index>(j)));
+      const double Tk = T(static_cast<Eigen::Index>(j));
+      g(k) = e.static_ratio * e.capacity * command(k, at) - std::abs(Tk);
+      if (e.one_way) g(k) = std::min(g(k), -Tk);  // a one-way element lets go when T turns positive
     }
     for (int k = 0; k < ne_; ++k)
       if (watched[static_cast<std::size_t>(k)] && state_[static_cast<std::size_t>(k)] != ElementState::stuck)
@@ -267,9 +279,9 @@ class HybridEngine {
   }
 
   // Time derivatives of the event functions (for the check between the ends of a step).
-  // dv: the known inputs' slope over the step; dp: the commands' slopes.
+  // dv: the known inputs' slope over the step; p, dp: the commands there and their slopes.
   Eigen::VectorXd event_rates(const hybrid_detail::ModeMatrices& m, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
-                              const Eigen::VectorXd& dv, const Eigen::VectorXd& dp,
+                              const Eigen::VectorXd& dv, const Eigen::VectorXd& p, const Eigen::VectorXd& dp,
                               const std::vector<char>& watched) const {
     const Eigen::VectorXd dx = m.A * x + m.B * v;
     Eigen::VectorXd r = Eigen::VectorXd::Zero(ne_);
@@ -279,7 +291,8 @@ class HybridEngine {
         const int k = m.stuck[j];
         const auto& e = sys_.elements[static_cast<std::size_t>(k)];
         const auto J = static_cast<Eigen::Index>(j);
-        r(k) = e.static_ratio * e.capacity * dp(k) - (T(J) < 0 ? -dT(J) : dT(J));
+        const double margin = e.static_ratio * e.capacity * p(k) - std::abs(T(J));
+        r(k) = e.one_way && -T(J) < margin ? -dT(J) : e.static_ratio * e.capacity * dp(k) - (T(J) < 0 ? -dT(J) : dT(J));
       }
     }
     for (int k = 0; k < ne_; ++k)
@@ -306,7 +319,7 @@ class HybridEngine {
       if (state_[K] == ElementState::stuck) continue;
       const double p0 = command(k, t0), p1 = command(k, at1);
       const double sigma = z(nx_ + k), rho = z(nx_ + ne_ + k);
-      energy_(k) += sys_.elements[K].capacity * dir_[K] * (p1 * sigma - (p1 - p0) * rho / h);
+      energy_(k) += torque_scale(k) * dir_[K] * (p1 * sigma - (p1 - p0) * rho / h);
     }
   }
 
@@ -380,11 +393,14 @@ class HybridEngine {
       bool split = false;
       if (hit < 0 && depth < 30) {
         const Eigen::VectorXd dv = (v1 - v0) / h;
-        Eigen::VectorXd dp(ne_);
-        for (int k = 0; k < ne_; ++k)
-          dp(k) = (command(k, before ? std::nextafter(t1, t) : t1) - command(k, t)) / h;
-        const Eigen::VectorXd r0 = event_rates(m, x_, v0, dv, dp, watched);
-        const Eigen::VectorXd r1 = event_rates(m, x1, v1, dv, dp, watched);
+        Eigen::VectorXd p0(ne_), p1(ne_);
+        for (int k = 0; k < ne_; ++k) {
+          p0(k) = command(k, t);
+          p1(k) = command(k, before ? std::nextafter(t1, t) : t1);
+        }
+        const Eigen::VectorXd dp = (p1 - p0) / h;
+        const Eigen::VectorXd r0 = event_rates(m, x_, v0, dv, p0, dp, watched);
+        const Eigen::VectorXd r1 = event_rates(m, x1, v1, dv, p1, dp, watched);
         for (int k = 0; k < ne_ && !split; ++k) split = dips_between(g0(k), g1(k), r0(k), r1(k), h);
       }
       if (split) {
@@ -492,10 +508,12 @@ class HybridEngine {
     const std::vector<ElementState> old = state_;
     std::uint32_t mask = 0;
     const Eigen::VectorXd slip = sys_.S * x_;
+    // An element without command until the next breakpoint holds nothing: it is no candidate (at
+    // rest every slip is zero, and open elements tried stuck could over-constrain the gear).
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
-      if (state_[K] == ElementState::stuck || slip(k) == 0 || k == trigger) mask |= 1u << k;
-      else dir_[K] = slip(k) > 0 ? 1 : -1;
+      if (!open_after(k, t) && (state_[K] == ElementState::stuck || slip(k) == 0 || k == trigger)) mask |= 1u << k;
+      else if (slip(k) != 0) dir_[K] = slip(k) > 0 ? 1 : -1;
     }
     for (int round = 0; round <= ne_; ++round) {
       const auto& m = mode_of(mask);
@@ -518,7 +536,8 @@ class HybridEngine {
         const auto& e = sys_.elements[static_cast<std::size_t>(k)];
         const double limit = e.static_ratio * e.capacity * command(k, t);
         const double Tj = std::abs(T(static_cast<Eigen::Index>(j)));
-        const double ratio = limit > 0 ? Tj / limit : (Tj > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+        double ratio = limit > 0 ? Tj / limit : (Tj > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+        if (e.one_way && T(static_cast<Eigen::Index>(j)) > 0) ratio = std::numeric_limits<double>::infinity();
         if (ratio > worst_ratio) {
           worst_ratio = ratio;
           worst = k;

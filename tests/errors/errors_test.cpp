@@ -319,7 +319,7 @@ TEST_F(FrictionElements, WithoutName) {
 
 TEST_F(FrictionElements, UnknownKey) {
   expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\ntorque = \"T\"\n", "",
-      R"~(gear.toml:39:1: error: unknown key 'torque' in a [[brake]]; the keys are name, body, capacity, static_ratio)~");
+      R"~(gear.toml:39:1: error: unknown key 'torque' in a [[brake]]; the keys are name, body, capacity, static_ratio, one_way)~");
 }
 
 TEST_F(FrictionElements, MissingCapacity) {
@@ -898,6 +898,66 @@ TEST(ErrorDocs, EveryNamedTestExists) {
     ++checked;
   }
   EXPECT_GT(checked, 150u);
+}
+
+// Scenes that command brakes and clutches: gear.toml with a brake on the ring and a clutch joining
+// sun and carrier, and scene.toml with an [engagement] table after its last line.
+class EngagementCommands : public ErrorTest {
+ protected:
+  static std::string shift_model() {
+    return edited(base_model(), {{"[parameters]", "[[brake]]\nname = \"B1\"\nbody = \"r\"\n\n[[clutch]]\nname = \"C1\"\n"
+                                                  "bodies = [\"s\", \"c\"]\n\n[parameters]"},
+                                 {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nT_B1 = \"50*N*m\"\nT_C1 = \"50*N*m\""}});
+  }
+  void expect_error(const std::string& engagement, const std::string& expected, const Edits& scene_edits = {}) {
+    expect_documented(scene_error(edited(base_scene(), scene_edits) + "\n[engagement]\n" + engagement, shift_model()),
+                      expected);
+  }
+};
+
+TEST_F(EngagementCommands, UnknownElement) {
+  expect_error("B9 = \"1\"\n",
+               R"~(scene.toml:22:1: error: 'B9' is not a brake or clutch of the model; its elements are B1, C1)~");
+}
+
+TEST_F(EngagementCommands, CommandOutsideZeroToOne) {
+  expect_error("B1 = { step = \"1.5\", at = \"0.05*s\" }\n",
+               R"~(scene.toml:22:6: error: the command of B1 is 1.5 at t = 0.05 s; an engagement command is from 0 (open) to 1 (fully engaged) over the whole run)~");
+}
+
+TEST_F(EngagementCommands, NegativeRamp) {
+  // A ramp that leaves [0, 1] before the horizon: its value at the horizon is below 0.
+  expect_error("C1 = { ramp = \"-20/s\", initial = \"1\" }\n",
+               R"~(scene.toml:22:6: error: the command of C1 is -1 at t = 0.1 s; an engagement command is from 0 (open) to 1 (fully engaged) over the whole run)~");
+}
+
+TEST_F(EngagementCommands, SineRefused) {
+  expect_error("B1 = { sine = \"0.5\", frequency = \"1*Hz\", offset = \"0.5\" }\n",
+               R"~(scene.toml:22:15: error: an engagement command is constant, a step, a ramp or a table (piecewise linear, so that events are located exactly); give the sine as a table)~");
+}
+
+TEST_F(EngagementCommands, ModelWithoutElements) {
+  expect_documented(scene_error(base_scene() + "\n[engagement]\nB1 = \"1\"\n"),
+                    R"~(scene.toml:21:1: error: [engagement] commands brakes and clutches, but the model gear has none; add [[brake]] or [[clutch]] to the model, or drop [engagement])~");
+}
+
+TEST_F(EngagementCommands, OnlyTheExactMethod) {
+  expect_error("B1 = \"1\"\n",
+               R"~(scene.toml:17:10: error: the scene engages brakes or clutches, which are simulated with the exact method only (it locates their events on its exact trajectory); use solver = "exact")~",
+               {{R"(solver = "exact")", R"(solver = "dopri5")"}});
+}
+
+TEST_F(EngagementCommands, SolverOptionNotExact) {
+  write_text("gear.toml", shift_model());
+  write_text("scene.toml", base_scene() + "\n[engagement]\nB1 = \"1\"\n");
+  expect_pogear_error("simulate scene.toml --solver rk4 -o out", 2,
+                      R"~(scene.toml: error: the scene engages brakes or clutches, which are simulated with the exact method only (it locates their events on its exact trajectory); drop --solver rk4)~");
+}
+
+TEST_F(EngagementCommands, TunableCapacity) {
+  expect_error("B1 = \"1\"\n",
+               R"~(scene.toml:7:11: error: 'T_B1' is the torque capacity of B1, which a simulation takes at the scene's value; it cannot be tunable: set it in [parameters] instead)~",
+               {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"T_B1\"]"}});
 }
 
 }  // namespace

@@ -170,5 +170,109 @@ TEST(Hybrid, BrakeBreaksAwayAndSticksAgain) {
   }
 }
 
+// Four inertias in a chain joined by three clutches (Modelica's CoupledClutches, with constant
+// torque): friction torques are internal, so the total angular momentum grows by the input's
+// impulse exactly, whatever the events; the clutches lock one after another until the chain turns
+// as one, and the energy dissipated closes the power balance.
+TEST(Hybrid, ThreeCoupledClutches) {
+  const std::vector<double> J{1, 2, 3, 4};
+  HybridSystem sys;
+  sys.M = Eigen::MatrixXd::Zero(4, 4);
+  sys.N = Eigen::MatrixXd::Zero(4, 4);  // w = [tau_1, T_C1, T_C2, T_C3]
+  sys.N(0, 0) = 1 / J[0];
+  sys.S = Eigen::MatrixXd::Zero(3, 4);
+  for (int k = 0; k < 3; ++k) {
+    sys.N(k, 1 + k) = -1 / J[k];
+    sys.N(k + 1, 1 + k) = 1 / J[k + 1];
+    sys.S(k, k) = 1;
+    sys.S(k, k + 1) = -1;
+  }
+  sys.elements = {{"C1", 30, 1.2, Constant{1}}, {"C2", 20, 1.2, Constant{1}}, {"C3", 10, 1.2, Constant{1}}};
+  sys.inputs = {Constant{10}};
+  Eigen::VectorXd x0(4);
+  x0 << 100, 50, 20, 0;
+  const double h = 1e-3, horizon = 20;  // the clutches lock at 2, 7 and 17.3 s
+  std::vector<double> t, momentum, kinetic, omega1;
+  std::vector<HybridEvent> events;
+  std::uint32_t last_mode = 0;
+  Eigen::VectorXd last_x, dissipated;
+  HybridEngine engine(sys, horizon);
+  const RunStatus st = engine.run(
+      x0, h,
+      [&](double time, const HybridSample& s) {
+        t.push_back(time);
+        double p = 0, e = 0;
+        for (int i = 0; i < 4; ++i) {
+          p += J[i] * s.x(i);
+          e += 0.5 * J[i] * s.x(i) * s.x(i);
+        }
+        momentum.push_back(p);
+        kinetic.push_back(e);
+        omega1.push_back(s.x(0));
+        last_mode = s.mode;
+        last_x = s.x;
+        dissipated = s.energy;
+        return true;
+      },
+      [&](const HybridEvent& e) { events.push_back(e); });
+  ASSERT_TRUE(st.ok) << st.message;
+  const double p0 = 100 * 1 + 50 * 2 + 20 * 3;
+  // Sums of four products of size 1e3: rounding of 1e-12 relative per step, accumulated over the
+  // 2e4 steps as a random walk at most.
+  for (std::size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(momentum[i], p0 + 10 * t[i], 1e-9 * p0) << t[i];
+  EXPECT_EQ(last_mode, 0b111u);
+  for (int i = 1; i < 4; ++i) EXPECT_NEAR(last_x(i), last_x(0), 1e-9 * std::abs(last_x(0)));
+  int locks = 0;
+  for (const HybridEvent& e : events) locks += e.to == ElementState::stuck;
+  EXPECT_GE(locks, 3);
+  // Input work 10 * int omega_1 dt by Simpson's rule: omega_1 is piecewise linear between events,
+  // so the rule is exact on each piece and errs by O(h^2 * jump of its slope) at the kinks (1e-7).
+  double work = 0;
+  ASSERT_EQ((t.size() - 1) % 2, 0u);
+  for (std::size_t i = 0; i + 2 < t.size(); i += 2) work += 10 * h / 3 * (omega1[i] + 4 * omega1[i + 1] + omega1[i + 2]);
+  EXPECT_NEAR(kinetic.back() - kinetic.front(), work - dissipated.sum(), 1e-6 * work);
+  EXPECT_GT(dissipated.minCoeff(), 0);
+}
+
+// A one-way brake on an inertia (J = 2): holding while the torque pushes it backwards, free while
+// it pushes forwards; back at rest, it holds again. tau = -10 until 1 s, +10 until 2 s, then -10:
+// free from 1 s with omega = 5 (t - 1), decelerating from 2 s to rest at exactly 3 s.
+TEST(Hybrid, OneWayBrakeFreewheelsForwardAndHoldsBackward) {
+  HybridSystem sys;
+  sys.M = Eigen::MatrixXd::Zero(1, 1);
+  sys.N = Eigen::MatrixXd(1, 2);
+  sys.N << 0.5, -0.5;
+  sys.S = Eigen::MatrixXd::Ones(1, 1);
+  sys.elements.push_back({"OWB", 100, 1, Constant{1}, true});
+  sys.inputs = {Table{{0, 1, 1, 2, 2}, {-10, -10, 10, 10, -10}}};
+  std::vector<double> t, w, T, energy;
+  std::vector<HybridEvent> events;
+  HybridEngine engine(sys, 4.0);
+  const RunStatus st = engine.run(
+      Eigen::VectorXd::Zero(1), 0.007,
+      [&](double time, const HybridSample& s) {
+        t.push_back(time);
+        w.push_back(s.x(0));
+        T.push_back(s.w(1));
+        energy.push_back(s.energy(0));
+        return true;
+      },
+      [&](const HybridEvent& e) { events.push_back(e); });
+  ASSERT_TRUE(st.ok) << st.message;
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].t, 1.0);  // on the input's breakpoint
+  EXPECT_EQ(events[0].to, ElementState::slipping);
+  EXPECT_NEAR(events[1].t, 3.0, 1e-12 * 4);
+  EXPECT_EQ(events[1].to, ElementState::stuck);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double ti = t[i];
+    const double omega = ti < 1 ? 0 : ti < 2 ? 5 * (ti - 1) : ti < 3 ? 5 - 5 * (ti - 2) : 0;
+    EXPECT_NEAR(w[i], omega, 1e-12) << ti;
+    // Holding, the brake carries the whole backward torque (-T on the body balances tau = -10).
+    EXPECT_NEAR(T[i], ti < 1 || ti > 3 ? -10 : 0, 1e-12) << ti;
+    EXPECT_EQ(energy[i], 0) << ti;  // freewheeling dissipates nothing
+  }
+}
+
 }  // namespace
 }  // namespace pogear::rt

@@ -1,0 +1,231 @@
+// The shipped shift scenes simulated with brakes and clutches: the power balance along every shift,
+// the elastic and rigid models agreeing once a mode's transient has decayed, a clutch-to-clutch
+// shift's sequence of events, and the compiled simulator against the interpreted run.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "../support/commands.hpp"
+#include "../support/csv.hpp"
+#include "../support/files.hpp"
+#include "pogear/hybrid.hpp"
+#include "reference_model.hpp"
+#include "specialization.hpp"
+
+namespace pogear::test {
+namespace {
+
+SpecializedScene shipped(const std::string& name) {
+  return specialize(parse_scene(source_path("models/scenes/" + name + ".toml")));
+}
+
+rt::HybridSystem hybrid_system(const SpecializedScene& model, const NumericSystem& ns, const SpecializedSystem& sys) {
+  rt::HybridSystem hs;
+  hs.M = ns.M;
+  hs.N = ns.N;
+  hs.S = ns.S;
+  for (int i : sys.input_signal) hs.inputs.push_back(model.scene.inputs[static_cast<std::size_t>(i)].signal);
+  for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
+  return hs;
+}
+
+struct Recorded {
+  std::vector<double> t;
+  std::vector<Eigen::VectorXd> x, w, energy;
+  std::vector<std::uint32_t> mode;
+  std::vector<rt::HybridEvent> events;
+  rt::RunStatus status;
+};
+
+Recorded run(const rt::HybridSystem& hs, const Eigen::VectorXd& x0, double horizon, double sample) {
+  Recorded r;
+  rt::HybridEngine engine(hs, horizon);
+  r.status = engine.run(
+      x0, sample,
+      [&](double t, const rt::HybridSample& s) {
+        r.t.push_back(t);
+        r.x.push_back(s.x);
+        r.w.push_back(s.w);
+        r.energy.push_back(s.energy);
+        r.mode.push_back(s.mode);
+        return true;
+      },
+      [&](const rt::HybridEvent& e) { r.events.push_back(e); });
+  return r;
+}
+
+// The power balance of L x' = A x + B w (A = L M, B = L N): the stored energy x^T L x / 2 changes
+// by the inputs' work x^T L N_u u, less the damping losses -x^T A x, less the friction losses
+// T_k s_k, which the engine integrates exactly as E_k. The first two are integrated here by
+// Simpson's rule on a sample of 20 us.
+TEST(Shift, EnergyBalanceHoldsAlongEveryShippedShift) {
+  for (const std::string name : {"gearshift_planetary", "simpson_1_2_upshift"}) {
+    const SpecializedScene model = shipped(name);
+    for (const SpecializedSystem* sys : {&model.main, &*model.rigid}) {
+      SCOPED_TRACE(name + " " + std::string(kind_name(sys->kind)));
+      const NumericSystem ns = numeric_system(model, *sys);
+      const rt::HybridSystem hs = hybrid_system(model, ns, *sys);
+      const double h = 2e-5;
+      const Recorded r = run(hs, ns.x0, model.scene.horizon, h);
+      ASSERT_TRUE(r.status.ok) << r.status.message;
+      ASSERT_FALSE(r.events.empty());
+      const auto nu = static_cast<Eigen::Index>(hs.inputs.size());
+      const Eigen::MatrixXd A = ns.L * ns.M;
+      std::vector<double> p_in, p_damp;
+      for (std::size_t i = 0; i < r.t.size(); ++i) {
+        const Eigen::VectorXd Lx = ns.L * r.x[i];
+        p_in.push_back(Lx.dot(ns.N.leftCols(nu) * r.w[i].head(nu)));
+        p_damp.push_back(-r.x[i].dot(A * r.x[i]));
+      }
+      // Simpson's rule over pairs of samples (the sample count is even: horizon / h).
+      ASSERT_EQ((r.t.size() - 1) % 2, 0u);
+      double work = 0, damping = 0, largest = 0;
+      for (std::size_t i = 0; i + 2 < r.t.size(); i += 2) {
+        work += h / 3 * (p_in[i] + 4 * p_in[i + 1] + p_in[i + 2]);
+        damping += h / 3 * (p_damp[i] + 4 * p_damp[i + 1] + p_damp[i + 2]);
+        largest = std::max(largest, std::abs(work));
+      }
+      const double stored0 = 0.5 * r.x.front().dot(ns.L * r.x.front());
+      const double stored = 0.5 * r.x.back().dot(ns.L * r.x.back());
+      const double friction = r.energy.back().sum();
+      EXPECT_GT(friction, 0);
+      EXPECT_GE(damping, 0);
+      // Simpson's error is (h w)^4 / 180 of the power's oscillation at w, 4e-8 at the elastic
+      // models' highest mesh mode (about 3000 rad/s), plus O(h^2) at the kinks events put in the
+      // power (its slope jumps when a friction torque does); 1e-6 of the input work covers both,
+      // while one lost friction or damping term would break the balance by percents.
+      EXPECT_NEAR(stored - stored0, work - damping - friction, 1e-6 * largest)
+          << "work " << work << ", damping " << damping << ", friction " << friction << ", stored " << stored;
+    }
+  }
+}
+
+// After each transient the elastic gear moves as the rigid one: the same events in the same order,
+// and in the last mode (clutch locked, direct drive) the same speeds and clutch torque.
+TEST(Shift, ElasticAndRigidModelsAgreeAfterTheTransient) {
+  const SpecializedScene model = shipped("gearshift_planetary");
+  const NumericSystem elastic = numeric_system(model, model.main), rigid = numeric_system(model, *model.rigid);
+  const Recorded e = run(hybrid_system(model, elastic, model.main), elastic.x0, model.scene.horizon, 1e-3);
+  const Recorded r = run(hybrid_system(model, rigid, *model.rigid), rigid.x0, model.scene.horizon, 1e-3);
+  ASSERT_TRUE(e.status.ok) << e.status.message;
+  ASSERT_TRUE(r.status.ok) << r.status.message;
+  ASSERT_EQ(e.events.size(), r.events.size());
+  for (std::size_t i = 0; i < e.events.size(); ++i) {
+    EXPECT_EQ(e.events[i].element, r.events[i].element) << i;
+    EXPECT_EQ(e.events[i].to, r.events[i].to) << i;
+    // The meshes' compliance delays the elastic gear by its transient: a few milliseconds.
+    EXPECT_NEAR(e.events[i].t, r.events[i].t, 5e-3) << i;
+  }
+  // Rigid states are the kept velocities (s, c); the elastic ones every body's velocity, then the
+  // mesh forces: omega_s and omega_c are the first two of both (bodies in file order: s, c, p, r).
+  const std::size_t last = e.t.size() - 1;
+  ASSERT_EQ(e.mode[last], 2u);  // the clutch (element 1) stuck, the brake open
+  ASSERT_EQ(r.mode[last], 2u);
+  // After the lock both models turn with the same acceleration. The speeds keep the small offset
+  // the meshes' compliance made during the 48 ms of slip (measured: 3.6e-5 rad/s, 5e-6 of the
+  // speeds), and the elastic clutch torque converges to the rigid one as the set's vibration decays
+  // (6e-6 N m apart at 4 s). A wrong mode (a sign, a lost torque) would be off by its whole size.
+  for (int j = 0; j < 2; ++j) EXPECT_NEAR(e.x[last](j), r.x[last](j), 1e-4 * std::abs(r.x[last](j))) << j;
+  const Eigen::Index clutch = e.w[last].size() - 1;
+  EXPECT_NEAR(e.w[last](clutch), r.w[last](r.w[last].size() - 1), 1e-4 * std::abs(r.w[last](clutch)));
+  // The same acceleration: the offset changes by less than the vibration left over the last 0.5 s.
+  const std::size_t half = last - 500;
+  for (int j = 0; j < 2; ++j)
+    EXPECT_NEAR(e.x[last](j) - r.x[last](j), e.x[half](j) - r.x[half](j), 1e-6 * std::abs(r.x[last](j))) << j;
+}
+
+// The Simpson 1-2 upshift hands the load from B2 to B1 with C1 applied throughout: B2 releases
+// first (breaking away as its command falls), B1 slips and then locks, and the gear ends in 2nd,
+// whose ratio the output and input speeds then keep.
+TEST(Shift, SimpsonUpshiftIsAClutchToClutchShift) {
+  const SpecializedScene model = shipped("simpson_1_2_upshift");
+  const NumericSystem ns = numeric_system(model, *model.rigid);
+  const Recorded r = run(hybrid_system(model, ns, *model.rigid), ns.x0, model.scene.horizon, 1e-3);
+  ASSERT_TRUE(r.status.ok) << r.status.message;
+  // Elements in the model's order: C1 (0), B1 (2), B2 (3); the scene engages all three.
+  ASSERT_EQ(model.friction.size(), 3u);
+  EXPECT_EQ(model.friction[0].name, "C1");
+  EXPECT_EQ(model.friction[1].name, "B1");
+  EXPECT_EQ(model.friction[2].name, "B2");
+  EXPECT_EQ(r.mode.front(), 0b101u);  // 1st gear: C1 and B2 stuck
+  EXPECT_EQ(r.mode.back(), 0b011u);   // 2nd gear: C1 and B1 stuck
+  double b2_released = -1, b1_locked = -1;
+  for (const rt::HybridEvent& ev : r.events) {
+    if (ev.element == 2 && ev.from == rt::ElementState::stuck && b2_released < 0) b2_released = ev.t;
+    if (ev.element == 1 && ev.to == rt::ElementState::stuck) b1_locked = ev.t;
+    EXPECT_FALSE(ev.element == 0) << "C1 changed state at " << ev.t;
+  }
+  EXPECT_GT(b2_released, 1.0);
+  EXPECT_GT(b1_locked, b2_released);
+  EXPECT_LT(b1_locked, 2.0);
+  // Rigid states: the kept velocities i, o, s. In 2nd gear (sun held) omega_o / omega_i is the
+  // ratio pogear ratios prints for C1+B1: 12/17 with 30/21/72 teeth.
+  const Eigen::VectorXd& x = r.x.back();
+  EXPECT_NEAR(x(1) / x(0), 12.0 / 17.0, 1e-12);
+  EXPECT_NEAR(x(2), 0, 1e-12 * std::abs(x(0)));
+}
+
+// `pogear simulate` compiles the scene's simulator; `--interpreted` runs the reference numeric
+// model instead. Both step the same modes, so events and samples agree to rounding.
+TEST(Shift, CompiledSimulatorAgreesWithTheInterpretedRunAcrossEvents) {
+  namespace fs = std::filesystem;
+  const fs::path dir = temp_dir("shift_compiled");
+  const std::string scene = source_path("models/scenes/gearshift_planetary.toml");
+  const Command compiled = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + scene + " -o " +
+                                       (dir / "compiled").string());
+  ASSERT_EQ(compiled.status, 0) << compiled.err;
+  const Command interpreted = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + scene +
+                                          " --interpreted -o " + (dir / "interpreted").string());
+  ASSERT_EQ(interpreted.status, 0) << interpreted.err;
+  EXPECT_TRUE(fs::exists(dir / "compiled" / "gearshift_planetary.shift.svg"));
+  for (const std::string suffix : {"", ".rigid"}) {
+    SCOPED_TRACE(suffix);
+    const Csv a = read_csv((dir / "compiled" / ("gearshift_planetary" + suffix + ".csv")).string());
+    const Csv b = read_csv((dir / "interpreted" / ("gearshift_planetary" + suffix + ".csv")).string());
+    ASSERT_EQ(a.header, b.header);
+    ASSERT_EQ(a.rows.size(), b.rows.size());
+    EXPECT_NE(std::find(a.header.begin(), a.header.end(), "T_clutch [N m]"), a.header.end());
+    EXPECT_NE(std::find(a.header.begin(), a.header.end(), "slip_brake [rad/s]"), a.header.end());
+    EXPECT_NE(std::find(a.header.begin(), a.header.end(), "E_clutch [J]"), a.header.end());
+    for (std::size_t col = 1; col < a.header.size(); ++col) {
+      double scale = 0, gap = 0;
+      for (std::size_t i = 0; i < a.rows.size(); ++i) {
+        scale = std::max(scale, std::abs(b.rows[i][col]));
+        gap = std::max(gap, std::abs(a.rows[i][col] - b.rows[i][col]));
+      }
+      // The generated and the reference matrices differ by rounding (1e-16 relative); across
+      // thousands of steps and the located events that grows to about 1e-12 of each column's scale.
+      EXPECT_LE(gap, 1e-9 * std::max(scale, 1e-300)) << a.header[col];
+    }
+    const auto events = [&](const std::string& which) {
+      std::ifstream in(dir / which / ("gearshift_planetary" + suffix + ".events.csv"));
+      std::vector<std::vector<std::string>> rows;
+      std::string line;
+      while (std::getline(in, line)) {
+        std::vector<std::string> fields;
+        std::stringstream ss(line);
+        std::string f;
+        while (std::getline(ss, f, ',')) fields.push_back(f);
+        rows.push_back(fields);
+      }
+      return rows;
+    };
+    const auto ea = events("compiled"), eb = events("interpreted");
+    ASSERT_EQ(ea.size(), eb.size());
+    ASSERT_GE(ea.size(), 4u);
+    EXPECT_EQ(ea[0], (std::vector<std::string>{"t [s]", "element", "from", "to"}));
+    for (std::size_t i = 1; i < ea.size(); ++i) {
+      EXPECT_EQ(std::vector<std::string>(ea[i].begin() + 1, ea[i].end()),
+                std::vector<std::string>(eb[i].begin() + 1, eb[i].end()));
+      // Event times: located to a few ulps on each path's own trajectory, which differ by the same
+      // rounding as the samples.
+      EXPECT_NEAR(std::stod(ea[i][0]), std::stod(eb[i][0]), 1e-9) << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pogear::test
