@@ -199,7 +199,7 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   for (const std::string& line : rt::usage_lines("PROGRAM", 100, solvers)) m += code("// {}\n", comment_text(line));
   const bool hybrid = !model.friction.empty();
   m += code("#include \"{}\"\n\n{}#include <pogear/parameters.hpp>\n#include <pogear/run_system.hpp>\n#include <pogear/signals.hpp>\n\n",
-            header_name, hybrid ? code("#include <pogear/hybrid.hpp>\n") : CppText{});
+            header_name, hybrid ? code("#include <pogear/hybrid_run.hpp>\n") : CppText{});
   m += code("namespace scene = pogear_generated::{};\n\n", name);
   std::vector<CppText> solver_codes;
   for (rt::Solver s : solvers) solver_codes.push_back(code("pogear::rt::Solver::{}", identifier(std::string(rt::solver_name(s)))));

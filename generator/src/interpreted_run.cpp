@@ -7,7 +7,7 @@
 
 #include <Eigen/SparseCore>
 
-#include "pogear/hybrid.hpp"
+#include "pogear/hybrid_run.hpp"
 #include "reference_model.hpp"
 
 namespace pogear {

@@ -4,10 +4,8 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <optional>
@@ -15,32 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include "pogear/output_file.hpp"
+#include "pogear/hybrid_modes.hpp"
 #include "pogear/run_support.hpp"
-#include "pogear/run_system.hpp"
 #include "pogear/signals.hpp"
 
 namespace pogear::rt {
-
-// A brake or clutch as a run sees it: torque capacity c (kinetic, at full engagement), the static
-// friction ratio mu_s / mu_k, and the engagement command p(t) in [0, 1] (piecewise linear).
-// A one-way element (freewheel) carries no torque while its slip is positive and holds against
-// negative slip only.
-struct FrictionElementData {
-  std::string name;
-  double capacity = 0, static_ratio = 1;
-  Signal command;
-  bool one_way = false;
-};
-
-// The system with its friction elements: dx/dt = M x + N w, w = [u; T], the scene's nu inputs u and
-// one torque T_k per element, acting as -T_k on the element's first body and +T_k on its second; its
-// slips s = S x. A stuck element is the constraint S_k x = 0 with T_k its multiplier.
-struct HybridSystem {
-  Eigen::MatrixXd M, N, S;
-  std::vector<FrictionElementData> elements;
-  std::vector<Signal> inputs;  // u
-};
 
 enum class ElementState { open, slipping, stuck };
 inline const char* state_name(ElementState s) {
@@ -68,69 +45,6 @@ struct HybridSample {
 // change each element a few times in a whole run; a Zeno sequence exceeds any bound.
 inline constexpr int max_events_per_sample = 100;
 
-namespace hybrid_detail {
-
-// The matrices of one mode: dx/dt = A x + B v, v = w with the stuck torques set to zero (they are
-// B's zero columns), and the stuck torques T_S = Kx x + Kv v. With H = S_S the stuck rows and N_S
-// their torque columns, H dx/dt = 0 gives T_S = -(H N_S)^-1 H (M x + N v): H N_S = -H L^-1 H^T is
-// definite when the stuck rows are independent, and the projector I - N_S (H N_S)^-1 H keeps the
-// state on the mode's constraints.
-struct ModeMatrices {
-  std::vector<int> stuck;  // element indices, in order
-  Eigen::MatrixXd A, B, Kx, Kv;
-  Eigen::MatrixXd projector;  // onto H x = 0
-  Eigen::MatrixXd augmented_A, augmented_B;  // with the slip integrals (see Engine::energy_step)
-  bool singular = false;
-};
-
-inline ModeMatrices mode_matrices(const HybridSystem& sys, std::uint32_t mask) {
-  const Eigen::Index nx = sys.M.rows(), nw = sys.N.cols(), ne = sys.S.rows(), nu = nw - ne;
-  ModeMatrices m;
-  for (Eigen::Index k = 0; k < ne; ++k)
-    if (mask & (1u << k)) m.stuck.push_back(static_cast<int>(k));
-  const auto ns = static_cast<Eigen::Index>(m.stuck.size());
-  Eigen::MatrixXd Bv = sys.N;
-  m.projector = Eigen::MatrixXd::Identity(nx, nx);
-  m.Kx = Eigen::MatrixXd::Zero(ns, nx);
-  m.Kv = Eigen::MatrixXd::Zero(ns, nw);
-  if (ns > 0) {
-    Eigen::MatrixXd H(ns, nx), NS(nx, ns);
-    for (Eigen::Index j = 0; j < ns; ++j) {
-      H.row(j) = sys.S.row(m.stuck[j]);
-      NS.col(j) = sys.N.col(nu + m.stuck[j]);
-      Bv.col(nu + m.stuck[j]).setZero();
-    }
-    const Eigen::MatrixXd HN = H * NS;
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(HN);
-    // H N_S = -H L^-1 H^T: its rank is that of the stuck rows. Dependent rows over-constrain the
-    // gear and leave their torques undetermined (the caller reports it).
-    if (lu.rank() < ns) {
-      m.singular = true;
-      return m;
-    }
-    m.Kx = -lu.solve(H * sys.M);
-    m.Kv = -lu.solve(H * Bv);
-    m.projector -= NS * lu.solve(H);
-  }
-  m.A = sys.M;
-  m.B = Bv;
-  for (Eigen::Index j = 0; j < ns; ++j) {
-    m.A += sys.N.col(nu + m.stuck[j]) * m.Kx.row(j);
-    m.B += sys.N.col(nu + m.stuck[j]) * m.Kv.row(j);
-  }
-  // Augmented with sigma' = S x and rho' = sigma: the integrals that make each element's dissipated
-  // energy exact over a step (Engine::energy_step).
-  const Eigen::Index na = nx + 2 * ne;
-  m.augmented_A = Eigen::MatrixXd::Zero(na, na);
-  m.augmented_A.topLeftCorner(nx, nx) = m.A;
-  m.augmented_A.block(nx, 0, ne, nx) = sys.S;
-  m.augmented_A.block(nx + ne, nx, ne, ne) = Eigen::MatrixXd::Identity(ne, ne);
-  m.augmented_B = Eigen::MatrixXd::Zero(na, nw);
-  m.augmented_B.topRows(nx) = m.B;
-  return m;
-}
-
-}  // namespace hybrid_detail
 
 // The hybrid run: owns the modes it has met and their discretizations; steps, locates events and
 // resolves modes. One object per run (not shared between threads).
@@ -588,117 +502,5 @@ class HybridEngine {
   Modes modes_;
   std::map<std::pair<std::uint32_t, double>, ExactMatrices> discretizations_;
 };
-
-// Writes OUT/<name><suffix>.events.csv: `t [s],element,from,to`, one row per change of state.
-// Element names are identifiers (the model reader checks them), so no field needs quoting.
-inline bool write_events(const SceneRun& run, const std::string& suffix, const std::vector<HybridEvent>& events,
-                         const std::vector<FrictionElementData>& elements, const std::string& incomplete) {
-  OutputFile file(run.out_dir + "/" + run.name + suffix + ".events.csv");
-  if (!file.ok()) {
-    std::fprintf(stderr, "%s%s: error: %s\n", run.name.c_str(), suffix.c_str(), file.error().c_str());
-    return false;
-  }
-  std::string text = "t [s],element,from,to\n";
-  for (const HybridEvent& e : events) {
-    char t[32];
-    text.append(t, std::to_chars(t, t + sizeof t, e.t).ptr);
-    text += ',' + elements[static_cast<std::size_t>(e.element)].name + ',' + state_name(e.from) + ',' + state_name(e.to) + '\n';
-  }
-  if (!incomplete.empty()) text += "# incomplete: " + incomplete + "\n";
-  file.write(text);
-  if (!file.commit()) {
-    std::fprintf(stderr, "%s%s: error: %s\n", run.name.c_str(), suffix.c_str(), file.error().c_str());
-    return false;
-  }
-  return true;
-}
-
-// Runs `sys` (a generated system struct whose last inputs are the elements' torques, with
-// slip_matrix) with brakes and clutches, and writes OUT/<name><suffix>.csv (the system's outputs,
-// then T_<element> [N m], slip_<element> [rad/s], E_<element> [J] and the mode) and
-// OUT/<name><suffix>.events.csv. Only the exact method runs it. Returns 0, or 3 when the run failed.
-template <class System>
-int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
-                      const std::vector<FrictionElementData>& elements, const typename System::State& x0,
-                      const SceneRun& run, const std::string& suffix) {
-  const Eigen::Index nx = x0.size();
-  const auto nu = static_cast<Eigen::Index>(signals.size()), ne = static_cast<Eigen::Index>(elements.size());
-  const auto ny = static_cast<Eigen::Index>(std::size(sys.output_names));
-  typename System::StateMatrix M(nx, nx);
-  typename System::InputMatrix N(nx, nu + ne);
-  sys.matrices(p, M, N);
-  HybridSystem hs;
-  hs.M = M;
-  hs.N = N;
-  sys.slip_matrix(p, hs.S);
-  hs.elements = elements;
-  hs.inputs = signals;
-
-  std::vector<std::string> names(std::begin(sys.output_names), std::end(sys.output_names));
-  std::vector<std::string> units(std::begin(sys.output_units), std::end(sys.output_units));
-  for (const char* prefix : {"T_", "slip_", "E_"})
-    for (const auto& e : elements) {
-      names.push_back(prefix + e.name);
-      units.emplace_back(prefix[0] == 'T' ? "N m" : prefix[0] == 's' ? "rad/s" : "J");
-    }
-  names.emplace_back("mode");
-  units.emplace_back("bits of the stuck elements");
-  SystemRunLog log(run, suffix, names, units);
-  if (run.solver != Solver::exact) {
-    std::fprintf(stderr,
-                 "%s%s: error: brakes and clutches are simulated with the exact method only (events are located "
-                 "on its exact trajectory); use --solver exact\n",
-                 run.name.c_str(), suffix.c_str());
-    return 3;
-  }
-
-  // The divergence check of run_system: friction only dissipates, and a friction torque never
-  // exceeds its static capacity, so it enters the bound as an input of that size.
-  std::optional<EnergyBound<Eigen::MatrixXd, Eigen::MatrixXd>> energy_bound;
-  if constexpr (requires(typename System::StateMatrix& L) { sys.energy_matrix(p, L); }) {
-    typename System::StateMatrix L(nx, nx);
-    sys.energy_matrix(p, L);
-    std::vector<Signal> bounds = signals;
-    for (const auto& e : elements) bounds.push_back(Constant{e.static_ratio * e.capacity});
-    energy_bound.emplace(Eigen::MatrixXd(L), hs.N, bounds, Eigen::VectorXd(x0), run.horizon);
-  }
-
-  typename System::Input w(nu + ne);
-  typename System::Output y(ny);
-  Eigen::VectorXd row(ny + 3 * ne + 1);
-  RunStatus st;
-  std::vector<HybridEvent> events;
-  int modes = 0;
-  for (int rep = 0; rep < run.repeat; ++rep) {
-    if (!log.begin()) return 3;
-    events.clear();
-    HybridEngine engine(hs, run.horizon);
-    auto obs = [&](double t, const HybridSample& s) {
-      if (energy_bound && !energy_bound->within(t, s.x, energy_bound_safety_factor)) {
-        log.diverged(t, energy_bound->ratio(t, s.x));
-        return false;
-      }
-      const typename System::State x = s.x;
-      w = s.w;
-      sys.outputs(p, x, w, y);
-      row.head(ny) = y;
-      row.segment(ny, ne) = s.w.tail(ne);
-      row.segment(ny + ne, ne) = s.slip;
-      row.segment(ny + 2 * ne, ne) = s.energy;
-      row(ny + 3 * ne) = static_cast<double>(s.mode);
-      if (log.writes_csv()) log.row(t, row.data(), static_cast<long>(row.size()));
-      return true;
-    };
-    st = engine.run(Eigen::VectorXd(x0), run.sample, obs, [&](const HybridEvent& e) { events.push_back(e); });
-    st.steps = engine.steps();
-    modes = engine.modes_met();
-    if (!log.end(st)) return 3;
-    if (run.csv && !write_events(run, suffix, events, elements, st.ok ? "" : st.message)) return 3;
-    if (!st.ok) break;
-  }
-  if (st.ok && !run.quiet)
-    std::printf("%s%s: %zu events, %d modes met\n", run.name.c_str(), suffix.c_str(), events.size(), modes);
-  return log.finish(st);
-}
 
 }  // namespace pogear::rt

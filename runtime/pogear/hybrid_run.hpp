@@ -1,0 +1,129 @@
+// Brakes and clutches in a scene's run: a generated (or interpreted) system with friction torques as
+// its last inputs, run by the hybrid engine (hybrid.hpp), its CSV and its events file written.
+#pragma once
+
+#include <charconv>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pogear/hybrid.hpp"
+#include "pogear/output_file.hpp"
+#include "pogear/run_system.hpp"
+
+namespace pogear::rt {
+
+// Writes OUT/<name><suffix>.events.csv: `t [s],element,from,to`, one row per change of state.
+// Element names are identifiers (the model reader checks them), so no field needs quoting.
+inline bool write_events(const SceneRun& run, const std::string& suffix, const std::vector<HybridEvent>& events,
+                         const std::vector<FrictionElementData>& elements, const std::string& incomplete) {
+  OutputFile file(run.out_dir + "/" + run.name + suffix + ".events.csv");
+  if (!file.ok()) {
+    std::fprintf(stderr, "%s%s: error: %s\n", run.name.c_str(), suffix.c_str(), file.error().c_str());
+    return false;
+  }
+  std::string text = "t [s],element,from,to\n";
+  for (const HybridEvent& e : events) {
+    char t[32];
+    text.append(t, std::to_chars(t, t + sizeof t, e.t).ptr);
+    text += ',' + elements[static_cast<std::size_t>(e.element)].name + ',' + state_name(e.from) + ',' + state_name(e.to) + '\n';
+  }
+  if (!incomplete.empty()) text += "# incomplete: " + incomplete + "\n";
+  file.write(text);
+  if (!file.commit()) {
+    std::fprintf(stderr, "%s%s: error: %s\n", run.name.c_str(), suffix.c_str(), file.error().c_str());
+    return false;
+  }
+  return true;
+}
+
+// Runs `sys` (a generated system struct whose last inputs are the elements' torques, with
+// slip_matrix) with brakes and clutches, and writes OUT/<name><suffix>.csv (the system's outputs,
+// then T_<element> [N m], slip_<element> [rad/s], E_<element> [J] and the mode) and
+// OUT/<name><suffix>.events.csv. Only the exact method runs it. Returns 0, or 3 when the run failed.
+template <class System>
+int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
+                      const std::vector<FrictionElementData>& elements, const typename System::State& x0,
+                      const SceneRun& run, const std::string& suffix) {
+  const Eigen::Index nx = x0.size();
+  const auto nu = static_cast<Eigen::Index>(signals.size()), ne = static_cast<Eigen::Index>(elements.size());
+  const auto ny = static_cast<Eigen::Index>(std::size(sys.output_names));
+  typename System::StateMatrix M(nx, nx);
+  typename System::InputMatrix N(nx, nu + ne);
+  sys.matrices(p, M, N);
+  HybridSystem hs;
+  hs.M = M;
+  hs.N = N;
+  sys.slip_matrix(p, hs.S);
+  hs.elements = elements;
+  hs.inputs = signals;
+
+  std::vector<std::string> names(std::begin(sys.output_names), std::end(sys.output_names));
+  std::vector<std::string> units(std::begin(sys.output_units), std::end(sys.output_units));
+  for (const char* prefix : {"T_", "slip_", "E_"})
+    for (const auto& e : elements) {
+      names.push_back(prefix + e.name);
+      units.emplace_back(prefix[0] == 'T' ? "N m" : prefix[0] == 's' ? "rad/s" : "J");
+    }
+  names.emplace_back("mode");
+  units.emplace_back("bits of the stuck elements");
+  SystemRunLog log(run, suffix, names, units);
+  if (run.solver != Solver::exact) {
+    std::fprintf(stderr,
+                 "%s%s: error: brakes and clutches are simulated with the exact method only (events are located "
+                 "on its exact trajectory); use --solver exact\n",
+                 run.name.c_str(), suffix.c_str());
+    return 3;
+  }
+
+  // The divergence check of run_system: friction only dissipates, and a friction torque never
+  // exceeds its static capacity, so it enters the bound as an input of that size.
+  std::optional<EnergyBound<Eigen::MatrixXd, Eigen::MatrixXd>> energy_bound;
+  if constexpr (requires(typename System::StateMatrix& L) { sys.energy_matrix(p, L); }) {
+    typename System::StateMatrix L(nx, nx);
+    sys.energy_matrix(p, L);
+    std::vector<Signal> bounds = signals;
+    for (const auto& e : elements) bounds.push_back(Constant{e.static_ratio * e.capacity});
+    energy_bound.emplace(Eigen::MatrixXd(L), hs.N, bounds, Eigen::VectorXd(x0), run.horizon);
+  }
+
+  typename System::Input w(nu + ne);
+  typename System::Output y(ny);
+  Eigen::VectorXd row(ny + 3 * ne + 1);
+  RunStatus st;
+  std::vector<HybridEvent> events;
+  int modes = 0;
+  for (int rep = 0; rep < run.repeat; ++rep) {
+    if (!log.begin()) return 3;
+    events.clear();
+    HybridEngine engine(hs, run.horizon);
+    auto obs = [&](double t, const HybridSample& s) {
+      if (energy_bound && !energy_bound->within(t, s.x, energy_bound_safety_factor)) {
+        log.diverged(t, energy_bound->ratio(t, s.x));
+        return false;
+      }
+      const typename System::State x = s.x;
+      w = s.w;
+      sys.outputs(p, x, w, y);
+      row.head(ny) = y;
+      row.segment(ny, ne) = s.w.tail(ne);
+      row.segment(ny + ne, ne) = s.slip;
+      row.segment(ny + 2 * ne, ne) = s.energy;
+      row(ny + 3 * ne) = static_cast<double>(s.mode);
+      if (log.writes_csv()) log.row(t, row.data(), static_cast<long>(row.size()));
+      return true;
+    };
+    st = engine.run(Eigen::VectorXd(x0), run.sample, obs, [&](const HybridEvent& e) { events.push_back(e); });
+    st.steps = engine.steps();
+    modes = engine.modes_met();
+    if (!log.end(st)) return 3;
+    if (run.csv && !write_events(run, suffix, events, elements, st.ok ? "" : st.message)) return 3;
+    if (!st.ok) break;
+  }
+  if (st.ok && !run.quiet)
+    std::printf("%s%s: %zu events, %d modes met\n", run.name.c_str(), suffix.c_str(), events.size(), modes);
+  return log.finish(st);
+}
+
+}  // namespace pogear::rt
