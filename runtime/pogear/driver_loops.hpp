@@ -38,6 +38,15 @@ struct Grid {
   double at(long k) const { return k + 1 == count ? t_end : t0 + static_cast<double>(k) * dt; }
 };
 
+// The samples from t0 to t_end every dt: a whole number of periods when (t_end - t0) / dt is one up
+// to 1e-9, else one more (the last at t_end). (t_end - t0) / dt must be below 2^62.
+inline Grid sample_grid(double t0, double t_end, double dt) {
+  const double n = (t_end - t0) / dt;
+  auto steps = std::llround(n);
+  if (std::abs(n - static_cast<double>(steps)) > 1e-9 * std::max(1.0, n)) steps = std::llround(std::ceil(n));
+  return {t0, dt, t_end, static_cast<long>(steps) + 1};
+}
+
 // Failure paths are kept out of the templates' bodies, [[gnu::cold]] and not inlined: built once per
 // program instead of once per driver and model size, they cost no compile time per simulator, and
 // the step loops stay small.
@@ -94,9 +103,7 @@ struct Run {
     const double n = (t_end - t0) / dt;
     // llround is undefined beyond a long long; far fewer samples than that could ever be written.
     if (!(n < 0x1p62)) return refuse("too many samples: (t_end - t0) / dt = " + num(n));
-    auto steps = std::llround(n);
-    if (std::abs(n - static_cast<double>(steps)) > 1e-9 * std::max(1.0, n)) steps = std::llround(std::ceil(n));
-    grid = {t0, dt, t_end, static_cast<long>(steps) + 1};
+    grid = sample_grid(t0, t_end, dt);
     for (double b : bps)
       if (b > t0 && b < t_end) breaks.push_back(b);
     std::sort(breaks.begin(), breaks.end());

@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <limits>
 #include <map>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "pogear/driver_loops.hpp"
 #include "pogear/hybrid_modes.hpp"
 #include "pogear/run_support.hpp"
 #include "pogear/signals.hpp"
@@ -41,10 +41,9 @@ struct HybridSample {
 };
 
 // Chattering guard: a run stops when one element changes state more often than this within one
-// sample period, or the elements change more than this many times at one instant. Physical shifts
-// change each element a few times in a whole run; a Zeno sequence exceeds any bound.
+// sample period, or more than this many times (elements + 1) events are located within one.
+// Physical shifts change each element a few times in a whole run; a Zeno sequence exceeds any bound.
 inline constexpr int max_events_per_sample = 100;
-
 
 // The hybrid run: owns the modes it has met and their discretizations; steps, locates events and
 // resolves modes. One object per run (not shared between threads).
@@ -72,7 +71,9 @@ class HybridEngine {
     state_.assign(static_cast<std::size_t>(ne_), ElementState::open);
     mask_ = 0;
     double t = 0;
-    const auto samples = std::max(1L, static_cast<long>(std::ceil(horizon_ / sample - 1e-9)));
+    if (!(sample > 0) || !(horizon_ / sample < 0x1p62)) return fail("invalid sample period", t);
+    // The sample times of every other driver, so that the CSV rows of all runs of a scene align.
+    const detail::Grid grid = detail::sample_grid(0.0, horizon_, sample);
     std::size_t next_break = 0;
     std::string error;
     events_in_sample_.assign(static_cast<std::size_t>(ne_), 0);
@@ -81,8 +82,8 @@ class HybridEngine {
     auto no_event = [](const HybridEvent&) {};
     if (!resolve(t, -1, no_event, error)) return fail(error, t);
     if (!observe(t, obs)) return RunStatus{false, "stopped", t};
-    for (long k = 1; k <= samples; ++k) {
-      const double t_sample = k == samples ? horizon_ : static_cast<double>(k) * sample;
+    for (long k = 1; k < grid.count; ++k) {
+      const double t_sample = grid.at(k);
       events_in_sample_.assign(static_cast<std::size_t>(ne_), 0);
       locations_in_sample_ = 0;
       while (t < t_sample) {
@@ -96,7 +97,6 @@ class HybridEngine {
     return RunStatus{true, "", t};
   }
 
-  std::uint32_t mode() const { return mask_; }
   int modes_met() const { return static_cast<int>(modes_.size()); }
   long steps() const { return steps_; }
 
@@ -438,9 +438,8 @@ class HybridEngine {
                 " s (their torques are undetermined); engage fewer elements at a time";
         return false;
       }
-      std::vector<ElementState> trial = state_;
-      for (int k = 0; k < ne_; ++k) trial[static_cast<std::size_t>(k)] = (mask >> k) & 1u ? ElementState::stuck : ElementState::slipping;
-      state_ = trial;
+      for (int k = 0; k < ne_; ++k)
+        state_[static_cast<std::size_t>(k)] = (mask >> k) & 1u ? ElementState::stuck : ElementState::slipping;
       Eigen::VectorXd v = known_inputs(t, false);
       const Eigen::VectorXd T = m.Kx * project(m, x_) + m.Kv * v;
       int worst = -1;
