@@ -402,10 +402,10 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   }
   const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(),
                                    [](const EngagementSpec& e) { return !identically_zero(e.command); });
-  if (engaged && s.solver != Solver::exact)
-    throw InputError(s.solver_where, fmt::format("the scene engages brakes or clutches, which are simulated with the "
-                                                 "exact method only (it locates their events on its exact "
-                                                 "trajectory); use solver = \"exact\""));
+  if (engaged && s.solver == Solver::rk4)
+    throw InputError(s.solver_where, fmt::format("the scene engages brakes or clutches, which rk4 does not simulate (its "
+                                                 "fixed steps cannot locate their events); use solver = \"exact\", "
+                                                 "\"dopri5\" or \"implicit\""));
   for (const EngagementSpec& e : s.engagement) {
     const FrictionElement& f = topology.friction_elements[static_cast<std::size_t>(e.element)];
     if (std::find(s.tunable.begin(), s.tunable.end(), f.capacity_parameter) != s.tunable.end())

@@ -66,11 +66,10 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   check_output_size(model, options.large_output);
   rt::SceneRun run = scene_run(model.scene);
   if (options.solver) run.solver = *options.solver;
-  if (!model.friction.empty() && run.solver != rt::Solver::exact)
+  if (!model.friction.empty() && run.solver == rt::Solver::rk4)
     throw InputError(SourceLocation{model.scene.file, 0, 0},
-                     fmt::format("the scene engages brakes or clutches, which are simulated with the exact method "
-                                 "only (it locates their events on its exact trajectory); drop --solver {}",
-                                 rt::solver_name(run.solver)));
+                     "the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate "
+                     "their events); use --solver exact, dopri5 or implicit");
   run.out_dir = options.out_dir;
   run.repeat = options.repeat;
   ensure_directory(options.out_dir);

@@ -1,5 +1,6 @@
 // Brakes and clutches in a run: stick–slip friction as modes of a linear system (the set of stuck
-// elements), exact stepping within a mode, and events located on the exact trajectory.
+// elements), stepped within a mode exactly (events located on the exact trajectory) or by dopri5 or
+// TR-BDF2 (events located on their dense output).
 #pragma once
 
 #include <Eigen/Dense>
@@ -8,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +18,8 @@
 #include "pogear/hybrid_modes.hpp"
 #include "pogear/run_support.hpp"
 #include "pogear/signals.hpp"
+#include "pogear/solver.hpp"
+#include "pogear/steppers.hpp"
 
 namespace pogear::rt {
 
@@ -45,16 +49,27 @@ struct HybridSample {
 // Physical shifts change each element a few times in a whole run; a Zeno sequence exceeds any bound.
 inline constexpr int max_events_per_sample = 100;
 
+// How a run steps within a mode: exact (one exponential step per sample period, events on the exact
+// trajectory), or dopri5 / implicit with their tolerances, first and largest step and max_steps
+// (events on the dense output). rk4 has no dense output to locate events on: it is refused.
+struct HybridMethod {
+  Solver solver = Solver::exact;
+  SolverOptions options;
+};
+
 // The hybrid run: owns the modes it has met and their discretizations; steps, locates events and
 // resolves modes. One object per run (not shared between threads).
 class HybridEngine {
  public:
-  HybridEngine(const HybridSystem& sys, double horizon) : sys_(sys), horizon_(horizon) {
+  HybridEngine(const HybridSystem& sys, double horizon, HybridMethod method = {})
+      : sys_(sys), horizon_(horizon), method_(std::move(method)) {
     ne_ = static_cast<int>(sys.S.rows());
     nx_ = sys.M.rows();
     nu_ = static_cast<Eigen::Index>(sys.inputs.size());
     nw_ = nu_ + ne_;
   }
+  HybridEngine(const HybridEngine&) = delete;  // the steppers hold references to its right-hand side
+  HybridEngine& operator=(const HybridEngine&) = delete;
 
   // Integrates from x0 at t = 0 to the horizon, landing on every sample time (obs is called there,
   // t = 0 included, and may return false to stop) and every breakpoint of the inputs and commands.
@@ -82,6 +97,12 @@ class HybridEngine {
     auto no_event = [](const HybridEvent&) {};
     if (!resolve(t, -1, no_event, error)) return fail(error, t);
     if (!observe(t, obs)) return RunStatus{false, "stopped", t};
+    if (method_.solver == Solver::dopri5) return run_stepped<Dopri5<Eigen::VectorXd, ModeRhs>>(grid, obs, on_event);
+    if (method_.solver == Solver::implicit)
+      return run_stepped<TrBdf2<Eigen::VectorXd, ModeRhs, ModeJacobian>>(grid, obs, on_event);
+    if (method_.solver != Solver::exact)
+      return fail(std::string("brakes and clutches are not simulated with ") + std::string(solver_name(method_.solver)) +
+                      " (fixed steps cannot locate their events); use exact, dopri5 or implicit", t);
     for (long k = 1; k < grid.count; ++k) {
       const double t_sample = grid.at(k);
       events_in_sample_.assign(static_cast<std::size_t>(ne_), 0);
@@ -107,14 +128,19 @@ class HybridEngine {
 
   const hybrid_detail::ModeMatrices& mode_of(std::uint32_t mask) {
     auto it = modes_.find(mask);
-    if (it == modes_.end()) it = modes_.emplace(mask, hybrid_detail::mode_matrices(sys_, mask)).first;
+    if (it == modes_.end()) {
+      it = modes_.emplace(mask, hybrid_detail::mode_matrices(sys_, mask)).first;
+      if (!it->second.singular) it->second.event_step = event_step_limit(it->second.A);
+    }
     return it->second;
   }
 
+  // The mode's exact step of h, or of a length within 1e-9 h of it: steps between grid times differ
+  // by the rounding of those times only, which is far below the rounding of t itself.
   const ExactMatrices& discretization(std::uint32_t mask, double h) {
     const auto key = std::make_pair(mask, h);
-    auto it = discretizations_.find(key);
-    if (it == discretizations_.end()) {
+    auto it = discretizations_.lower_bound(std::make_pair(mask, h * (1 - 1e-9)));
+    if (it == discretizations_.end() || it->first.first != mask || !(it->first.second <= h * (1 + 1e-9))) {
       // Uneven steps after events: keep the cache bounded.
       if (discretizations_.size() > 64) discretizations_.clear();
       const auto& m = mode_of(mask);
@@ -141,15 +167,19 @@ class HybridEngine {
 
   // w at time t: the inputs, slipping torques c p(t) dir, stuck torques left at zero. `before` asks
   // for the left limit (a step that ends on a breakpoint).
-  Eigen::VectorXd known_inputs(double t, bool before) const {
+  void known_inputs(double t, bool before, Eigen::VectorXd& v) const {
     const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
-    Eigen::VectorXd v(nw_);
+    v.resize(nw_);
     for (Eigen::Index i = 0; i < nu_; ++i) v(i) = value(sys_.inputs[static_cast<std::size_t>(i)], at);
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
       // + 0.0: an open element's torque is 0, not -0, in the CSV.
       v(nu_ + k) = state_[K] == ElementState::stuck ? 0.0 : torque_scale(k) * command(k, at) * dir_[K] + 0.0;
     }
+  }
+  Eigen::VectorXd known_inputs(double t, bool before) const {
+    Eigen::VectorXd v;
+    known_inputs(t, before, v);
     return v;
   }
 
@@ -164,10 +194,14 @@ class HybridEngine {
 
   template <class Obs>
   bool observe(double t, Obs& obs) {
+    return observe(t, x_, energy_, obs);
+  }
+  template <class Obs>
+  bool observe(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& energy, Obs& obs) {
     const auto& m = mode_of(mask_);
-    const Eigen::VectorXd w = full_inputs(m, x_, known_inputs(t, false));
-    const Eigen::VectorXd slip = sys_.S * x_;
-    return obs(t, HybridSample{x_, w, slip, energy_, mask_});
+    const Eigen::VectorXd w = full_inputs(m, x, known_inputs(t, false));
+    const Eigen::VectorXd slip = sys_.S * x;
+    return obs(t, HybridSample{x, w, slip, energy, mask_});
   }
 
   // Event functions of the current mode at state x and known inputs v, time t: slipping elements
@@ -267,12 +301,10 @@ class HybridEngine {
     return false;
   }
 
-  // Steps from t to t_end (t_end a sample time or a breakpoint), stopping at the first event within
-  // it. On return t is t_end, or the event's time with the new mode resolved.
+  // The elements with an event function over [t, t_end] (no breakpoint inside): those whose command
+  // is not zero throughout. The others are open from t on.
   template <class OnEvent>
-  bool step_to(double& t, double t_end, OnEvent& on_event, std::string& error) {
-    const bool lands_on_break = std::binary_search(breaks_.begin(), breaks_.end(), t_end);
-    // Elements whose command is zero over the whole step are open: no event function.
+  std::vector<char> watch(double t, double t_end, OnEvent& on_event) {
     std::vector<char> watched(static_cast<std::size_t>(ne_), 0);
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
@@ -287,7 +319,52 @@ class HybridEngine {
       }
       watched[K] = !open;
     }
+    return watched;
+  }
+
+  // The element whose event function crossed over a step (g0 at its start, g1 at its end), or -1: a
+  // stuck element's margin turned negative, a slip reached zero or changed sign.
+  int crossing(const Eigen::VectorXd& g0, const Eigen::VectorXd& g1) const {
+    int hit = -1;
+    for (int k = 0; k < ne_; ++k) {
+      const bool stuck = state_[static_cast<std::size_t>(k)] == ElementState::stuck;
+      if (stuck ? g1(k) < 0 : g1(k) < 0 || (g1(k) == 0 && g0(k) > 0)) hit = k;
+    }
+    return hit;
+  }
+
+  // Whether an event function, positive at both ends of the step [t, t + h] (x0, v0 and x1, v1 there),
+  // may dip to zero in between: its cubic through the ends' values and rates does.
+  bool may_dip(const hybrid_detail::ModeMatrices& m, double t, double h, bool before, const Eigen::VectorXd& x0,
+               const Eigen::VectorXd& v0, const Eigen::VectorXd& g0, const Eigen::VectorXd& x1,
+               const Eigen::VectorXd& v1, const Eigen::VectorXd& g1, const std::vector<char>& watched) const {
+    const double t1 = t + h;
+    const Eigen::VectorXd dv = (v1 - v0) / h;
+    Eigen::VectorXd p0(ne_), p1(ne_);
+    for (int k = 0; k < ne_; ++k) {
+      p0(k) = command(k, t);
+      p1(k) = command(k, before ? std::nextafter(t1, t) : t1);
+    }
+    const Eigen::VectorXd dp = (p1 - p0) / h;
+    const Eigen::VectorXd r0 = event_rates(m, x0, v0, dv, p0, dp, watched);
+    const Eigen::VectorXd r1 = event_rates(m, x1, v1, dv, p1, dp, watched);
+    for (int k = 0; k < ne_; ++k)
+      if (dips_between(g0(k), g1(k), r0(k), r1(k), h)) return true;
+    return false;
+  }
+
+  // Steps from t to t_end (t_end a sample time or a breakpoint), stopping at the first event within
+  // it. On return t is t_end, or the event's time with the new mode resolved.
+  template <class OnEvent>
+  bool step_to(double& t, double t_end, OnEvent& on_event, std::string& error) {
+    const bool lands_on_break = std::binary_search(breaks_.begin(), breaks_.end(), t_end);
+    const std::vector<char> watched = watch(t, t_end, on_event);
     double h = t_end - t;
+    // While an element is watched, steps of at most the mode's event_step: equal ones, so that they
+    // share one discretization.
+    const double check = mode_of(mask_).event_step;
+    if (h > check && std::find(watched.begin(), watched.end(), 1) != watched.end())
+      h /= std::ceil(h / check - 1e-9);
     for (int depth = 0;; ++depth) {
       const auto& m = mode_of(mask_);
       const ExactMatrices& d = discretization(mask_, h);
@@ -299,25 +376,9 @@ class HybridEngine {
       const Eigen::VectorXd x1 = z.head(nx_);
       const Eigen::VectorXd g0 = event_values(m, x_, v0, t, false, watched);
       const Eigen::VectorXd g1 = event_values(m, x1, v1, t1, before, watched);
-      int hit = -1;
-      for (int k = 0; k < ne_; ++k) {
-        const bool stuck = state_[static_cast<std::size_t>(k)] == ElementState::stuck;
-        if (stuck ? g1(k) < 0 : g1(k) < 0 || (g1(k) == 0 && g0(k) > 0)) hit = k;
-      }
-      bool split = false;
-      if (hit < 0 && depth < 30) {
-        const Eigen::VectorXd dv = (v1 - v0) / h;
-        Eigen::VectorXd p0(ne_), p1(ne_);
-        for (int k = 0; k < ne_; ++k) {
-          p0(k) = command(k, t);
-          p1(k) = command(k, before ? std::nextafter(t1, t) : t1);
-        }
-        const Eigen::VectorXd dp = (p1 - p0) / h;
-        const Eigen::VectorXd r0 = event_rates(m, x_, v0, dv, p0, dp, watched);
-        const Eigen::VectorXd r1 = event_rates(m, x1, v1, dv, p1, dp, watched);
-        for (int k = 0; k < ne_ && !split; ++k) split = dips_between(g0(k), g1(k), r0(k), r1(k), h);
-      }
-      if (split) {
+      const int hit = crossing(g0, g1);
+      // A possible dip halves the step: the exact trajectory is cheap to recompute.
+      if (hit < 0 && depth < 30 && may_dip(m, t, h, before, x_, v0, g0, x1, v1, g1, watched)) {
         h *= 0.5;
         continue;
       }
@@ -328,48 +389,56 @@ class HybridEngine {
         if (t == t_end && lands_on_break) return resolve(t, -1, on_event, error);
         return true;
       }
-      return locate_and_switch(t, h, before, watched, on_event, error);
+      if (!count_location(t, error)) return false;
+      // Each value of the iteration from the mode's exponential at theta: exact up to rounding.
+      auto at = [&](double theta, bool before_theta) {
+        const ExactMatrices dt = exact_matrices(m.augmented_A, m.augmented_B, theta);
+        EventPoint p;
+        p.v = known_inputs(t + theta, before_theta);
+        p.z = advance(dt, v0, p.v);
+        p.g = event_values(m, p.z.head(nx_), p.v, t + theta, before_theta, watched);
+        return p;
+      };
+      double a = 0, b = h;
+      EventPoint pb{z, g1, v1};
+      const int k = locate(t, a, b, g0, pb, at);
+      energy_step(pb.z, t, b, false);
+      x_ = pb.z.head(nx_);
+      t = t + b;
+      return resolve(t, k, on_event, error);
     }
   }
 
-  // The earliest event in (t, t + h]: Illinois iteration on the earliest event function that
-  // changes sign, each value from the mode's exponential at theta (exact up to rounding). The event
-  // is placed at the first representable time where the function has crossed; the state there
-  // becomes the current state and the mode is resolved.
-  template <class OnEvent>
-  bool locate_and_switch(double& t, double h, bool before_end, const std::vector<char>& watched, OnEvent& on_event,
-                         std::string& error) {
-    if (++locations_in_sample_ > max_events_per_sample * (ne_ + 1)) {
-      error = "chattering: more than " + std::to_string(max_events_per_sample * (ne_ + 1)) +
-              " events within one sample period, at t = " + detail::num(t) +
-              " s; shorten the sample period if the changes are real, or check the engagement commands";
-      return false;
-    }
-    const auto& m = mode_of(mask_);
-    const Eigen::VectorXd v0 = known_inputs(t, false);
-    struct Point {
-      Eigen::VectorXd z, g;
-      Eigen::VectorXd v;
-    };
-    auto at = [&](double theta, bool before) {
-      const ExactMatrices d = exact_matrices(m.augmented_A, m.augmented_B, theta);
-      Point p;
-      p.v = known_inputs(t + theta, before);
-      p.z = advance(d, v0, p.v);
-      p.g = event_values(m, p.z.head(nx_), p.v, t + theta, before, watched);
-      return p;
-    };
+  // The chattering guard on located events (see max_events_per_sample).
+  bool count_location(double t, std::string& error) {
+    if (++locations_in_sample_ <= max_events_per_sample * (ne_ + 1)) return true;
+    error = "chattering: more than " + std::to_string(max_events_per_sample * (ne_ + 1)) +
+            " events within one sample period, at t = " + detail::num(t) +
+            " s; shorten the sample period if the changes are real, or check the engagement commands";
+    return false;
+  }
+
+  // A point of the trajectory in an event's bracket: state (the exact method's augmented one), event
+  // functions and known inputs.
+  struct EventPoint {
+    Eigen::VectorXd z, g, v;
+  };
+
+  // The earliest event in (t + a, t + b], g_a the event functions at t + a and pb the point at t + b,
+  // where some function has crossed: Illinois iteration on the earliest function that changes sign,
+  // at(theta, before) giving the trajectory at t + theta. Returns the element; b and pb become the
+  // first representable time where its function has crossed (to 4 ulps) and the point there.
+  template <class At>
+  int locate(double t, double& a, double& b, const Eigen::VectorXd& g_a, EventPoint& pb, At& at) const {
     auto crossed = [&](const Eigen::VectorXd& g, int k) {
       return state_[static_cast<std::size_t>(k)] == ElementState::stuck ? g(k) < 0 : g(k) <= 0;
     };
     // The earliest crossing among several: shrink the bracket to the first function that crosses.
-    double a = 0, b = h;
-    Point pb = at(b, before_end);
-    const Eigen::VectorXd g0 = event_values(m, x_, v0, t, false, watched);
+    const double a0 = a;
     int k = -1;
     for (int i = 0; i < ne_; ++i)
-      if (crossed(pb.g, i) && (k < 0 || pb.g(i) / (pb.g(i) - g0(i)) > pb.g(k) / (pb.g(k) - g0(k)))) k = i;
-    double ga = g0(k), gb = pb.g(k);
+      if (crossed(pb.g, i) && (k < 0 || pb.g(i) / (pb.g(i) - g_a(i)) > pb.g(k) / (pb.g(k) - g_a(k)))) k = i;
+    double ga = g_a(k), gb = pb.g(k);
     int side = 0;
     for (int iter = 0; iter < 200; ++iter) {
       const double tol = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t + b));
@@ -377,7 +446,7 @@ class HybridEngine {
       double c = ga > 0 && std::isfinite(ga) && gb < ga ? b - gb * (b - a) / (gb - ga) : 0.5 * (a + b);
       if (!(c > a + 0.01 * tol && c < b - 0.01 * tol)) c = 0.5 * (a + b);
       if (ga == 0) c = 0.5 * (a + b);  // a just-released element: no secant from a zero
-      Point pc = at(c, false);
+      EventPoint pc = at(c, false);
       // Another element crossing before k's root: it is the earliest one now.
       int first = -1;
       for (int i = 0; i < ne_; ++i)
@@ -385,7 +454,7 @@ class HybridEngine {
       if (first >= 0) {
         if (first != k && !crossed(pc.g, k)) {  // keeps the bracket: nothing had crossed at a
           k = first;
-          ga = a > 0 ? at(a, false).g(k) : g0(k);
+          ga = a > a0 ? at(a, false).g(k) : g_a(k);
           side = 0;
         }
         b = c;
@@ -400,10 +469,192 @@ class HybridEngine {
         side = 1;
       }
     }
-    energy_step(pb.z, t, b, false);
-    x_ = pb.z.head(nx_);
-    t = t + b;
-    return resolve(t, k, on_event, error);
+    return k;
+  }
+
+  // The right-hand side of the current mode for dopri5 and TR-BDF2: dx/dt = A x + B v(t).
+  struct ModeRhs {
+    const HybridEngine* engine = nullptr;
+    const hybrid_detail::ModeMatrices* mode = nullptr;
+    Eigen::VectorXd v;
+    void operator()(double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
+      engine->known_inputs(t, false, v);
+      dx.noalias() = mode->A * x;
+      dx.noalias() += mode->B * v;
+    }
+  };
+  struct ModeJacobian {
+    const hybrid_detail::ModeMatrices* mode = nullptr;
+    void operator()(double, const Eigen::VectorXd&, Eigen::MatrixXd& J) const { J = mode->A; }
+  };
+
+  template <class Stepper>
+  Stepper make_stepper() {
+    if constexpr (requires { Stepper(rhs_, jacobian_, true, x_, 1.0, 1.0); })
+      return Stepper(rhs_, jacobian_, true, x_, method_.options.rtol, method_.options.atol);
+    else
+      return Stepper(rhs_, x_, method_.options.rtol, method_.options.atol);
+  }
+
+  // The energy each slipping element dissipates over [ta, tb] of the stepper's last step: its power
+  // T_k s_k, a polynomial of degree 5 at most on the dense output (degree 4 for dopri5, 3 for
+  // TR-BDF2, times a command linear between breakpoints), by 3-point Gauss-Legendre, exact for it.
+  template <class Stepper>
+  void add_dissipation(Stepper& s, double ta, double tb, Eigen::VectorXd& energy) {
+    if (!(tb > ta)) return;
+    static constexpr double node = 0.7745966692414834, weight[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+    const double mid = 0.5 * (ta + tb), half = 0.5 * (tb - ta);
+    for (int i = 0; i < 3; ++i) {
+      const double ti = mid + (i - 1) * node * half;
+      s.dense(ti, dense_x_);
+      known_inputs(ti, false, dense_v_);
+      for (int k = 0; k < ne_; ++k)
+        if (state_[static_cast<std::size_t>(k)] != ElementState::stuck)
+          energy(k) += weight[i] * half * dense_v_(nu_ + k) * sys_.S.row(k).dot(dense_x_);
+    }
+  }
+
+  // The run with dopri5 or TR-BDF2 (after the initial mode and sample): adaptive steps within a mode,
+  // ending on breakpoints; after each accepted step the event functions are checked at its end (and,
+  // when the cubic through the ends' values and rates dips, at 8 points inside); an event is located
+  // on the step's dense output, the samples before it come from there, and the stepper restarts in
+  // the new mode.
+  template <class Stepper, class Obs, class OnEvent>
+  RunStatus run_stepped(const detail::Grid& grid, Obs& obs, OnEvent& on_event) {
+    const SolverOptions& opt = method_.options;
+    const char* name = method_.solver == Solver::dopri5 ? "dopri5" : "implicit";
+    double t = 0, h = std::min(opt.h, opt.h_max), h_max = opt.h_max;
+    if (!(h > 0)) return fail("invalid step size h = " + detail::num(opt.h), t);
+    long k = 1, attempts = 0;
+    std::size_t next_break = 0;
+    std::string error;
+    std::optional<Stepper> s;
+    std::uint32_t stepper_mask = 0;
+    bool restart = true;
+    std::vector<char> watched;
+    Eigen::VectorXd g0, v0 = known_inputs(0.0, false), v1, g1, x0, energy = energy_;
+    rhs_.engine = this;
+    // Samples up to t_new (or before it, when `before`) from the last step's dense output.
+    auto emit = [&](double t_new, bool before) {
+      while (k < grid.count && (before ? grid.at(k) < t_new : grid.at(k) <= t_new)) {
+        const double ts = grid.at(k);
+        energy = energy_;
+        add_dissipation(*s, t, ts, energy);
+        s->dense(ts, dense_x_);
+        if (!observe(ts, ts == t_new ? x_ : dense_x_, energy, obs)) return false;
+        ++k;
+        events_in_sample_.assign(static_cast<std::size_t>(ne_), 0);
+        locations_in_sample_ = 0;
+      }
+      return true;
+    };
+    while (k < grid.count) {
+      while (next_break < breaks_.size() && breaks_[next_break] <= t) ++next_break;
+      const bool before_break = next_break < breaks_.size();
+      const double t_stop = before_break ? breaks_[next_break] : horizon_;
+      if (restart) {
+        const auto& m = mode_of(mask_);
+        rhs_.mode = jacobian_.mode = &m;
+        if (!s || stepper_mask != mask_) {
+          s.emplace(make_stepper<Stepper>());
+          stepper_mask = mask_;
+        }
+        s->start(t, x_);
+        watched = watch(t, t_stop, on_event);
+        // As for the exact method, no step longer than the mode's event_step while an element is
+        // watched (TR-BDF2 would otherwise step over oscillations it damps numerically).
+        h_max = std::find(watched.begin(), watched.end(), 1) != watched.end() ? std::min(opt.h_max, m.event_step)
+                                                                               : opt.h_max;
+        h = std::min(h, h_max);
+        known_inputs(t, false, v0);
+        g0 = event_values(m, x_, v0, t, false, watched);
+        restart = false;
+      }
+      const auto& m = *rhs_.mode;
+      // A step that would leave a sliver (< 10% of h) before the stop is stretched to end on it.
+      const bool clipped = t_stop - t <= std::min(1.1 * h, h_max);
+      const double hs = clipped ? t_stop - t : h;
+      const bool brk = clipped && before_break;
+      if (++attempts > opt.max_steps)
+        return fail(std::string(name) + " stopped at t = " + detail::num(t) + ": max_steps = " +
+                        std::to_string(opt.max_steps) + " reached",
+                    t);
+      ++steps_;
+      const double err = s->attempt(t, x_, hs, brk);
+      const double hmin =
+          std::max(16 * std::numeric_limits<double>::epsilon() * std::abs(t), std::numeric_limits<double>::min());
+      if (!(err <= 1)) {
+        h = std::min(s->next_h(err, hs), h_max);
+        if (h < hmin)
+          return fail(std::isnan(err) ? "the state is not finite"
+                                      : std::string(name) + " stalled at t = " + detail::num(t) + ": step size h = " +
+                                            detail::num(h) + " below the minimum",
+                      t);
+        continue;
+      }
+      const double t1 = clipped ? t_stop : t + hs;
+      x0 = x_;
+      s->accept(t, x_, hs);
+      known_inputs(t1, brk, v1);
+      g1 = event_values(m, x_, v1, t1, brk, watched);
+      int hit = crossing(g0, g1);
+      double a = 0, b = t1 - t;
+      EventPoint pb{x_, g1, v1};
+      Eigen::VectorXd g_a = g0;
+      auto at = [&](double theta, bool before) {
+        EventPoint p;
+        s->dense(t + theta, p.z);
+        if (theta == t1 - t) p.z = x_;
+        p.v = known_inputs(t + theta, before);
+        p.g = event_values(m, p.z, p.v, t + theta, before, watched);
+        return p;
+      };
+      if (hit < 0 && may_dip(m, t, b, brk, x0, v0, g0, x_, v1, g1, watched)) {
+        // The dense output at 8 points: the first that has crossed closes the bracket.
+        for (int i = 1; i < 8 && hit < 0; ++i) {
+          EventPoint p = at(b * i / 8, false);
+          hit = crossing(g_a, p.g);
+          if (hit >= 0) {
+            a = b * (i - 1) / 8;
+            b = b * i / 8;
+            pb = std::move(p);
+          } else {
+            g_a = p.g;
+          }
+        }
+      }
+      if (hit < 0) {
+        if (!emit(t1, false)) return RunStatus{false, "stopped", t1};
+        add_dissipation(*s, t, t1, energy_);
+        const double h_next = s->next_h(err, hs);
+        // A step shortened to end on a stop says nothing against the step size before it.
+        h = std::min(clipped ? std::max(h, h_next) : h_next, h_max);
+        t = t1;
+        std::swap(v0, v1);
+        std::swap(g0, g1);
+        if (!x_.allFinite()) return fail("the state is not finite", t);
+        if (brk) {
+          if (!resolve(t, -1, on_event, error)) return fail(error, t);
+          restart = true;
+        }
+        continue;
+      }
+      if (!count_location(t, error)) return fail(error, t);
+      const int element = locate(t, a, b, g_a, pb, at);
+      const double te = t + b;
+      x_ = pb.z;
+      if (!emit(te, true)) return RunStatus{false, "stopped", te};
+      add_dissipation(*s, t, te, energy_);
+      t = te;
+      if (!resolve(t, element, on_event, error)) return fail(error, t);
+      restart = true;
+      // A sample at the event's time sees the new mode.
+      if (k < grid.count && grid.at(k) == t) {
+        if (!observe(t, obs)) return RunStatus{false, "stopped", t};
+        ++k;
+      }
+    }
+    return RunStatus{true, "", t};
   }
 
   template <class OnEvent>
@@ -500,6 +751,10 @@ class HybridEngine {
   long steps_ = 0;
   Modes modes_;
   std::map<std::pair<std::uint32_t, double>, ExactMatrices> discretizations_;
+  HybridMethod method_;
+  ModeRhs rhs_;
+  ModeJacobian jacobian_;
+  Eigen::VectorXd dense_x_, dense_v_;  // scratch of add_dissipation and the samples
 };
 
 }  // namespace pogear::rt

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,7 @@ struct ModeMatrices {
   Eigen::MatrixXd A, B, Kx, Kv;
   Eigen::MatrixXd projector;  // onto H x = 0
   Eigen::MatrixXd augmented_A, augmented_B;  // with the slip integrals (see Engine::energy_step)
+  double event_step = std::numeric_limits<double>::infinity();  // event_check_step(A), set by the engine
   bool singular = false;
 };
 

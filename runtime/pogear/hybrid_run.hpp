@@ -41,7 +41,7 @@ inline bool write_events(const SceneRun& run, const std::string& suffix, const s
 // Runs `sys` (a generated system struct whose last inputs are the elements' torques, with
 // slip_matrix) with brakes and clutches, and writes OUT/<name><suffix>.csv (the system's outputs,
 // then T_<element> [N m], slip_<element> [rad/s], E_<element> [J] and the mode) and
-// OUT/<name><suffix>.events.csv. Only the exact method runs it. Returns 0, or 3 when the run failed.
+// OUT/<name><suffix>.events.csv, with the exact method, dopri5 or implicit (rk4 is refused). Returns 0, or 3 when the run failed.
 template <class System>
 int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
                       const std::vector<FrictionElementData>& elements, const typename System::State& x0,
@@ -69,10 +69,10 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   names.emplace_back("mode");
   units.emplace_back("bits of the stuck elements");
   SystemRunLog log(run, suffix, names, units);
-  if (run.solver != Solver::exact) {
+  if (run.solver == Solver::rk4) {
     std::fprintf(stderr,
-                 "%s%s: error: brakes and clutches are simulated with the exact method only (events are located "
-                 "on its exact trajectory); use --solver exact\n",
+                 "%s%s: error: brakes and clutches are not simulated with rk4 (its fixed steps cannot locate their "
+                 "events); use --solver exact, dopri5 or implicit\n",
                  run.name.c_str(), suffix.c_str());
     return 3;
   }
@@ -97,7 +97,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   for (int rep = 0; rep < run.repeat; ++rep) {
     if (!log.begin()) return 3;
     events.clear();
-    HybridEngine engine(hs, run.horizon);
+    HybridEngine engine(hs, run.horizon, HybridMethod{run.solver, run.options});
     auto obs = [&](double t, const HybridSample& s) {
       if (energy_bound && !energy_bound->within(t, s.x, energy_bound_safety_factor)) {
         log.diverged(t, energy_bound->ratio(t, s.x));

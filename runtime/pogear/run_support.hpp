@@ -48,6 +48,8 @@ POGEAR_RT_API EnergyBoundTerms energy_bound_terms(const Eigen::MatrixXd& L, cons
 
 // rk4_stability_limit (stability_limit.hpp) of M.
 POGEAR_RT_API double rk4_step_limit(const Eigen::MatrixXd& M);
+// event_check_step (stability_limit.hpp) of A.
+POGEAR_RT_API double event_step_limit(const Eigen::MatrixXd& A);
 
 // One system's run around its driver: the rk4 step check, the CSV file of each repetition, the
 // divergence message, the timing and the closing report or error, all under the label

@@ -91,6 +91,7 @@ POGEAR_RT_API EnergyBoundTerms energy_bound_terms(const Eigen::MatrixXd& L, cons
 }
 
 POGEAR_RT_API double rk4_step_limit(const Eigen::MatrixXd& M) { return rk4_stability_limit(M); }
+POGEAR_RT_API double event_step_limit(const Eigen::MatrixXd& A) { return event_check_step(A); }
 
 POGEAR_RT_API SystemRunLog::SystemRunLog(const SceneRun& run, const std::string& suffix,
                                          const std::vector<std::string>& names, const std::vector<std::string>& units)

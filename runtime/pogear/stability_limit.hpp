@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <limits>
+#include <numbers>
 
 namespace pogear::rt {
 
@@ -20,6 +21,20 @@ inline double rk4_stability_limit(const Eigen::MatrixXd& a) {
                                                  : a.cwiseAbs().rowwise().sum().maxCoeff();
   if (!(rho >= 0)) return 0;  // NaN in A: refuse every step
   return rho > 0 ? 2.785 / rho : std::numeric_limits<double>::infinity();
+}
+
+// The longest step over which an event function of x' = A x + B u (a linear function of x) is
+// judged from its values and rates at the step's ends: an eighth of the period of A's fastest
+// oscillation. The cubic through those values and rates then follows each oscillating component to
+// about 0.1 % of its amplitude, so a slip that swings back through zero within a step is not missed;
+// over a whole period the ends could show no sign of it. Infinite when A does not oscillate.
+inline double event_check_step(const Eigen::MatrixXd& a) {
+  if (a.rows() == 0) return std::numeric_limits<double>::infinity();
+  Eigen::EigenSolver<Eigen::MatrixXd> es(a, false);
+  const double omega = es.info() == Eigen::Success ? es.eigenvalues().imag().cwiseAbs().maxCoeff()
+                                                   : a.cwiseAbs().rowwise().sum().maxCoeff();
+  if (!(omega >= 0)) return 0;
+  return omega > 0 ? std::numbers::pi / (4 * omega) : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace pogear::rt

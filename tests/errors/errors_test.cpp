@@ -941,17 +941,17 @@ TEST_F(EngagementCommands, ModelWithoutElements) {
                     R"~(scene.toml:21:1: error: [engagement] commands brakes and clutches, but the model gear has none; add [[brake]] or [[clutch]] to the model, or drop [engagement])~");
 }
 
-TEST_F(EngagementCommands, OnlyTheExactMethod) {
+TEST_F(EngagementCommands, NotWithRk4) {
   expect_error("B1 = \"1\"\n",
-               R"~(scene.toml:17:10: error: the scene engages brakes or clutches, which are simulated with the exact method only (it locates their events on its exact trajectory); use solver = "exact")~",
-               {{R"(solver = "exact")", R"(solver = "dopri5")"}});
+               R"~(scene.toml:17:10: error: the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate their events); use solver = "exact", "dopri5" or "implicit")~",
+               {{R"(solver = "exact")", R"(solver = "rk4")"}});
 }
 
-TEST_F(EngagementCommands, SolverOptionNotExact) {
+TEST_F(EngagementCommands, SolverOptionRk4) {
   write_text("gear.toml", shift_model());
   write_text("scene.toml", base_scene() + "\n[engagement]\nB1 = \"1\"\n");
   expect_pogear_error("simulate scene.toml --solver rk4 -o out", 2,
-                      R"~(scene.toml: error: the scene engages brakes or clutches, which are simulated with the exact method only (it locates their events on its exact trajectory); drop --solver rk4)~");
+                      R"~(scene.toml: error: the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate their events); use --solver exact, dopri5 or implicit)~");
 }
 
 TEST_F(EngagementCommands, TunableCapacity) {

@@ -1,8 +1,12 @@
 // The hybrid engine (runtime/pogear/hybrid.hpp) on systems whose stick–slip motion is known in
 // closed form: two inertias and a clutch, a brake that breaks away and sticks again, coupled clutches.
+// Each with every method that runs brakes and clutches: the motions are piecewise polynomials of
+// degree 2 at most, which dopri5 (order 5) and TR-BDF2 (order 2) and their dense outputs reproduce
+// exactly, so all three are held to the same closed forms, up to rounding.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "pogear/hybrid.hpp"
@@ -35,9 +39,17 @@ struct Recorded {
   RunStatus status;
 };
 
-Recorded run(const HybridSystem& sys, const Eigen::VectorXd& x0, double horizon, double sample) {
+class HybridMethods : public ::testing::TestWithParam<Solver> {
+ protected:
+  HybridMethod method() const { return HybridMethod{GetParam(), SolverOptions{}}; }
+};
+
+INSTANTIATE_TEST_SUITE_P(Hybrid, HybridMethods, ::testing::Values(Solver::exact, Solver::dopri5, Solver::implicit),
+                         [](const auto& info) { return std::string(solver_name(info.param)); });
+
+Recorded run(const HybridSystem& sys, const Eigen::VectorXd& x0, double horizon, double sample, HybridMethod method) {
   Recorded r;
-  HybridEngine engine(sys, horizon);
+  HybridEngine engine(sys, horizon, method);
   r.status = engine.run(
       x0, sample,
       [&](double t, const HybridSample& s) {
@@ -57,14 +69,14 @@ Recorded run(const HybridSystem& sys, const Eigen::VectorXd& x0, double horizon,
 // Slipping with s > 0, the clutch torque c opposes it: s' = tau1/J1 - tau2/J2 - c (1/J1 + 1/J2), a
 // constant, so the slip reaches zero at t* = s0 / (c (1/J1 + 1/J2) - (tau1/J1 - tau2/J2)). Locked,
 // both turn at (tau1 + tau2)/(J1 + J2) with the clutch carrying T = (J2 tau1 - J1 tau2)/(J1 + J2).
-TEST(Hybrid, ClutchLockTimeInClosedForm) {
+TEST_P(HybridMethods, ClutchLockTimeInClosedForm) {
   const double J1 = 0.3, J2 = 1.7, tau1 = 20, tau2 = -5, c = 60;
   const HybridSystem sys = two_inertias(J1, J2, tau1, tau2, c, 1.2, Constant{1});
   Eigen::VectorXd x0(2);
   x0 << 100, 10;
   const double a = tau1 / J1 - tau2 / J2, b = c * (1 / J1 + 1 / J2), s0 = 90;
   const double t_lock = s0 / (b - a);
-  const Recorded r = run(sys, x0, 2.0, 1e-3);
+  const Recorded r = run(sys, x0, 2.0, 1e-3, method());
   ASSERT_TRUE(r.status.ok) << r.status.message;
   ASSERT_EQ(r.events.size(), 1u);
   EXPECT_EQ(r.events[0].from, ElementState::slipping);
@@ -97,14 +109,14 @@ TEST(Hybrid, ClutchLockTimeInClosedForm) {
 
 // A clutch that cannot hold: the torque sticking would need exceeds the static capacity, so the slip
 // passes through zero and reverses (no stuck phase), with the friction torque changing sign.
-TEST(Hybrid, SlipReversesWhenTheClutchCannotHold) {
+TEST_P(HybridMethods, SlipReversesWhenTheClutchCannotHold) {
   const double J1 = 1, J2 = 1, tau1 = 50, tau2 = -50, c = 10;  // sticking needs T = 50 > 1.5 c
   const HybridSystem sys = two_inertias(J1, J2, tau1, tau2, c, 1.5, Constant{1});
   Eigen::VectorXd x0(2);
   // s0 = -30: the torques drive s up at 100, friction opposing the negative slip adds 2c: s' = 120;
   // past zero friction turns against the positive slip: s' = 100 - 2c = 80.
   x0 << 0, 31;  // s0 = -31: the zero at 31/120 s falls between samples
-  const Recorded r = run(sys, x0, 1.0, 1e-3);
+  const Recorded r = run(sys, x0, 1.0, 1e-3, method());
   ASSERT_TRUE(r.status.ok) << r.status.message;
   const double t_zero = 31.0 / 120.0;
   ASSERT_EQ(r.events.size(), 0u);  // slipping throughout: the direction changes, the state does not
@@ -119,7 +131,7 @@ TEST(Hybrid, SlipReversesWhenTheClutchCannotHold) {
 
 // Stuck, then break away when a growing torque exceeds the static capacity, then stick again when
 // the torque falls: stuck -> slipping -> stuck, with the break-away time in closed form.
-TEST(Hybrid, BrakeBreaksAwayAndSticksAgain) {
+TEST_P(HybridMethods, BrakeBreaksAwayAndSticksAgain) {
   // One inertia J held by a brake (slip = omega), torque tau(t) = 40 t up to t = 1, then 40 - 200 (t - 1).
   HybridSystem sys;
   const double J = 2, c = 20, mu = 1.5;
@@ -130,7 +142,7 @@ TEST(Hybrid, BrakeBreaksAwayAndSticksAgain) {
   sys.elements.push_back({"B", c, mu, Constant{1}});
   sys.inputs = {Table{{0, 1, 2}, {0, 40, -160}}};
   Recorded r;
-  HybridEngine engine(sys, 2.0);
+  HybridEngine engine(sys, 2.0, method());
   r.status = engine.run(
       Eigen::VectorXd::Zero(1), 0.007,  // no event falls on a sample
       [&](double t, const HybridSample& s) {
@@ -174,7 +186,7 @@ TEST(Hybrid, BrakeBreaksAwayAndSticksAgain) {
 // torque): friction torques are internal, so the total angular momentum grows by the input's
 // impulse exactly, whatever the events; the clutches lock one after another until the chain turns
 // as one, and the energy dissipated closes the power balance.
-TEST(Hybrid, ThreeCoupledClutches) {
+TEST_P(HybridMethods, ThreeCoupledClutches) {
   const std::vector<double> J{1, 2, 3, 4};
   HybridSystem sys;
   sys.M = Eigen::MatrixXd::Zero(4, 4);
@@ -196,7 +208,7 @@ TEST(Hybrid, ThreeCoupledClutches) {
   std::vector<HybridEvent> events;
   std::uint32_t last_mode = 0;
   Eigen::VectorXd last_x, dissipated;
-  HybridEngine engine(sys, horizon);
+  HybridEngine engine(sys, horizon, method());
   const RunStatus st = engine.run(
       x0, h,
       [&](double time, const HybridSample& s) {
@@ -237,7 +249,7 @@ TEST(Hybrid, ThreeCoupledClutches) {
 // A one-way brake on an inertia (J = 2): holding while the torque pushes it backwards, free while
 // it pushes forwards; back at rest, it holds again. tau = -10 until 1 s, +10 until 2 s, then -10:
 // free from 1 s with omega = 5 (t - 1), decelerating from 2 s to rest at exactly 3 s.
-TEST(Hybrid, OneWayBrakeFreewheelsForwardAndHoldsBackward) {
+TEST_P(HybridMethods, OneWayBrakeFreewheelsForwardAndHoldsBackward) {
   HybridSystem sys;
   sys.M = Eigen::MatrixXd::Zero(1, 1);
   sys.N = Eigen::MatrixXd(1, 2);
@@ -247,7 +259,7 @@ TEST(Hybrid, OneWayBrakeFreewheelsForwardAndHoldsBackward) {
   sys.inputs = {Table{{0, 1, 1, 2, 2}, {-10, -10, 10, 10, -10}}};
   std::vector<double> t, w, T, energy;
   std::vector<HybridEvent> events;
-  HybridEngine engine(sys, 4.0);
+  HybridEngine engine(sys, 4.0, method());
   const RunStatus st = engine.run(
       Eigen::VectorXd::Zero(1), 0.007,
       [&](double time, const HybridSample& s) {
