@@ -141,6 +141,36 @@ fi
     echo
   done
 
+  if [ -f events.csv ]; then
+    echo "## Across events: the Simpson 1-2 upshift (elastic, 8 events)"
+    echo
+    echo "Errors against a long-double reference: the states at the 1 ms samples (as above) and the event"
+    echo "times (seconds; inf when a run's events differ from the reference's)."
+    echo
+    echo "### Fastest per family with state error <= 1e-8 and event-time error <= 1e-9 s"
+    echo
+    echo "| family | fastest | s per simulated s | state error | event error | / pogear |"
+    echo "|---|---|---|---|---|---|"
+    awk -F, 'NR > 1 && $7 == "ok" && $10 != "nan" && $10 + 0 <= 1e-8 && $11 != "inf" && $11 + 0 <= 1e-9 {
+        if (!($3 in best) || $12 + 0 < best[$3]) { best[$3] = $12 + 0; what[$3] = $4 ($5 == "" ? "" : " " $5 "=" $6); se[$3] = $10; ee[$3] = $11 }
+      }
+      END {
+        n = split("pogear cvode scipy", fam, " ")
+        for (i = 1; i <= n; ++i) {
+          f = fam[i]
+          if (f in best) printf "| %s | %s | %.3g | %s | %s | %s |\n", f, what[f], best[f], se[f], ee[f], ("pogear" in best) ? sprintf("%.0f", best[f] / best["pogear"]) : ""
+          else printf "| %s | none reaches it | | | | |\n", f
+        }
+      }' events.csv
+    echo
+    echo "### Every run"
+    echo
+    echo "| method | knob | value | status | steps | events | state error | event error [s] | s per simulated s | note |"
+    echo "|---|---|---|---|---|---|---|---|---|---|"
+    awk -F, 'NR > 1 { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.3g | %s |\n", $4, $5, $6, $7, $8, $9, $10, $11, $12, $17 }' events.csv
+    echo
+  fi
+
   echo "## Exact stepping: cost of one step"
   echo
   echo "| scene | model | states | what | ns per step (median) | min | max |"

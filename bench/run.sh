@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds and runs every benchmark (work-precision against CVODE, Boost.Odeint and SciPy; rigid vs
-# elastic; effects on/off; generator cost; rigid sweeps), then writes CSVs, SVG plots and summary.md.
+# Builds and runs every benchmark (work-precision against CVODE, Boost.Odeint and SciPy; across the
+# events of a shift; rigid vs elastic; effects on/off; generator cost; rigid sweeps), then writes
+# CSVs, SVG plots and summary.md.
 # Usage: bash bench/run.sh [--quick] [--out DIR] [--build DIR] [--no-build --bin DIR --pogear PATH]
 #   --quick      a smoke test in well under a minute that checks the numbers (the ctest test)
 #   --out DIR    results (default bench/results, bench/results-quick with --quick)
@@ -86,6 +87,22 @@ fi
     [ -f "$f" ] && tail -n +2 "$f"
   done
 } > "$out/wp.csv"
+
+# Across events: the Simpson upshift with pogear's hybrid engine, CVODE's root finding and SciPy's
+# solve_ivp events, against a long-double reference (the C++ harness writes the problem for SciPy).
+run "events" "$bin/bench_events" "${flags[@]}"
+if [ -n "$python" ] && [ -f "$out/events_problem/simpson_1_2_upshift.json" ]; then
+  run "SciPy events" "$python" "$root/bench/events_scipy.py" --problem "$out/events_problem" --out "$out" \
+    --check $([ $quick = 1 ] && echo --quick)
+else
+  rm -f "$out/events_scipy.csv"
+fi
+{
+  head -1 "$out/events_cpp.csv"
+  for f in "$out"/events_cpp.csv "$out"/events_scipy.csv; do
+    [ -f "$f" ] && tail -n +2 "$f"
+  done
+} > "$out/events.csv"
 
 # Writing the samples: formatting and the file system, apart.
 run "CSV cost" "$bin/bench_csv_cost" "${flags[@]}"

@@ -91,6 +91,22 @@ def measure(run, min_batch, batches, max_run):
     return median, per[0], per[-1], n, batches
 
 
+class Checker:
+    """--check: counts the checks that pass and prints those that fail; without --check it does nothing."""
+
+    def __init__(self, enabled):
+        self.enabled, self.passed, self.failures = enabled, 0, 0
+
+    def expect(self, ok, what):
+        if not self.enabled:
+            return
+        if ok:
+            self.passed += 1
+        else:
+            self.failures += 1
+            print(f"CHECK FAILED: {what}", file=sys.stderr)
+
+
 def fmt(v):
     return "nan" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.6g}"
 
@@ -106,17 +122,7 @@ def main():
     # quick: one timed batch of one run is enough to exercise the path; the numbers are checked, not the speed
     min_batch, batches, max_run = (0.002, 1, 2.0) if args.quick else (0.05, 5, 10.0)
     tolerances = [1e-6] if args.quick else [10.0 ** -k for k in range(3, 13)]
-    failures = passed = 0
-
-    def expect(ok, what):
-        nonlocal failures, passed
-        if not args.check:
-            return
-        if ok:
-            passed += 1
-        else:
-            failures += 1
-            print(f"CHECK FAILED: {what}", file=sys.stderr)
+    chk = Checker(args.check)
 
     print(f"SciPy {scipy.__version__} (NumPy {np.__version__}, Python {sys.version.split()[0]})")
     os.makedirs(args.out, exist_ok=True)
@@ -139,7 +145,7 @@ def main():
             Mg, Ng = np.array(pb["M"]), np.array(pb["N"])
             same = np.max(np.abs(M - Mg)) <= 1e-12 * np.max(np.abs(Mg)) and \
                 np.max(np.abs(N - Ng)) <= 1e-12 * np.max(np.abs(Ng))
-            expect(same, f"{pb['scene']}/{pb['model']}: M, N from pogear derive equal the generated code's")
+            chk.expect(same, f"{pb['scene']}/{pb['model']}: M, N from pogear derive equal the generated code's")
             u = np.array(list(pb["inputs"].values()), dtype=float)
             Nu = (N @ u)[:, None]
             x0 = np.array(pb["x0"], dtype=float)
@@ -184,7 +190,7 @@ def main():
                         slow = med > max_run
                         # Same bound as the C++ harnesses (bench_common.hpp, adaptive_bound)
                         bound = 1e3 * max(rtol, 1e-8) + 1e-11
-                        expect(sol.success and row["error"] <= bound,
+                        chk.expect(sol.success and row["error"] <= bound,
                                f"{label}: scipy_{method} rtol {rtol:g}: error {row['error']:.3g} <= {bound:.3g}")
                     w.writerow([row["scene"], row["model"], row["family"], row["method"], row["knob"], fmt(rtol),
                                 row["status"], row["steps"], row["rhs_evals"], fmt(row["error"]),
@@ -193,8 +199,8 @@ def main():
                     print(f"  {label:<24} scipy_{method:<7} rtol {rtol:<8g} {row['status']:<8} "
                           f"err {fmt(row['error']):<11} {fmt(row['t'][0])} s/s", flush=True)
     if args.check:
-        print(f"wp_scipy: {passed} checks passed, {failures} failed")
-    return 1 if failures else 0
+        print(f"wp_scipy: {chk.passed} checks passed, {chk.failures} failed")
+    return 1 if chk.failures else 0
 
 
 if __name__ == "__main__":

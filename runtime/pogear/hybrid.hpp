@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <complex>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
@@ -130,7 +132,18 @@ class HybridEngine {
     auto it = modes_.find(mask);
     if (it == modes_.end()) {
       it = modes_.emplace(mask, hybrid_detail::mode_matrices(sys_, mask)).first;
-      if (!it->second.singular) it->second.event_step = event_step_limit(it->second.A);
+      if (!it->second.singular) {
+        it->second.event_step = event_step_limit(it->second.A);
+        auto& md = it->second;
+        md.modal = modal_form(md.A, md.B);
+        if (md.modal.ok) {
+          // The event functions' x-coefficients in modal coordinates: slips S V, stuck torques Kx V.
+          md.SV = sys_.S.cast<std::complex<double>>() * md.modal.V;
+          md.KxV = md.Kx.cast<std::complex<double>>() * md.modal.V;
+          md.lambda_abs = md.modal.lambda.cwiseAbs();
+          md.lambda_inverse = md.modal.lambda.cwiseInverse();
+        }
+      }
     }
     return it->second;
   }
@@ -142,7 +155,7 @@ class HybridEngine {
     auto it = discretizations_.lower_bound(std::make_pair(mask, h * (1 - 1e-9)));
     if (it == discretizations_.end() || it->first.first != mask || !(it->first.second <= h * (1 + 1e-9))) {
       // Uneven steps after events: keep the cache bounded.
-      if (discretizations_.size() > 64) discretizations_.clear();
+      if (discretizations_.size() > 256) discretizations_.clear();
       const auto& m = mode_of(mask);
       it = discretizations_.emplace(key, exact_matrices(m.augmented_A, m.augmented_B, h)).first;
     }
@@ -256,6 +269,30 @@ class HybridEngine {
     return d.Phi * z + d.Gamma0 * v0 + d.Gamma1 * (v1 - v0);
   }
 
+  // The augmented state [x; sigma; rho] at theta from the current state, the inputs linear from v0 to
+  // v1 (as advance() with the exponential at theta). For theta |balanced_A| <= 2 by the Taylor series
+  // of the flow of [z; w; w'] (w the inputs) in balanced coordinates, summed until its terms are
+  // below rounding: no term exceeds 2^k / k! <= 2 times the (balanced) state, so the sum is exact up
+  // to a few rounding errors, at the cost of a few dozen products with the matrix instead of an
+  // exponential (event location calls it a dozen times per event). Longer theta: the exponential.
+  Eigen::VectorXd flow(const hybrid_detail::ModeMatrices& m, double theta, const Eigen::VectorXd& v0,
+                       const Eigen::VectorXd& v1) const {
+    if (!(theta * m.balanced_norm <= 2)) return advance(exact_matrices(m.augmented_A, m.augmented_B, theta), v0, v1);
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(m.augmented_A.rows());
+    z.head(nx_) = x_.cwiseQuotient(m.balance.head(nx_));
+    Eigen::VectorXd term = z, w = v0, dw = (v1 - v0) / theta, next;
+    for (int k = 1; k < 80; ++k) {
+      next.noalias() = m.balanced_A * term;
+      next.noalias() += m.balanced_B * w;
+      term = (theta / k) * next;
+      w = (theta / k) * dw;  // the inputs' series: v0, theta v', then nothing
+      dw.setZero();
+      z += term;
+      if (k > 2 && term.cwiseAbs().maxCoeff() <= 1e-18 * z.cwiseAbs().maxCoeff()) break;
+    }
+    return z.cwiseProduct(m.balance);
+  }
+
   // Adds each slipping element's dissipated energy over [t0, t0 + h]: with p(t0 + s) = p0 + (p1 - p0)
   // s / h, int c p dir s dt = c dir (p1 sigma(h) - (p1 - p0) rho(h) / h), sigma and rho the augmented
   // integrals of the slip (zero at t0). Exact when p is linear over the step.
@@ -353,6 +390,94 @@ class HybridEngine {
     return false;
   }
 
+  // Whether no event function can reach zero within the step [t, t + h] from x0 (v0) to x1 (v1):
+  // each function is split, through the mode's modal form, into the modes too fast for a cubic
+  // over h (|lambda| h > pi/4) and the rest. The fast part is sum_j q_j r_j e^(lambda_j s), r_j the
+  // mode's amplitude about the particular solution of the inputs (linear over the step), so it
+  // never exceeds Omega = sum_j |q_j r_j| (|e^(lambda s)| <= 1 in a stable mode). The slow rest is
+  // followed by the cubic through its values and rates at the ends; the step is clear when that
+  // cubic, less Omega, stays positive, for every watched function (a stuck element's |T| as both
+  // signs of T). False when the mode has no trustworthy modal form.
+  bool clear_of_events(const hybrid_detail::ModeMatrices& m, double t, double h, bool before,
+                       const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, const Eigen::VectorXd& x1,
+                       const Eigen::VectorXd& v1, const std::vector<char>& watched) const {
+    using C = std::complex<double>;
+    const ModalForm& f = m.modal;
+    if (!f.ok) return false;
+    const Eigen::VectorXd dv = (v1 - v0) / h;
+    const double t1 = t + h, fast = std::numbers::pi / 4 / h;
+    // Per fast mode: r_j, e^(lambda_j h), and the bound's factor (1 unless the mode grows).
+    // (Products, not dot(): Eigen's complex dot conjugates its first factor.)
+    const Eigen::VectorXcd xi = f.W * x0.cast<C>(), beta0 = f.WB * v0.cast<C>(), beta1 = f.WB * dv.cast<C>();
+    auto& [F, r, e, lam_e, grow, for_mode, for_h] = modal_scratch_;
+    if (for_mode != &m || for_h != h) {  // most steps are a whole sample period in one mode
+      F.clear();
+      e.resize(f.lambda.size());
+      lam_e.resize(f.lambda.size());
+      grow.resize(f.lambda.size());
+      for (Eigen::Index j = 0; j < f.lambda.size(); ++j) {
+        if (!(m.lambda_abs(j) > fast)) continue;
+        const auto i = static_cast<Eigen::Index>(F.size());
+        F.push_back(j);
+        e(i) = std::exp(f.lambda(j) * h);
+        lam_e(i) = f.lambda(j) * e(i);
+        grow(i) = std::max(1.0, std::exp(f.lambda(j).real() * h));
+      }
+      for_mode = &m;
+      for_h = h;
+    }
+    const auto nf = static_cast<Eigen::Index>(F.size());
+    r.resize(nf);
+    for (Eigen::Index i = 0; i < nf; ++i) {
+      const Eigen::Index j = F[static_cast<std::size_t>(i)];
+      const C inv = m.lambda_inverse(j);
+      // p' = l p + b0 + b1 s with p = a + b s: b = -b1 / l, a = (b - b0) / l.
+      const C b = -beta1(j) * inv, a = (b - beta0(j)) * inv;
+      r(i) = xi(j) - a;
+    }
+    const Eigen::VectorXd dx0 = m.A * x0 + m.B * v0, dx1 = m.A * x1 + m.B * v1;
+    // A function whose x-coefficients are `sign` times the row q of (S or Kx) V, with values g0, g1
+    // and rates d0, d1 at the ends: clear when its slow part less Omega stays positive.
+    auto clear = [&](const auto& q, double sign, double g0, double g1, double d0, double d1) {
+      C o0 = 0, o1 = 0, p0 = 0, p1 = 0;
+      double omega = 0;
+      for (Eigen::Index i = 0; i < nf; ++i) {
+        const Eigen::Index j = F[static_cast<std::size_t>(i)];
+        const C qr = sign * q(j) * r(i);
+        o0 += qr;
+        o1 += qr * e(i);
+        p0 += qr * f.lambda(j);
+        p1 += qr * lam_e(i);
+        omega += std::sqrt(std::norm(qr)) * grow(i);
+      }
+      const double s0 = g0 - o0.real() - omega, s1 = g1 - o1.real() - omega;
+      return s0 > 0 && s1 > 0 && !dips_between(s0, s1, d0 - p0.real(), d1 - p1.real(), h);
+    };
+    const double at1 = before ? std::nextafter(t1, t) : t1;
+    for (int k = 0; k < ne_; ++k) {
+      const auto K = static_cast<std::size_t>(k);
+      if (!watched[K] || state_[K] == ElementState::stuck) continue;
+      const double d = dir_[K];
+      const auto c = sys_.S.row(k);
+      if (!clear(m.SV.row(k), d, d * c.dot(x0), d * c.dot(x1), d * c.dot(dx0), d * c.dot(dx1))) return false;
+    }
+    for (std::size_t j = 0; j < m.stuck.size(); ++j) {
+      const int k = m.stuck[j];
+      const auto& el = sys_.elements[static_cast<std::size_t>(k)];
+      const auto J = static_cast<Eigen::Index>(j);
+      const double T0 = m.Kx.row(J).dot(x0) + m.Kv.row(J).dot(v0), T1 = m.Kx.row(J).dot(x1) + m.Kv.row(J).dot(v1);
+      const double dT0 = m.Kx.row(J).dot(dx0) + m.Kv.row(J).dot(dv), dT1 = m.Kx.row(J).dot(dx1) + m.Kv.row(J).dot(dv);
+      const double L0 = el.static_ratio * el.capacity * command(k, t), L1 = el.static_ratio * el.capacity * command(k, at1);
+      const double dL = (L1 - L0) / h;
+      const auto q = m.KxV.row(J);
+      // mu c p - T and mu c p + T: the margin for each sign of T; a one-way element also -T.
+      if (!clear(q, -1, L0 - T0, L1 - T1, dL - dT0, dL - dT1) || !clear(q, 1, L0 + T0, L1 + T1, dL + dT0, dL + dT1))
+        return false;
+      if (el.one_way && !clear(q, -1, -T0, -T1, -dT0, -dT1)) return false;
+    }
+    return true;
+  }
+
   // Steps from t to t_end (t_end a sample time or a breakpoint), stopping at the first event within
   // it. On return t is t_end, or the event's time with the new mode resolved.
   template <class OnEvent>
@@ -360,11 +485,28 @@ class HybridEngine {
     const bool lands_on_break = std::binary_search(breaks_.begin(), breaks_.end(), t_end);
     const std::vector<char> watched = watch(t, t_end, on_event);
     double h = t_end - t;
-    // While an element is watched, steps of at most the mode's event_step: equal ones, so that they
-    // share one discretization.
+    // While an element is watched, a step longer than the mode's event_step is taken only when
+    // clear_of_events proves that no event function reaches zero within it; otherwise steps of at
+    // most event_step, equal ones, so that they share one discretization. After a failed proof the
+    // rest of the sample period is not tried again.
     const double check = mode_of(mask_).event_step;
-    if (h > check && std::find(watched.begin(), watched.end(), 1) != watched.end())
+    if (h > check && std::find(watched.begin(), watched.end(), 1) != watched.end()) {
+      if (t_end != unproven_until_) {
+        const auto& m = mode_of(mask_);
+        const Eigen::VectorXd v0 = known_inputs(t, false), v1 = known_inputs(t_end, lands_on_break);
+        const Eigen::VectorXd z = advance(discretization(mask_, h), v0, v1);
+        ++steps_;
+        const Eigen::VectorXd x1 = z.head(nx_);
+        if (clear_of_events(m, t, h, lands_on_break, x_, v0, x1, v1, watched)) {
+          energy_step(z, t, h, lands_on_break);
+          x_ = x1;
+          t = t_end;
+          return lands_on_break ? resolve(t, -1, on_event, error) : true;
+        }
+        unproven_until_ = t_end;
+      }
       h /= std::ceil(h / check - 1e-9);
+    }
     for (int depth = 0;; ++depth) {
       const auto& m = mode_of(mask_);
       const ExactMatrices& d = discretization(mask_, h);
@@ -390,12 +532,11 @@ class HybridEngine {
         return true;
       }
       if (!count_location(t, error)) return false;
-      // Each value of the iteration from the mode's exponential at theta: exact up to rounding.
+      // Each value of the iteration from the mode's exact flow at theta: exact up to rounding.
       auto at = [&](double theta, bool before_theta) {
-        const ExactMatrices dt = exact_matrices(m.augmented_A, m.augmented_B, theta);
         EventPoint p;
         p.v = known_inputs(t + theta, before_theta);
-        p.z = advance(dt, v0, p.v);
+        p.z = flow(m, theta, v0, p.v);
         p.g = event_values(m, p.z.head(nx_), p.v, t + theta, before_theta, watched);
         return p;
       };
@@ -755,6 +896,16 @@ class HybridEngine {
   ModeRhs rhs_;
   ModeJacobian jacobian_;
   Eigen::VectorXd dense_x_, dense_v_;  // scratch of add_dissipation and the samples
+  double unproven_until_ = -1;         // the end of the sample period whose long step was not clear
+  // clear_of_events' scratch: the fast modes, their amplitudes, e^(lambda h), lambda e^(lambda h), growth.
+  struct ModalScratch {
+    std::vector<Eigen::Index> F;
+    Eigen::VectorXcd r, e, lam_e;
+    Eigen::VectorXd grow;
+    const void* for_mode = nullptr;  // F, e, lam_e and grow are those of this mode and step
+    double for_h = 0;
+  };
+  mutable ModalScratch modal_scratch_;
 };
 
 }  // namespace pogear::rt

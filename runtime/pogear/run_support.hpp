@@ -51,6 +51,15 @@ POGEAR_RT_API double rk4_step_limit(const Eigen::MatrixXd& M);
 // event_check_step (stability_limit.hpp) of A.
 POGEAR_RT_API double event_step_limit(const Eigen::MatrixXd& A);
 
+// A = V diag(lambda) W with W = V^-1, when A is diagonalizable with a well-conditioned V (ok), and
+// W B: the modal coordinates xi = W x of dx/dt = A x + B v obey xi' = lambda xi + W B v, one by one.
+struct ModalForm {
+  bool ok = false;
+  Eigen::VectorXcd lambda;
+  Eigen::MatrixXcd V, W, WB;
+};
+POGEAR_RT_API ModalForm modal_form(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
+
 // One system's run around its driver: the rk4 step check, the CSV file of each repetition, the
 // divergence message, the timing and the closing report or error, all under the label
 // SCENE<suffix> and into OUT/SCENE<suffix>.csv.

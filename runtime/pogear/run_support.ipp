@@ -2,6 +2,7 @@
 // or included inline by run_support.hpp under POGEAR_RT_HEADER_ONLY.
 #include <algorithm>
 #include <chrono>
+#include <complex>
 #include <cstdio>
 
 #include "pogear/command_line.hpp"
@@ -92,6 +93,23 @@ POGEAR_RT_API EnergyBoundTerms energy_bound_terms(const Eigen::MatrixXd& L, cons
 
 POGEAR_RT_API double rk4_step_limit(const Eigen::MatrixXd& M) { return rk4_stability_limit(M); }
 POGEAR_RT_API double event_step_limit(const Eigen::MatrixXd& A) { return event_check_step(A); }
+
+POGEAR_RT_API ModalForm modal_form(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  ModalForm f;
+  if (A.rows() == 0) return f;
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
+  if (es.info() != Eigen::Success) return f;
+  f.lambda = es.eigenvalues();
+  f.V = es.eigenvectors();
+  const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(f.V);
+  f.W = lu.inverse();
+  // A defective or nearly defective A has no trustworthy modal coordinates: their amplitudes would
+  // be huge and cancel. 1e8 keeps a bound built on them within 1e-8 of the state's size.
+  const double condition = f.V.cwiseAbs().rowwise().sum().maxCoeff() * f.W.cwiseAbs().rowwise().sum().maxCoeff();
+  f.ok = f.W.allFinite() && condition < 1e8;
+  f.WB = f.W * B.cast<std::complex<double>>();
+  return f;
+}
 
 POGEAR_RT_API SystemRunLog::SystemRunLog(const SceneRun& run, const std::string& suffix,
                                          const std::vector<std::string>& names, const std::vector<std::string>& units)
