@@ -269,6 +269,22 @@ class HybridEngine {
     return d.Phi * z + d.Gamma0 * v0 + d.Gamma1 * (v1 - v0);
   }
 
+  // One step of h in mode m: by the cached discretization of h; a length met fewer than 8 times
+  // (sub-steps after an event, each event's own remainder) by the Taylor series of flow() when it
+  // converges, a few dozen matrix-vector products instead of an exponential.
+  Eigen::VectorXd step(const hybrid_detail::ModeMatrices& m, double h, const Eigen::VectorXd& v0,
+                       const Eigen::VectorXd& v1) {
+    if (h * m.balanced_norm <= 2) {
+      auto it = discretizations_.lower_bound(std::make_pair(mask_, h * (1 - 1e-9)));
+      const bool cached = it != discretizations_.end() && it->first.first == mask_ && it->first.second <= h * (1 + 1e-9);
+      if (!cached) {
+        auto& uses = taylor_uses_[std::make_pair(mask_, h)];
+        if (++uses < 8) return flow(m, h, v0, v1);
+      }
+    }
+    return advance(discretization(mask_, h), v0, v1);
+  }
+
   // The augmented state [x; sigma; rho] at theta from the current state, the inputs linear from v0 to
   // v1 (as advance() with the exponential at theta). For theta |balanced_A| <= 2 by the Taylor series
   // of the flow of [z; w; w'] (w the inputs) in balanced coordinates, summed until its terms are
@@ -509,11 +525,10 @@ class HybridEngine {
     }
     for (int depth = 0;; ++depth) {
       const auto& m = mode_of(mask_);
-      const ExactMatrices& d = discretization(mask_, h);
       const double t1 = t + h;
       const bool before = lands_on_break && t1 == t_end;
       const Eigen::VectorXd v0 = known_inputs(t, false), v1 = known_inputs(t1, before);
-      const Eigen::VectorXd z = advance(d, v0, v1);
+      const Eigen::VectorXd z = step(m, h, v0, v1);
       ++steps_;
       const Eigen::VectorXd x1 = z.head(nx_);
       const Eigen::VectorXd g0 = event_values(m, x_, v0, t, false, watched);
@@ -546,6 +561,8 @@ class HybridEngine {
       energy_step(pb.z, t, b, false);
       x_ = pb.z.head(nx_);
       t = t + b;
+      // The new mode starts ringing: no whole-period proof for the rest of this sample period.
+      unproven_until_ = t_end;
       return resolve(t, k, on_event, error);
     }
   }
@@ -906,6 +923,7 @@ class HybridEngine {
     double for_h = 0;
   };
   mutable ModalScratch modal_scratch_;
+  std::map<std::pair<std::uint32_t, double>, int> taylor_uses_;  // step lengths taken by Taylor series
 };
 
 }  // namespace pogear::rt
