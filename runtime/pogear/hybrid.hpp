@@ -51,8 +51,8 @@ struct HybridSample {
 // Physical shifts change each element a few times in a whole run; a Zeno sequence exceeds any bound.
 inline constexpr int max_events_per_sample = 100;
 
-// How a run steps within a mode: exact (one exponential step per sample period, events on the exact
-// trajectory), or dopri5 / implicit with their tolerances, first and largest step and max_steps
+// How a run steps within a mode: exact (a sample period per step where no event can fall in it,
+// shorter steps near events, events on the exact trajectory), or dopri5 / implicit with their tolerances, first and largest step and max_steps
 // (events on the dense output). rk4 has no dense output to locate events on: it is refused.
 struct HybridMethod {
   Solver solver = Solver::exact;
