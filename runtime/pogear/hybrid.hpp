@@ -425,7 +425,15 @@ class HybridEngine {
     // Per fast mode: r_j, e^(lambda_j h), and the bound's factor (1 unless the mode grows).
     // (Products, not dot(): Eigen's complex dot conjugates its first factor.)
     const Eigen::VectorXcd xi = f.W * x0.cast<C>(), beta0 = f.WB * v0.cast<C>(), beta1 = f.WB * dv.cast<C>();
-    auto& [F, r, e, lam_e, grow, for_mode, for_h] = modal_scratch_;
+    // Plain references, not a structured binding: lambdas capture those only from clang 16 on.
+    ModalScratch& sc = modal_scratch_;
+    auto& F = sc.F;
+    auto& r = sc.r;
+    auto& e = sc.e;
+    auto& lam_e = sc.lam_e;
+    auto& grow = sc.grow;
+    auto& for_mode = sc.for_mode;
+    auto& for_h = sc.for_h;
     if (for_mode != &m || for_h != h) {  // most steps are a whole sample period in one mode
       F.clear();
       e.resize(f.lambda.size());
