@@ -52,8 +52,9 @@ struct HybridSample {
 inline constexpr int max_events_per_sample = 100;
 
 // How a run steps within a mode: exact (a sample period per step where no event can fall in it,
-// shorter steps near events, events on the exact trajectory), or dopri5 / implicit with their tolerances, first and largest step and max_steps
-// (events on the dense output). rk4 has no dense output to locate events on: it is refused.
+// shorter steps near events, events on the exact trajectory), or dopri5 / implicit with their
+// tolerances, first and largest step and max_steps (events on the dense output). rk4 has no dense
+// output to locate events on: it is refused.
 struct HybridMethod {
   Solver solver = Solver::exact;
   SolverOptions options;
@@ -148,12 +149,19 @@ class HybridEngine {
     return it->second;
   }
 
-  // The mode's exact step of h, or of a length within 1e-9 h of it: steps between grid times differ
-  // by the rounding of those times only, which is far below the rounding of t itself.
+  // The entry of `cache` for mode `mask` and a step within 1e-9 h of h, or its end: steps between
+  // grid times differ by the rounding of those times only, far below the rounding of t itself.
+  template <class Map>
+  static auto near_step(Map& cache, std::uint32_t mask, double h) {
+    auto it = cache.lower_bound(std::make_pair(mask, h * (1 - 1e-9)));
+    return it != cache.end() && it->first.first == mask && it->first.second <= h * (1 + 1e-9) ? it : cache.end();
+  }
+
+  // The mode's exact step of h (or of a length within 1e-9 h of it).
   const ExactMatrices& discretization(std::uint32_t mask, double h) {
     const auto key = std::make_pair(mask, h);
-    auto it = discretizations_.lower_bound(std::make_pair(mask, h * (1 - 1e-9)));
-    if (it == discretizations_.end() || it->first.first != mask || !(it->first.second <= h * (1 + 1e-9))) {
+    auto it = near_step(discretizations_, mask, h);
+    if (it == discretizations_.end()) {
       // Uneven steps after events: keep the cache bounded.
       if (discretizations_.size() > 256) discretizations_.clear();
       const auto& m = mode_of(mask);
@@ -274,13 +282,13 @@ class HybridEngine {
   // converges, a few dozen matrix-vector products instead of an exponential.
   Eigen::VectorXd step(const hybrid_detail::ModeMatrices& m, double h, const Eigen::VectorXd& v0,
                        const Eigen::VectorXd& v1) {
-    if (h * m.balanced_norm <= 2) {
-      auto it = discretizations_.lower_bound(std::make_pair(mask_, h * (1 - 1e-9)));
-      const bool cached = it != discretizations_.end() && it->first.first == mask_ && it->first.second <= h * (1 + 1e-9);
-      if (!cached) {
-        auto& uses = taylor_uses_[std::make_pair(mask_, h)];
-        if (++uses < 8) return flow(m, h, v0, v1);
+    if (h * m.balanced_norm <= 2 && near_step(discretizations_, mask_, h) == discretizations_.end()) {
+      auto it = near_step(taylor_uses_, mask_, h);
+      if (it == taylor_uses_.end()) {
+        if (taylor_uses_.size() > 256) taylor_uses_.clear();  // bounded, as the discretizations
+        it = taylor_uses_.emplace(std::make_pair(mask_, h), 0).first;
       }
+      if (++it->second < 8) return flow(m, h, v0, v1);
     }
     return advance(discretization(mask_, h), v0, v1);
   }
