@@ -166,7 +166,7 @@ Mat small_exp(const Mat& A, int extra_squarings = 0) {
 // so the difference is the size of the error (measured over 100 steps of stiff undamped scenes
 // against 80-digit references: each step errs by 1 to 11 times it).
 template <class Mat>
-Mat balanced_exp(Mat C, double* rounding = nullptr) {
+Mat balanced_exp(Mat C, double* rounding = nullptr, Eigen::Index measured_rows = -1) {
   const Eigen::Index n = C.rows();
   Eigen::Matrix<double, Mat::RowsAtCompileTime, 1> d = Eigen::Matrix<double, Mat::RowsAtCompileTime, 1>::Ones(n);
   // Bounded passes and factors (2^-64 ... 2^64 per pass): balancing converges in a few passes, and
@@ -191,16 +191,19 @@ Mat balanced_exp(Mat C, double* rounding = nullptr) {
   }
   Mat E = detail::small_exp(C);
   if (rounding) {
-    const double norm = E.cwiseAbs().colwise().sum().maxCoeff();
-    *rounding = (E - detail::small_exp(C, 3)).cwiseAbs().colwise().sum().maxCoeff() / std::max(1.0, norm);
-    if (!std::isfinite(norm)) *rounding = std::numeric_limits<double>::infinity();
+    const Eigen::Index r = measured_rows < 0 ? n : std::min(measured_rows, n);
+    const double norm = E.topRows(r).cwiseAbs().colwise().sum().maxCoeff();
+    *rounding = (E - detail::small_exp(C, 3)).topRows(r).cwiseAbs().colwise().sum().maxCoeff() / std::max(1.0, norm);
+    if (!E.allFinite()) *rounding = std::numeric_limits<double>::infinity();
   }
   for (Eigen::Index j = 0; j < n; ++j)
     for (Eigen::Index i = 0; i < n; ++i) E(i, j) *= d(i) / d(j);
   return E;
 }
 template <int NX, int NU>
-ExactDiscretization<NX, NU>::ExactDiscretization(const StateMatrix& M, const InputMatrix& N, double h_) : h(h_) {
+ExactDiscretization<NX, NU>::ExactDiscretization(const StateMatrix& M, const InputMatrix& N, double h_,
+                                                 Eigen::Index measured_rows)
+    : h(h_) {
   eigen_assert(M.rows() == M.cols() && N.rows() == M.rows());
   const Eigen::Index n = M.rows(), m = N.cols();
   constexpr int NA = NX == Eigen::Dynamic || NU == Eigen::Dynamic ? Eigen::Dynamic : NX + 2 * NU;
@@ -209,7 +212,7 @@ ExactDiscretization<NX, NU>::ExactDiscretization(const StateMatrix& M, const Inp
   C.topLeftCorner(n, n) = M * h;
   C.block(0, n, n, m) = N * h;
   C.block(n, n + m, m, m).setIdentity();
-  const Aug E = balanced_exp(C, &rounding);
+  const Aug E = balanced_exp(C, &rounding, measured_rows);
   Phi = E.topLeftCorner(n, n);
   Gamma0 = E.block(0, n, n, m);
   Gamma1 = E.block(0, n + m, n, m);

@@ -57,6 +57,53 @@ POGEAR_RT_INLINE void store(double* p, const V& v) {
   std::memcpy(p, &v, sizeof v);
 }
 
+// y += A x over A's first m columns, for a dynamic column-major A of a few dozen rows at most (the
+// hybrid engine's steps and proofs): 2 W rows at a time, each summed down the columns in order, so
+// that every lane width gives the same bits. Eigen's general product is no faster at these sizes.
+template <int W>
+POGEAR_RT_INLINE void matvec_add_rows(const double* a, Eigen::Index n, Eigen::Index m, const double* x, double* y,
+                                      Eigen::Index& i) {
+#if defined(__GNUC__)
+  using V = Lanes<W>;
+  for (; i + 2 * W <= n; i += 2 * W) {
+    V s0, s1, v0, v1;
+    load(s0, y + i);
+    load(s1, y + i + W);
+    for (Eigen::Index k = 0; k < m; ++k) {
+      load(v0, a + k * n + i);
+      load(v1, a + k * n + i + W);
+      s0 += v0 * x[k];
+      s1 += v1 * x[k];
+    }
+    store(y + i, s0);
+    store(y + i + W, s1);
+  }
+#endif
+}
+template <int W>
+POGEAR_RT_INLINE void matvec_add_lanes(const double* a, Eigen::Index n, Eigen::Index m, const double* x, double* y) {
+  Eigen::Index i = 0;
+  if constexpr (W == 4) matvec_add_rows<4>(a, n, m, x, y, i);
+  if constexpr (W >= 2) matvec_add_rows<2>(a, n, m, x, y, i);
+  for (; i < n; ++i) {
+    double s = y[i];
+    for (Eigen::Index k = 0; k < m; ++k) s += a[k * n + i] * x[k];
+    y[i] = s;
+  }
+}
+#if defined(POGEAR_RT_AVX2_DISPATCH)
+POGEAR_RT_TARGET_AVX2 inline void matvec_add_avx2(const double* a, Eigen::Index n, Eigen::Index m, const double* x,
+                                                  double* y) {
+  matvec_add_lanes<4>(a, n, m, x, y);
+}
+#endif
+inline void small_matvec_add(const Eigen::MatrixXd& A, Eigen::Index m, const double* x, double* y) {
+#if defined(POGEAR_RT_AVX2_DISPATCH)
+  if (A.rows() >= 8 && __builtin_cpu_supports("avx2")) return matvec_add_avx2(A.data(), A.rows(), m, x, y);
+#endif
+  matvec_add_lanes<kDefaultLanes>(A.data(), A.rows(), m, x, y);
+}
+
 // A load of memory that was just stored 16 bytes at a time (Eigen assigns with SSE2 packets, as user
 // code fills the inputs): an AVX load spanning two such stores cannot be forwarded from them and
 // waits for them to reach the cache, so it is made of two 16-byte loads.
@@ -230,7 +277,9 @@ struct ExactDiscretization {
   ExactDiscretization() = default;
   // The discretization of dx/dt = M x + N u for steps of h: defined in exact.hpp, which computes the
   // matrix exponential (Eigen/Dense).
-  ExactDiscretization(const StateMatrix& M, const InputMatrix& N, double h_);
+  // measured_rows: the leading states whose accuracy `rounding` estimates (all by default); an
+  // augmented system's integrals grow with h and would hide the errors of the states themselves.
+  ExactDiscretization(const StateMatrix& M, const InputMatrix& N, double h_, Eigen::Index measured_rows = -1);
   // One computed elsewhere (the compiled runtime's exact_matrices, run_support.hpp), of any size.
   template <class MatPhi, class MatGamma>
   ExactDiscretization(const MatPhi& Phi_, const MatGamma& Gamma0_, const MatGamma& Gamma1_, double h_, double rounding_)

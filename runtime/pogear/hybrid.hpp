@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "pogear/driver_loops.hpp"
+#include "pogear/event_proof.hpp"
 #include "pogear/hybrid_modes.hpp"
 #include "pogear/run_support.hpp"
 #include "pogear/signals.hpp"
@@ -114,6 +115,7 @@ class HybridEngine {
         while (next_break < breaks_.size() && breaks_[next_break] <= t) ++next_break;
         const double t_end = next_break < breaks_.size() ? std::min(t_sample, breaks_[next_break]) : t_sample;
         if (!step_to(t, t_end, on_event, error)) return fail(error, t);
+        if (inaccurate_) return fail(detail::inaccurate_exact_step(inaccurate_->first, inaccurate_->second), t);
         if (!x_.allFinite()) return fail("the state is not finite", t);
       }
       if (!observe(t, obs)) return RunStatus{false, "stopped", t};
@@ -135,15 +137,7 @@ class HybridEngine {
       it = modes_.emplace(mask, hybrid_detail::mode_matrices(sys_, mask)).first;
       if (!it->second.singular) {
         it->second.event_step = event_step_limit(it->second.A);
-        auto& md = it->second;
-        md.modal = modal_form(md.A, md.B);
-        if (md.modal.ok) {
-          // The event functions' x-coefficients in modal coordinates: slips S V, stuck torques Kx V.
-          md.SV = sys_.S.cast<std::complex<double>>() * md.modal.V;
-          md.KxV = md.Kx.cast<std::complex<double>>() * md.modal.V;
-          md.lambda_abs = md.modal.lambda.cwiseAbs();
-          md.lambda_inverse = md.modal.lambda.cwiseInverse();
-        }
+        it->second.modal = modal_form(it->second.A, it->second.B);
       }
     }
     return it->second;
@@ -165,9 +159,16 @@ class HybridEngine {
       // Uneven steps after events: keep the cache bounded.
       if (discretizations_.size() > 256) discretizations_.clear();
       const auto& m = mode_of(mask);
-      it = discretizations_.emplace(key, exact_matrices(m.augmented_A, m.augmented_B, h)).first;
+      it = discretizations_.emplace(key, exact_matrices(m.augmented_A, m.augmented_B, h, nx_)).first;
+      note_accuracy(it->second, h);
     }
     return it->second;
+  }
+
+  // An exponential that cannot be trusted (exact_step's estimate): the run stops after the step that
+  // used it, before its state is observed.
+  void note_accuracy(const ExactMatrices& d, double h) {
+    if (!(d.rounding <= kExactMaxRounding) && !inaccurate_) inaccurate_ = std::make_pair(h, d.rounding);
   }
 
   double command(int k, double t) const { return value(sys_.elements[static_cast<std::size_t>(k)].command, t); }
@@ -220,9 +221,16 @@ class HybridEngine {
   template <class Obs>
   bool observe(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& energy, Obs& obs) {
     const auto& m = mode_of(mask_);
-    const Eigen::VectorXd w = full_inputs(m, x, known_inputs(t, false));
-    const Eigen::VectorXd slip = sys_.S * x;
-    return obs(t, HybridSample{x, w, slip, energy, mask_});
+    known_inputs(t, false, sample_w_);
+    if (!m.stuck.empty()) {
+      sample_T_.setZero(m.Kx.rows());
+      detail::small_matvec_add(m.Kx, nx_, x.data(), sample_T_.data());
+      detail::small_matvec_add(m.Kv, nw_, sample_w_.data(), sample_T_.data());
+      for (std::size_t j = 0; j < m.stuck.size(); ++j) sample_w_(nu_ + m.stuck[j]) = sample_T_(static_cast<Eigen::Index>(j));
+    }
+    sample_slip_.setZero(ne_);
+    detail::small_matvec_add(sys_.S, nx_, x.data(), sample_slip_.data());
+    return obs(t, HybridSample{x, sample_w_, sample_slip_, energy, mask_});
   }
 
   // Event functions of the current mode at state x and known inputs v, time t: slipping elements
@@ -271,15 +279,25 @@ class HybridEngine {
   }
 
   // One step of the current mode from t0 over h: the augmented state [x; sigma; rho] at t0 + h.
-  Eigen::VectorXd advance(const ExactMatrices& d, const Eigen::VectorXd& v0, const Eigen::VectorXd& v1) const {
-    Eigen::VectorXd z = Eigen::VectorXd::Zero(d.Phi.rows());
-    z.head(nx_) = x_;
-    return d.Phi * z + d.Gamma0 * v0 + d.Gamma1 * (v1 - v0);
+  // (The integrals sigma and rho start at zero: only x's columns of Phi count.)
+  void advance(const ExactMatrices& d, const Eigen::VectorXd& v0, const Eigen::VectorXd& v1, Eigen::VectorXd& z) {
+    advance_dv_ = v1 - v0;
+    z.setZero(d.Phi.rows());
+    detail::small_matvec_add(d.Phi, nx_, x_.data(), z.data());
+    detail::small_matvec_add(d.Gamma0, nw_, v0.data(), z.data());
+    detail::small_matvec_add(d.Gamma1, nw_, advance_dv_.data(), z.data());
+  }
+  Eigen::VectorXd advance(const ExactMatrices& d, const Eigen::VectorXd& v0, const Eigen::VectorXd& v1) {
+    Eigen::VectorXd z;
+    advance(d, v0, v1, z);
+    return z;
   }
 
-  // One step of h in mode m: by the cached discretization of h; a length met fewer than 8 times
+  // One step of h in mode m: by the cached discretization of h; a length met fewer than 64 times
   // (sub-steps after an event, each event's own remainder) by the Taylor series of flow() when it
-  // converges, a few dozen matrix-vector products instead of an exponential.
+  // converges, a few dozen matrix-vector products instead of an exponential. On the 11-state Simpson
+  // upshift an exponential (with its rounding estimate) costs about 1.3 million instructions, a
+  // Taylor step about 22 thousand (callgrind).
   Eigen::VectorXd step(const hybrid_detail::ModeMatrices& m, double h, const Eigen::VectorXd& v0,
                        const Eigen::VectorXd& v1) {
     if (h * m.balanced_norm <= 2 && near_step(discretizations_, mask_, h) == discretizations_.end()) {
@@ -288,7 +306,7 @@ class HybridEngine {
         if (taylor_uses_.size() > 256) taylor_uses_.clear();  // bounded, as the discretizations
         it = taylor_uses_.emplace(std::make_pair(mask_, h), 0).first;
       }
-      if (++it->second < 8) return flow(m, h, v0, v1);
+      if (++it->second < 64) return flow(m, h, v0, v1);
     }
     return advance(discretization(mask_, h), v0, v1);
   }
@@ -300,16 +318,22 @@ class HybridEngine {
   // to a few rounding errors, at the cost of a few dozen products with the matrix instead of an
   // exponential (event location calls it a dozen times per event). Longer theta: the exponential.
   Eigen::VectorXd flow(const hybrid_detail::ModeMatrices& m, double theta, const Eigen::VectorXd& v0,
-                       const Eigen::VectorXd& v1) const {
-    if (!(theta * m.balanced_norm <= 2)) return advance(exact_matrices(m.augmented_A, m.augmented_B, theta), v0, v1);
+                       const Eigen::VectorXd& v1) {
+    if (!(theta * m.balanced_norm <= 2)) {
+      const ExactMatrices d = exact_matrices(m.augmented_A, m.augmented_B, theta, nx_);
+      note_accuracy(d, theta);
+      return advance(d, v0, v1);
+    }
     Eigen::VectorXd z = Eigen::VectorXd::Zero(m.augmented_A.rows());
     z.head(nx_) = x_.cwiseQuotient(m.balance.head(nx_));
     Eigen::VectorXd term = z, w = v0, dw = (v1 - v0) / theta, next;
     for (int k = 1; k < 80; ++k) {
-      next.noalias() = m.balanced_A * term;
-      next.noalias() += m.balanced_B * w;
+      next.setZero(z.size());
+      detail::small_matvec_add(m.balanced_A, z.size(), term.data(), next.data());
+      // The inputs' series: v0, theta v', then nothing.
+      if (k <= 2) detail::small_matvec_add(m.balanced_B, nw_, w.data(), next.data());
       term = (theta / k) * next;
-      w = (theta / k) * dw;  // the inputs' series: v0, theta v', then nothing
+      w = (theta / k) * dw;
       dw.setZero();
       z += term;
       if (k > 2 && term.cwiseAbs().maxCoeff() <= 1e-18 * z.cwiseAbs().maxCoeff()) break;
@@ -332,41 +356,12 @@ class HybridEngine {
     }
   }
 
-  // Whether the cubic through g0, g1 with slopes r0, r1 (over a step h) dips to zero or below
-  // between its ends: then the step is split, as the function may cross zero twice within it.
-  static bool dips_between(double g0, double g1, double r0, double r1, double h) {
-    if (!(g0 > 0 && g1 > 0) || !std::isfinite(g0) || !std::isfinite(g1)) return false;
-    if (r0 >= 0 && r1 <= 0) return false;  // rises then falls: no interior minimum
-    // Hermite form on s in [0, 1]: q(s) = h00 g0 + h10 h r0 + h01 g1 + h11 h r1.
-    const double d0 = h * r0, d1 = h * r1;
-    // q'(s) = a s^2 + b s + c
-    const double a = 6 * g0 + 3 * d0 - 6 * g1 + 3 * d1, b = -6 * g0 - 4 * d0 + 6 * g1 - 2 * d1, c = d0;
-    auto q = [&](double s) {
-      const double s2 = s * s, s3 = s2 * s;
-      return (2 * s3 - 3 * s2 + 1) * g0 + (s3 - 2 * s2 + s) * d0 + (-2 * s3 + 3 * s2) * g1 + (s3 - s2) * d1;
-    };
-    double roots[2];
-    int n = 0;
-    if (std::abs(a) < 1e-300) {
-      if (b != 0) roots[n++] = -c / b;
-    } else {
-      const double disc = b * b - 4 * a * c;
-      if (disc >= 0) {
-        const double sq = std::sqrt(disc);
-        roots[n++] = (-b - sq) / (2 * a);
-        roots[n++] = (-b + sq) / (2 * a);
-      }
-    }
-    for (int i = 0; i < n; ++i)
-      if (roots[i] > 0 && roots[i] < 1 && q(roots[i]) <= 0) return true;
-    return false;
-  }
-
   // The elements with an event function over [t, t_end] (no breakpoint inside): those whose command
   // is not zero throughout. The others are open from t on.
   template <class OnEvent>
-  std::vector<char> watch(double t, double t_end, OnEvent& on_event) {
-    std::vector<char> watched(static_cast<std::size_t>(ne_), 0);
+  const std::vector<char>& watch(double t, double t_end, OnEvent& on_event) {
+    std::vector<char>& watched = watched_;
+    watched.assign(static_cast<std::size_t>(ne_), 0);
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
       const bool open = command(k, t) == 0 && command(k, std::nextafter(t_end, t)) == 0;
@@ -410,104 +405,49 @@ class HybridEngine {
     const Eigen::VectorXd r0 = event_rates(m, x0, v0, dv, p0, dp, watched);
     const Eigen::VectorXd r1 = event_rates(m, x1, v1, dv, p1, dp, watched);
     for (int k = 0; k < ne_; ++k)
-      if (dips_between(g0(k), g1(k), r0(k), r1(k), h)) return true;
+      if (cubic_dips(g0(k), g1(k), r0(k), r1(k), h)) return true;
     return false;
   }
 
-  // Whether no event function can reach zero within the step [t, t + h] from x0 (v0) to x1 (v1):
-  // each function is split, through the mode's modal form, into the modes too fast for a cubic
-  // over h (|lambda| h > pi/4) and the rest. The fast part is sum_j q_j r_j e^(lambda_j s), r_j the
-  // mode's amplitude about the particular solution of the inputs (linear over the step), so it
-  // never exceeds Omega = sum_j |q_j r_j| (|e^(lambda s)| <= 1 in a stable mode). The slow rest is
-  // followed by the cubic through its values and rates at the ends; the step is clear when that
-  // cubic, less Omega, stays positive, for every watched function (a stuck element's |T| as both
-  // signs of T). False when the mode has no trustworthy modal form.
+  // Whether no event function can reach zero within the step [t, t + h] from x0 (v0) to x1 (v1): the
+  // modal bound of event_proof.hpp, for every watched function (a stuck element's |T| as both signs of
+  // T). False when the mode has no trustworthy modal form.
   bool clear_of_events(const hybrid_detail::ModeMatrices& m, double t, double h, bool before,
                        const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, const Eigen::VectorXd& x1,
-                       const Eigen::VectorXd& v1, const std::vector<char>& watched) const {
-    using C = std::complex<double>;
-    const ModalForm& f = m.modal;
-    if (!f.ok) return false;
-    const Eigen::VectorXd dv = (v1 - v0) / h;
-    const double t1 = t + h, fast = std::numbers::pi / 4 / h;
-    // Per fast mode: r_j, e^(lambda_j h), and the bound's factor (1 unless the mode grows).
-    // (Products, not dot(): Eigen's complex dot conjugates its first factor.)
-    const Eigen::VectorXcd xi = f.W * x0.cast<C>(), beta0 = f.WB * v0.cast<C>(), beta1 = f.WB * dv.cast<C>();
-    // Plain references, not a structured binding: lambdas capture those only from clang 16 on.
-    ModalScratch& sc = modal_scratch_;
-    auto& F = sc.F;
-    auto& r = sc.r;
-    auto& e = sc.e;
-    auto& lam_e = sc.lam_e;
-    auto& grow = sc.grow;
-    auto& for_mode = sc.for_mode;
-    auto& for_h = sc.for_h;
-    if (for_mode != &m || for_h != h) {  // most steps are a whole sample period in one mode
-      F.clear();
-      e.resize(f.lambda.size());
-      lam_e.resize(f.lambda.size());
-      grow.resize(f.lambda.size());
-      for (Eigen::Index j = 0; j < f.lambda.size(); ++j) {
-        if (!(m.lambda_abs(j) > fast)) continue;
-        const auto i = static_cast<Eigen::Index>(F.size());
-        F.push_back(j);
-        e(i) = std::exp(f.lambda(j) * h);
-        lam_e(i) = f.lambda(j) * e(i);
-        grow(i) = std::max(1.0, std::exp(f.lambda(j).real() * h));
-      }
-      for_mode = &m;
-      for_h = h;
-    }
-    const auto nf = static_cast<Eigen::Index>(F.size());
-    r.resize(nf);
-    for (Eigen::Index i = 0; i < nf; ++i) {
-      const Eigen::Index j = F[static_cast<std::size_t>(i)];
-      const C inv = m.lambda_inverse(j);
-      // p' = l p + b0 + b1 s with p = a + b s: b = -b1 / l, a = (b - b0) / l.
-      const C b = -beta1(j) * inv, a = (b - beta0(j)) * inv;
-      r(i) = xi(j) - a;
-    }
-    const Eigen::VectorXd dx0 = m.A * x0 + m.B * v0, dx1 = m.A * x1 + m.B * v1;
-    // A function whose x-coefficients are `sign` times the row q of (S or Kx) V, with values g0, g1
-    // and rates d0, d1 at the ends: clear when its slow part less Omega stays positive.
-    auto clear = [&](const auto& q, double sign, double g0, double g1, double d0, double d1) {
-      C o0 = 0, o1 = 0, p0 = 0, p1 = 0;
-      double omega = 0;
-      for (Eigen::Index i = 0; i < nf; ++i) {
-        const Eigen::Index j = F[static_cast<std::size_t>(i)];
-        const C qr = sign * q(j) * r(i);
-        o0 += qr;
-        o1 += qr * e(i);
-        p0 += qr * f.lambda(j);
-        p1 += qr * lam_e(i);
-        omega += std::sqrt(std::norm(qr)) * grow(i);
-      }
-      const double s0 = g0 - o0.real() - omega, s1 = g1 - o1.real() - omega;
-      return s0 > 0 && s1 > 0 && !dips_between(s0, s1, d0 - p0.real(), d1 - p1.real(), h);
-    };
-    const double at1 = before ? std::nextafter(t1, t) : t1;
+                       const Eigen::VectorXd& v1, const std::vector<char>& watched) {
+    if (!m.modal.ok) return false;
+    const StepProof& p = step_proof_of(m, h);
+    slow_motion(p, x0, x1, v0, v1, slow_);
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
-      if (!watched[K] || state_[K] == ElementState::stuck) continue;
-      const double d = dir_[K];
-      const auto c = sys_.S.row(k);
-      if (!clear(m.SV.row(k), d, d * c.dot(x0), d * c.dot(x1), d * c.dot(dx0), d * c.dot(dx1))) return false;
+      if (watched[K] && state_[K] != ElementState::stuck && !stays_positive(p, slow_, k, dir_[K], 0, 0, h)) return false;
     }
+    const double t1 = t + h, at1 = before ? std::nextafter(t1, t) : t1;
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
       const int k = m.stuck[j];
       const auto& el = sys_.elements[static_cast<std::size_t>(k)];
-      const auto J = static_cast<Eigen::Index>(j);
-      const double T0 = m.Kx.row(J).dot(x0) + m.Kv.row(J).dot(v0), T1 = m.Kx.row(J).dot(x1) + m.Kv.row(J).dot(v1);
-      const double dT0 = m.Kx.row(J).dot(dx0) + m.Kv.row(J).dot(dv), dT1 = m.Kx.row(J).dot(dx1) + m.Kv.row(J).dot(dv);
       const double L0 = el.static_ratio * el.capacity * command(k, t), L1 = el.static_ratio * el.capacity * command(k, at1);
-      const double dL = (L1 - L0) / h;
-      const auto q = m.KxV.row(J);
       // mu c p - T and mu c p + T: the margin for each sign of T; a one-way element also -T.
-      if (!clear(q, -1, L0 - T0, L1 - T1, dL - dT0, dL - dT1) || !clear(q, 1, L0 + T0, L1 + T1, dL + dT0, dL + dT1))
-        return false;
-      if (el.one_way && !clear(q, -1, -T0, -T1, -dT0, -dT1)) return false;
+      if (!stays_positive(p, slow_, k, -1, L0, L1, h) || !stays_positive(p, slow_, k, 1, L0, L1, h)) return false;
+      if (el.one_way && !stays_positive(p, slow_, k, -1, 0, 0, h)) return false;
     }
     return true;
+  }
+
+  // The mode's proof maps for steps of h (or of a length within 1e-9 h of it, as the discretizations).
+  const StepProof& step_proof_of(const hybrid_detail::ModeMatrices& m, double h) {
+    auto it = near_step(proofs_, mask_, h);
+    if (it == proofs_.end()) {
+      if (proofs_.size() > 256) proofs_.clear();  // bounded, as the discretizations
+      // One function per element: its slip S_k x, or while it is stuck its torque Kx_j x + Kv_j w.
+      Eigen::MatrixXd C = sys_.S, D = Eigen::MatrixXd::Zero(ne_, nw_);
+      for (std::size_t j = 0; j < m.stuck.size(); ++j) {
+        C.row(m.stuck[j]) = m.Kx.row(static_cast<Eigen::Index>(j));
+        D.row(m.stuck[j]) = m.Kv.row(static_cast<Eigen::Index>(j));
+      }
+      it = proofs_.emplace(std::make_pair(mask_, h), step_proof(m.modal, m.A, m.B, C, D, h)).first;
+    }
+    return it->second;
   }
 
   // Steps from t to t_end (t_end a sample time or a breakpoint), stopping at the first event within
@@ -515,7 +455,7 @@ class HybridEngine {
   template <class OnEvent>
   bool step_to(double& t, double t_end, OnEvent& on_event, std::string& error) {
     const bool lands_on_break = std::binary_search(breaks_.begin(), breaks_.end(), t_end);
-    const std::vector<char> watched = watch(t, t_end, on_event);
+    const std::vector<char>& watched = watch(t, t_end, on_event);
     double h = t_end - t;
     // While an element is watched, a step longer than the mode's event_step is taken only when
     // clear_of_events proves that no event function reaches zero within it; otherwise steps of at
@@ -525,13 +465,15 @@ class HybridEngine {
     if (h > check && std::find(watched.begin(), watched.end(), 1) != watched.end()) {
       if (t_end != unproven_until_) {
         const auto& m = mode_of(mask_);
-        const Eigen::VectorXd v0 = known_inputs(t, false), v1 = known_inputs(t_end, lands_on_break);
-        const Eigen::VectorXd z = advance(discretization(mask_, h), v0, v1);
+        Eigen::VectorXd &v0 = step_v0_, &v1 = step_v1_, &z = step_z_, &x1 = step_x1_;
+        known_inputs(t, false, v0);
+        known_inputs(t_end, lands_on_break, v1);
+        advance(discretization(mask_, h), v0, v1, z);
         ++steps_;
-        const Eigen::VectorXd x1 = z.head(nx_);
+        x1 = z.head(nx_);
         if (clear_of_events(m, t, h, lands_on_break, x_, v0, x1, v1, watched)) {
           energy_step(z, t, h, lands_on_break);
-          x_ = x1;
+          x_.swap(x1);
           t = t_end;
           return lands_on_break ? resolve(t, -1, on_event, error) : true;
         }
@@ -930,15 +872,12 @@ class HybridEngine {
   ModeJacobian jacobian_;
   Eigen::VectorXd dense_x_, dense_v_;  // scratch of add_dissipation and the samples
   double unproven_until_ = -1;         // the end of the sample period whose long step was not clear
-  // clear_of_events' scratch: the fast modes, their amplitudes, e^(lambda h), lambda e^(lambda h), growth.
-  struct ModalScratch {
-    std::vector<Eigen::Index> F;
-    Eigen::VectorXcd r, e, lam_e;
-    Eigen::VectorXd grow;
-    const void* for_mode = nullptr;  // F, e, lam_e and grow are those of this mode and step
-    double for_h = 0;
-  };
-  mutable ModalScratch modal_scratch_;
+  std::map<std::pair<std::uint32_t, double>, StepProof> proofs_;  // clear_of_events' maps per mode and step
+  SlowMotion slow_;
+  std::optional<std::pair<double, double>> inaccurate_;  // the step and error of an untrusted exponential
+  // Scratch of the steps and samples, kept from step to step to stay off the heap.
+  std::vector<char> watched_;
+  Eigen::VectorXd step_v0_, step_v1_, step_z_, step_x1_, advance_dv_, sample_w_, sample_T_, sample_slip_;
   std::map<std::pair<std::uint32_t, double>, int> taylor_uses_;  // step lengths taken by Taylor series
 };
 

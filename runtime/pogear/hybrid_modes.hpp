@@ -54,10 +54,7 @@ struct ModeMatrices {
   Eigen::MatrixXd balanced_A, balanced_B;
   double balanced_norm = 0;
   double event_step = std::numeric_limits<double>::infinity();  // event_check_step(A), set by the engine
-  ModalForm modal;  // of A and B, and with it the rest, set by the engine (HybridEngine::mode_of)
-  Eigen::MatrixXcd SV, KxV;                   // S V and Kx V
-  Eigen::VectorXd lambda_abs;                 // |lambda_j|
-  Eigen::VectorXcd lambda_inverse;            // 1 / lambda_j
+  ModalForm modal;  // of A and B, set by the engine (HybridEngine::mode_of)
   bool singular = false;
 };
 

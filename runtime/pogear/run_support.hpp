@@ -30,12 +30,13 @@ POGEAR_RT_ABI_BEGIN
 POGEAR_RT_API int read_command_line(int argc, char** argv, SceneRun& run, std::span<const Solver> compiled);
 
 // The exact method's matrices for steps of h (ExactDiscretization's), and the estimate of their
-// relative rounding error.
+// relative rounding error over the first measured_rows states (all by default).
 struct ExactMatrices {
   Eigen::MatrixXd Phi, Gamma0, Gamma1;
   double rounding = 0;
 };
-POGEAR_RT_API ExactMatrices exact_matrices(const Eigen::MatrixXd& M, const Eigen::MatrixXd& N, double h);
+POGEAR_RT_API ExactMatrices exact_matrices(const Eigen::MatrixXd& M, const Eigen::MatrixXd& N, double h,
+                                           Eigen::Index measured_rows = -1);
 
 // The constant terms of the energy bound of a run (EnergyBound, run_system.hpp): sqrt(E(x0)) with
 // E(x) = x^T L x / 2, and W / sqrt(2) with W = sum_i |N e_i|_L max over [0, horizon] of |u_i|.

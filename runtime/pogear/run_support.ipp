@@ -73,8 +73,9 @@ POGEAR_RT_API bool set_parameters(const std::vector<std::pair<std::string, std::
 }
 
 
-POGEAR_RT_API ExactMatrices exact_matrices(const Eigen::MatrixXd& M, const Eigen::MatrixXd& N, double h) {
-  ExactDiscretization<Eigen::Dynamic, Eigen::Dynamic> d(M, N, h);
+POGEAR_RT_API ExactMatrices exact_matrices(const Eigen::MatrixXd& M, const Eigen::MatrixXd& N, double h,
+                                           Eigen::Index measured_rows) {
+  ExactDiscretization<Eigen::Dynamic, Eigen::Dynamic> d(M, N, h, measured_rows);
   return {std::move(d.Phi), std::move(d.Gamma0), std::move(d.Gamma1), d.rounding};
 }
 

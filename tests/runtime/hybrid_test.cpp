@@ -286,5 +286,36 @@ TEST_P(HybridMethods, OneWayBrakeFreewheelsForwardAndHoldsBackward) {
   }
 }
 
+// A mode whose fastest motion turns too far per sample for double precision: the exact method's
+// exponential estimates its own rounding (exact.hpp) and the run stops with the simulators' message
+// instead of printing states it cannot trust. Two inertias joined by a spring of 1e12 N m/rad (about
+// 1.4e6 rad/s), sampled every 100 s: 1.4e8 rad per step, an estimated error of about 1e-8, above the
+// 1e-10 limit. The clutch to the housing stays open, so that whole sample periods are stepped.
+TEST(Hybrid, UntrustedExponentialStopsTheRun) {
+  HybridSystem sys;
+  const double J1 = 1, J2 = 1, k = 1e12;
+  sys.M = Eigen::MatrixXd::Zero(3, 3);  // x = [omega1, omega2, twist]
+  sys.M(0, 2) = -k / J1;
+  sys.M(1, 2) = k / J2;
+  sys.M(2, 0) = 1;
+  sys.M(2, 1) = -1;
+  sys.N = Eigen::MatrixXd::Zero(3, 2);  // w = [tau, T_C], the clutch between body 2 and the housing
+  sys.N(0, 0) = 1 / J1;
+  sys.N(1, 1) = -1 / J2;
+  sys.S = Eigen::MatrixXd(1, 3);
+  sys.S << 0, 1, 0;
+  sys.elements.push_back({"C", 1.0, 1.0, Constant{0.0}});
+  sys.inputs = {Constant{10.0}};
+  Eigen::VectorXd x0(3);
+  x0 << 0, 100, 0;
+  HybridEngine engine(sys, 1000.0);
+  long samples = 0;
+  const RunStatus st = engine.run(
+      x0, 100.0, [&](double, const HybridSample&) { return ++samples, true; }, [](const HybridEvent&) {});
+  EXPECT_FALSE(st.ok);
+  EXPECT_NE(st.message.find("exact stepping lost accuracy: with steps of 100 s"), std::string::npos) << st.message;
+  EXPECT_EQ(samples, 1);  // t = 0 only: no state of an untrusted step was observed
+}
+
 }  // namespace
 }  // namespace pogear::rt
