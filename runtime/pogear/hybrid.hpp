@@ -136,8 +136,18 @@ class HybridEngine {
     if (it == modes_.end()) {
       it = modes_.emplace(mask, hybrid_detail::mode_matrices(sys_, mask)).first;
       if (!it->second.singular) {
-        it->second.event_step = event_step_limit(it->second.A);
-        it->second.modal = modal_form(it->second.A, it->second.B);
+        auto& md = it->second;
+        md.modal = modal_form(md.A, md.B);
+        // event_check_step from the modal form's eigenvalues (the same solver on the same matrix)
+        // rather than a second eigenvalue solve.
+        if (md.A.rows() > 0 && md.modal.lambda.size() == md.A.rows()) {
+          const double omega = md.modal.lambda.imag().cwiseAbs().maxCoeff();
+          md.event_step = !(omega >= 0) ? 0.0
+                          : omega > 0   ? std::numbers::pi / (4 * omega)
+                                        : std::numeric_limits<double>::infinity();
+        } else {
+          md.event_step = event_step_limit(md.A);
+        }
       }
     }
     return it->second;
