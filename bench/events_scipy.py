@@ -9,7 +9,6 @@ long-double reference that bench_events wrote; its columns are those of events_c
 
 Usage: events_scipy.py --problem DIR --out DIR [--quick] [--check]
 """
-import argparse
 import csv
 import json
 import math
@@ -21,7 +20,7 @@ import numpy as np
 import scipy
 from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau, solve_ivp
 
-from wp_scipy import Checker, fmt, max_rel_error, measure
+from wp_scipy import Checker, fmt, max_rel_error, measure, parse_arguments
 
 METHODS = ["RK45", "DOP853", "Radau", "BDF", "LSODA"]
 SOLVERS = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
@@ -366,12 +365,7 @@ def event_error(events, pb):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--problem", required=True)
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--check", action="store_true")
-    args = ap.parse_args()
+    args = parse_arguments(__doc__, ["problem", "out"])
     # quick: the first run is the timing, enough to exercise the path; the numbers are checked, not the
     # speed. A run is seconds of Python stepping (the ringing meshes bound the explicit steps to ~0.1 ms):
     # max_run is 10 s in both modes, so that --quick never skips the checked rows.

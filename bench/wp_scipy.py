@@ -111,14 +111,18 @@ def fmt(v):
     return "nan" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.6g}"
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--pogear", required=True)
-    ap.add_argument("--problems", required=True)
-    ap.add_argument("--out", required=True)
+def parse_arguments(doc, required):
+    """A harness's command line: the options in `required` (each takes a value), --quick and --check."""
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    for name in required:
+        ap.add_argument(f"--{name}", required=True)
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--check", action="store_true")
-    args = ap.parse_args()
+    return ap.parse_args()
+
+
+def main():
+    args = parse_arguments(__doc__, ["pogear", "problems", "out"])
     # quick: one timed batch of one run is enough to exercise the path; the numbers are checked, not the speed
     min_batch, batches, max_run = (0.002, 1, 2.0) if args.quick else (0.05, 5, 10.0)
     tolerances = [1e-6] if args.quick else [10.0 ** -k for k in range(3, 13)]
