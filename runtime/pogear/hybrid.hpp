@@ -175,8 +175,8 @@ class HybridEngine {
     return it->second;
   }
 
-  // An exponential that cannot be trusted (exact_step's estimate): the run stops after the step that
-  // used it, before its state is observed.
+  // An exponential that cannot be trusted (its rounding estimate, exact.hpp): the run stops after
+  // the step that used it, before its state is observed.
   void note_accuracy(const ExactMatrices& d, double h) {
     if (!(d.rounding <= kExactMaxRounding) && !inaccurate_) inaccurate_ = std::make_pair(h, d.rounding);
   }
@@ -215,19 +215,11 @@ class HybridEngine {
     return v;
   }
 
-  // w with the stuck torques recovered, for the state x.
-  Eigen::VectorXd full_inputs(const hybrid_detail::ModeMatrices& m, const Eigen::VectorXd& x, Eigen::VectorXd v) const {
-    if (!m.stuck.empty()) {
-      const Eigen::VectorXd T = m.Kx * x + m.Kv * v;
-      for (std::size_t j = 0; j < m.stuck.size(); ++j) v(nu_ + m.stuck[j]) = T(static_cast<Eigen::Index>(j));
-    }
-    return v;
-  }
-
   template <class Obs>
   bool observe(double t, Obs& obs) {
     return observe(t, x_, energy_, obs);
   }
+  // The sample at t: w with the stuck torques recovered for the state x, and the slips.
   template <class Obs>
   bool observe(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& energy, Obs& obs) {
     const auto& m = mode_of(mask_);
@@ -236,7 +228,8 @@ class HybridEngine {
       sample_T_.setZero(m.Kx.rows());
       detail::small_matvec_add(m.Kx, nx_, x.data(), sample_T_.data());
       detail::small_matvec_add(m.Kv, nw_, sample_w_.data(), sample_T_.data());
-      for (std::size_t j = 0; j < m.stuck.size(); ++j) sample_w_(nu_ + m.stuck[j]) = sample_T_(static_cast<Eigen::Index>(j));
+      for (std::size_t j = 0; j < m.stuck.size(); ++j)
+        sample_w_(nu_ + m.stuck[j]) = sample_T_(static_cast<Eigen::Index>(j));
     }
     sample_slip_.setZero(ne_);
     detail::small_matvec_add(sys_.S, nx_, x.data(), sample_slip_.data());
@@ -430,13 +423,14 @@ class HybridEngine {
     slow_motion(p, x0, x1, v0, v1, slow_);
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
-      if (watched[K] && state_[K] != ElementState::stuck && !stays_positive(p, slow_, k, dir_[K], 0, 0, h)) return false;
+      if (watched[K] && state_[K] != ElementState::stuck && !stays_positive(p, slow_, k, dir_[K], 0, 0, h))
+        return false;
     }
     const double t1 = t + h, at1 = before ? std::nextafter(t1, t) : t1;
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
       const int k = m.stuck[j];
       const auto& el = sys_.elements[static_cast<std::size_t>(k)];
-      const double L0 = el.static_ratio * el.capacity * command(k, t), L1 = el.static_ratio * el.capacity * command(k, at1);
+      const double mu_c = el.static_ratio * el.capacity, L0 = mu_c * command(k, t), L1 = mu_c * command(k, at1);
       // mu c p - T and mu c p + T: the margin for each sign of T; a one-way element also -T.
       if (!stays_positive(p, slow_, k, -1, L0, L1, h) || !stays_positive(p, slow_, k, 1, L0, L1, h)) return false;
       if (el.one_way && !stays_positive(p, slow_, k, -1, 0, 0, h)) return false;
