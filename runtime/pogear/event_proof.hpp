@@ -1,6 +1,6 @@
 // The modal bound that proves a step of one linear mode free of events (docs/friction-elements.md,
-// "Whole sample steps"): per mode and step length, linear maps from the step's data to the fast part
-// of the motion and to the fast modes' amplitudes, so that a step's proof costs a few products.
+// "Events and how they are located"): per mode and step length, linear maps from the step's data
+// to the fast part of the motion and to the fast modes' amplitudes: a step's proof is two products.
 #pragma once
 
 #include <Eigen/Core>

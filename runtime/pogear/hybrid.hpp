@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <complex>
 #include <map>
 #include <numbers>
 #include <optional>
