@@ -116,6 +116,8 @@ int main(int argc, char** argv) {
   std::optional<std::string> modes_output;
   CLI::App* modes = app.add_subcommand("modes", "Natural frequencies, mode shapes and modal energies of the elastic model");
   modes->add_option("MODEL_OR_SCENE", modes_file, "Model file, or scene file (its parameters and damping)")->required();
+  std::optional<std::string> modes_engaged;
+  modes->add_option("--engaged", modes_engaged, "Brakes and clutches stuck (the others open), e.g. B1,C2");
   modes->add_option("--format", modes_format, "Report format")->check(CLI::IsMember({"text", "latex", "markdown", "json"}));
   modes->add_option("-o,--output", modes_output, "Write the report to FILE instead of standard output")
       ->check(non_empty_path());
@@ -184,7 +186,7 @@ int main(int argc, char** argv) {
                 << sources.main_name << "\n"
                 << pogear::operation_summary(model);
     } else if (*modes) {
-      const pogear::VibrationModes m = pogear::modes_of_file(modes_file);
+      const pogear::VibrationModes m = pogear::modes_of_file(modes_file, modes_engaged);
       std::string text;
       if (modes_format == "json") text = pogear::modes_json(m);
       else if (modes_format == "latex") text = pogear::modes_latex(m);

@@ -56,6 +56,15 @@ int rigid_count(const VibrationModes& m) {
   return static_cast<int>(m.modes.size() - m.characteristic.size() + 1);
 }
 
+// With brakes or clutches stuck, what the equations' R and J are; empty with all open.
+std::string engaged_line(const VibrationModes& m) {
+  if (m.engaged.empty()) return "";
+  std::string names;
+  for (const std::string& e : m.engaged) names += (names.empty() ? "" : ", ") + e;
+  return "engaged (stuck): " + names + "; bodies they tie move as one and bodies a brake holds are at rest, so R and "
+         "J are those of the groups of bodies that move";
+}
+
 std::string damping_line(const VibrationModes& m, const char* first_word = "damping") {
   std::string s = std::string(first_word) + " ratios of: " + m.damping;
   if (!m.damping_note.empty()) s += "; " + m.damping_note;
@@ -66,6 +75,7 @@ std::string damping_line(const VibrationModes& m, const char* first_word = "damp
 
 std::string modes_text(const VibrationModes& m) {
   std::string s = "vibration modes of " + m.model + " (R^T K R phi = lambda J phi, f = sqrt(lambda)/(2 pi))\n";
+  if (!m.engaged.empty()) s += engaged_line(m) + "\n";
   s += summary(m) + "\n" + damping_line(m) + "\n\n";
   s += fmt::format("{:>4}  {:>14}  {:>13}  {:>12}  {}\n", "mode", "frequency [Hz]", "damping ratio", "multiplicity",
                    "kind");
@@ -99,6 +109,7 @@ std::string modes_markdown(const VibrationModes& m) {
   std::string s = "# Vibration modes of " + m.model + "\n\n";
   s += "$R^T K R \\varphi = \\lambda J \\varphi$, $f = \\sqrt{\\lambda} / 2\\pi$. " + summary(m) + ". " +
        damping_line(m, "Damping") + ".\n\n";
+  if (!m.engaged.empty()) s += "Brakes and clutches " + engaged_line(m) + ".\n\n";
   s += "| mode | frequency [Hz] | damping ratio | multiplicity | kind |\n|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < m.modes.size(); ++i) {
     const VibrationMode& mode = m.modes[i];
@@ -138,6 +149,7 @@ std::string modes_latex(const VibrationModes& m) {
   s += "\\section*{Vibration modes of " + tex(m.model) + "}\n";
   s += "$R^T K R \\varphi = \\lambda J \\varphi$, $f = \\sqrt{\\lambda} / 2\\pi$. " + tex(summary(m)) + ". " +
        tex(damping_line(m, "Damping")) + ".\n\n";
+  if (!m.engaged.empty()) s += "Brakes and clutches " + tex(engaged_line(m)) + ".\n\n";
   s += "\\begin{tabular}{rrrrl}\nmode & frequency [Hz] & damping ratio & multiplicity & kind \\\\\n\\hline\n";
   for (std::size_t i = 0; i < m.modes.size(); ++i) {
     const VibrationMode& mode = m.modes[i];
@@ -171,6 +183,9 @@ std::string modes_json(const VibrationModes& m) {
     return s + "}";
   };
   std::string j = "{\n  \"model\": " + json_string(m.model) + ",\n";
+  j += "  \"engaged\": [";
+  for (std::size_t k = 0; k < m.engaged.size(); ++k) j += (k ? ", " : "") + json_string(m.engaged[k]);
+  j += "],\n";
   j += "  \"damping\": " + json_string(m.damping) + ",\n";
   if (!m.characteristic.empty())
     j += "  \"characteristic_polynomial\": " +

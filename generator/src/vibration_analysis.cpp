@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "engagement.hpp"
 #include "parameter_folding.hpp"
 #include "quantity.hpp"
 #include "scene.hpp"
@@ -20,12 +21,16 @@ bool is_scene_file(const std::string& path) {
   return root.contains("model");
 }
 
-VibrationModes modes_of_file(const std::string& path) {
+VibrationModes modes_of_file(const std::string& path, const std::optional<std::string>& engaged) {
   const SourceLocation where{path, 0, 0};
+  auto stuck = [&](const Topology& t) {
+    return engaged ? parse_engaged(t, *engaged, where) : std::vector<int>{};
+  };
   try {
     if (!is_scene_file(path)) {
       const Derivation d = derive_model(path, std::nullopt, where);
-      return vibration_modes(d, d.values, "mesh damping and bearing friction, as the model defines them");
+      return vibration_modes(d, d.values, "mesh damping and bearing friction, as the model defines them",
+                             stuck(d.topology));
     }
     const Scene scene = parse_scene(path);
     if (!scene.effects.mesh_compliance)
@@ -40,7 +45,7 @@ VibrationModes modes_of_file(const std::string& path) {
     const std::string which = damping.empty() ? std::string("none (the scene's effects have no damping)")
                               : damping.size() == 1 ? damping[0] + ", as the scene calls for"
                                                     : damping[0] + " and " + damping[1] + ", as the scene calls for";
-    return vibration_modes(d, parameter_folding(scene, d, false), which);
+    return vibration_modes(d, parameter_folding(scene, d, false), which, stuck(d.topology));
   } catch (const std::domain_error& e) {
     throw InputError(where, e.what());
   }

@@ -2,6 +2,7 @@
 // for, and what is wrong with the request as an InputError located in the file or command line.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,8 +15,9 @@ namespace pogear {
 bool is_scene_file(const std::string& path);
 
 // Modes of a model file (every damping it defines) or of a scene (its parameters and the damping
-// its effects call for). A rigid scene has no elastic modes and is refused.
-VibrationModes modes_of_file(const std::string& path);
+// its effects call for), with the brakes and clutches `engaged` names ("B1,C2") stuck and the
+// others open. A rigid scene has no elastic modes and is refused.
+VibrationModes modes_of_file(const std::string& path, const std::optional<std::string>& engaged = std::nullopt);
 
 struct ResponseRequest {
   std::string scene_file;

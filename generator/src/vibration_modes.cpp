@@ -12,11 +12,73 @@
 
 #include <fmt/format.h>
 
+#include "engagement.hpp"
 #include "exact_algebra.hpp"
 #include "numeric_rank.hpp"
 
 namespace pogear {
 namespace {
+
+// The gear as it vibrates with brakes and clutches stuck: body velocities omega = P q, one q per
+// group of bodies the stuck elements tie together (a clutch keeps a_i omega_i = a_j omega_j, a
+// brake a_i omega_i = 0, a the bodies' arrows), the groups a brake holds left out. The stuck
+// elements' torques lie in the range of E^T, which P^T annihilates, so the model of q is
+// J_q = P^T J P (diagonal, the groups being disjoint), R_q = R P, and L, A alike; with nothing
+// engaged P = I and this is the gear's elastic model.
+struct ModalModel {
+  GiNaC::matrix J, K, R, B_J, B_K, L, A;
+  Eigen::MatrixXd P;  // bodies x groups, entries 0 and +-1
+  int rank = 0;       // of R_q
+};
+
+ModalModel modal_model(const Derivation& d, const std::vector<int>& engaged) {
+  const Topology& t = d.topology;
+  const ElasticModel& e = d.elastic;
+  const int n = static_cast<int>(t.bodies.size()), m = static_cast<int>(t.meshes.size());
+  std::vector<int> parent(n + 1);  // union-find over the bodies and the housing (index n)
+  for (int i = 0; i <= n; ++i) parent[i] = i;
+  auto root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (int k : engaged) {
+    const FrictionElement& f = t.friction_elements.at(k);
+    const int a = root(f.first), b = root(f.is_brake() ? n : f.second);
+    parent[std::min(a, b)] = parent[std::max(a, b)];  // the housing stays a root
+  }
+  std::vector<int> group_of_root(n + 1, -1);
+  int groups = 0;
+  for (int i = 0; i < n; ++i)
+    if (root(i) != root(n) && group_of_root[root(i)] < 0) group_of_root[root(i)] = groups++;
+  if (groups == 0)
+    throw std::domain_error("the engaged brakes hold every body, so nothing can vibrate; engage fewer elements");
+  GiNaC::matrix P(n, groups);
+  ModalModel mm;
+  mm.P = Eigen::MatrixXd::Zero(n, groups);
+  for (int i = 0; i < n; ++i)
+    if (const int g = group_of_root[root(i)]; g >= 0) P(i, g) = t.bodies[i].arrow, mm.P(i, g) = t.bodies[i].arrow;
+  GiNaC::matrix T(n + m, groups + m);  // diag(P, I): the states (omega, F) from (q, F)
+  for (int i = 0; i < n; ++i)
+    for (int g = 0; g < groups; ++g) T(i, g) = P(i, g);
+  for (int i = 0; i < m; ++i) T(n + i, groups + i) = 1;
+  const GiNaC::matrix Pt = P.transpose(), Tt = T.transpose();
+  auto expanded = [](GiNaC::matrix x) {
+    for (unsigned i = 0; i < x.rows(); ++i)
+      for (unsigned j = 0; j < x.cols(); ++j) x(i, j) = x(i, j).expand();
+    return x;
+  };
+  mm.J = expanded(Pt.mul(e.J).mul(P));
+  mm.B_J = expanded(Pt.mul(e.B_J).mul(P));
+  mm.R = expanded(e.R.mul(P));
+  mm.K = e.K;
+  mm.B_K = e.B_K;
+  mm.L = expanded(Tt.mul(e.L).mul(T));
+  mm.A = expanded(Tt.mul(e.A).mul(T));
+  // The gear's rank is the rigid model's when it is the gear's own; otherwise numeric at the
+  // model's values, as every rank decision of the reduction is.
+  mm.rank = engaged.empty() && d.engaged.empty() ? d.rigid.rank : numeric_rank(evaluate_matrix(mm.R, d.values));
+  return mm;
+}
 
 struct Eigenproblem {
   Eigen::VectorXd J, K;  // diagonals
@@ -26,13 +88,7 @@ struct Eigenproblem {
   int rigid = 0;
 };
 
-// The rank of the gear's R: that of the rigid model's constraints only when nothing is engaged.
-int rank_of_R(const Derivation& d) {
-  return d.engaged.empty() ? d.rigid.rank : numeric_rank(evaluate_matrix(d.elastic.R, d.values));
-}
-
-Eigenproblem solve_eigenproblem(const Derivation& d, const GiNaC::exmap& values) {
-  const ElasticModel& e = d.elastic;
+Eigenproblem solve_eigenproblem(const ModalModel& e, const GiNaC::exmap& values) {
   if (e.R.rows() == 0) throw std::domain_error("the model has no mesh, so it has no vibration modes");
   Eigenproblem p;
   p.J = evaluate_matrix(e.J, values).diagonal();
@@ -46,7 +102,7 @@ Eigenproblem solve_eigenproblem(const Derivation& d, const GiNaC::exmap& values)
   p.lambda = es.eigenvalues();
   p.phi = s.asDiagonal() * es.eigenvectors();
   const int n = static_cast<int>(p.J.size());
-  p.rigid = n - rank_of_R(d);
+  p.rigid = n - e.rank;
   const double lambda_max = p.lambda(n - 1);
   if (p.rigid < n) {
     const double spread = lambda_max / p.lambda(p.rigid);
@@ -84,13 +140,13 @@ std::vector<std::pair<int, int>> frequency_clusters(const Eigenproblem& p) {
 // cluster must receive as many as it has modes, else damping couples the modes and no ratio is
 // given. A ratio whose Re s is within 1e6 rounding errors of M's eigenvalues (eps n |M|) is not
 // resolved to 6 digits and is left out.
-std::vector<std::optional<double>> damping_ratios(const Derivation& d, const GiNaC::exmap& values, const Eigenproblem& p,
+std::vector<std::optional<double>> damping_ratios(const ModalModel& e, const GiNaC::exmap& values, const Eigenproblem& p,
                                                   const std::vector<std::pair<int, int>>& clusters, std::string& note,
                                                   std::vector<DampedMode>& damped) {
   const int n = static_cast<int>(p.lambda.size());
   std::vector<std::optional<double>> zeta(n);
-  const Eigen::MatrixXd L = evaluate_matrix(d.elastic.L, values);
-  const Eigen::MatrixXd M = L.diagonal().cwiseInverse().asDiagonal() * evaluate_matrix(d.elastic.A, values);
+  const Eigen::MatrixXd L = evaluate_matrix(e.L, values);
+  const Eigen::MatrixXd M = L.diagonal().cwiseInverse().asDiagonal() * evaluate_matrix(e.A, values);
   const Eigen::EigenSolver<Eigen::MatrixXd> es(M);
   const Eigen::VectorXcd s = es.eigenvalues();
   const double rounding = std::numeric_limits<double>::epsilon() * static_cast<double>(M.rows()) * M.norm();
@@ -148,17 +204,16 @@ std::vector<std::optional<double>> damping_ratios(const Derivation& d, const GiN
   return zeta;
 }
 
-bool has_damping(const Derivation& d, const GiNaC::exmap& values) {
-  return !evaluate_matrix(d.elastic.B_J, values).isZero(0) || !evaluate_matrix(d.elastic.B_K, values).isZero(0);
+bool has_damping(const ModalModel& e, const GiNaC::exmap& values) {
+  return !evaluate_matrix(e.B_J, values).isZero(0) || !evaluate_matrix(e.B_K, values).isZero(0);
 }
 
 // det(R^T K R - lambda J) = lambda^(n-r) p(lambda); the coefficients of p, symbolic.
-std::vector<GiNaC::ex> characteristic_polynomial(const Derivation& d, const GiNaC::symbol& lambda) {
-  const ElasticModel& e = d.elastic;
+std::vector<GiNaC::ex> characteristic_polynomial(const ModalModel& e, const GiNaC::symbol& lambda) {
   const GiNaC::matrix Kt = e.R.transpose().mul(e.K).mul(e.R);
   const GiNaC::matrix P = Kt.sub(e.J.mul_scalar(lambda));
   const GiNaC::ex det = P.determinant().expand();
-  const int n = static_cast<int>(e.J.rows()), r = rank_of_R(d);
+  const int n = static_cast<int>(e.J.rows()), r = e.rank;
   std::vector<GiNaC::ex> c;
   for (int k = n - r; k <= n; ++k) c.push_back(det.coeff(lambda, k));
   return c;
@@ -190,7 +245,7 @@ std::string_view mode_kind_name(ModeKind kind) {
 }
 
 double lowest_natural_frequency(const Derivation& d, const GiNaC::exmap& values) {
-  const Eigenproblem p = solve_eigenproblem(d, values);
+  const Eigenproblem p = solve_eigenproblem(modal_model(d, {}), values);
   if (p.rigid >= p.lambda.size()) throw std::domain_error("the model has no elastic mode");
   return frequency_hz(p.lambda(p.rigid));
 }
@@ -203,11 +258,14 @@ void add_natural_frequency(Diagnostics& diagnostics, const Derivation& d, const 
   }
 }
 
-VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, std::string damping) {
-  const Eigenproblem p = solve_eigenproblem(d, values);
+VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, std::string damping,
+                               const std::vector<int>& engaged) {
+  const ModalModel mm = modal_model(d, engaged);
+  const Eigenproblem p = solve_eigenproblem(mm, values);
   const Topology& t = d.topology;
   VibrationModes out;
   out.model = t.name;
+  for (int k : engaged) out.engaged.push_back(t.friction_elements.at(k).name);
   for (const Body& b : t.bodies) out.bodies.push_back(b.name);
   for (const Mesh& m : t.meshes) out.meshes.push_back(m.name);
   out.damping = std::move(damping);
@@ -215,13 +273,15 @@ VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, 
 
   const std::vector<std::pair<int, int>> clusters = frequency_clusters(p);
   std::vector<std::optional<double>> zeta(n, 0.0);
-  if (has_damping(d, values)) zeta = damping_ratios(d, values, p, clusters, out.damping_note, out.damped);
+  if (has_damping(mm, values)) zeta = damping_ratios(mm, values, p, clusters, out.damping_note, out.damped);
 
+  const Eigen::VectorXd J_body = evaluate_matrix(d.elastic.J, values).diagonal();
+  const Eigen::MatrixXd R_body = evaluate_matrix(d.elastic.R, values);
   for (int i = 0; i < n; ++i) {
     VibrationMode m;
     m.frequency_hz = frequency_hz(p.lambda(i));
     m.kind = i < p.rigid ? ModeKind::rigid : ModeKind::elastic;
-    Eigen::VectorXd phi = p.phi.col(i);
+    Eigen::VectorXd phi = mm.P * p.phi.col(i);  // per body
     Eigen::Index big = 0;
     phi.cwiseAbs().maxCoeff(&big);
     phi /= phi(big);
@@ -230,16 +290,16 @@ VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, 
     for (Eigen::Index b = 0; b < phi.size(); ++b)
       if (std::abs(phi(b)) < 1e-12) phi(b) = 0;
     m.shape = phi;
-    const Eigen::VectorXd kinetic = p.J.cwiseProduct(phi.cwiseAbs2());
+    const Eigen::VectorXd kinetic = J_body.cwiseProduct(phi.cwiseAbs2());
     m.kinetic_energy = kinetic / kinetic.sum();
     if (m.kind != ModeKind::rigid) {
-      const Eigen::VectorXd strain = p.K.cwiseProduct((p.R * phi).cwiseAbs2());
+      const Eigen::VectorXd strain = p.K.cwiseProduct((R_body * phi).cwiseAbs2());
       m.strain_energy = strain / strain.sum();
       m.damping_ratio = zeta[i];
       // The shape is exact to ~eps lambda_max / gap; 1e-6 of the largest entry is far above that
       // for the symmetric planet modes (exactly 0 for the central members) and far below a motion.
       bool central_at_rest = true, planet_moves = false;
-      for (int b = 0; b < n; ++b) {
+      for (std::size_t b = 0; b < t.bodies.size(); ++b) {
         const bool moves = std::abs(phi(b)) > 1e-6;
         if (t.bodies[b].axis == AxisKind::central && moves) central_at_rest = false;
         if (t.bodies[b].axis == AxisKind::carried && moves) planet_moves = true;
@@ -251,8 +311,8 @@ VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, 
   for (const auto& [first, last] : clusters)
     for (int k = first; k < last; ++k) out.modes[k].multiplicity = last - first;
   // Closed forms for small gears: GiNaC's determinant of an n x n symbolic matrix grows fast.
-  if (rank_of_R(d) <= 3 && n <= 8) {
-    out.characteristic = characteristic_polynomial(d, out.lambda);
+  if (mm.rank <= 3 && n <= 8) {
+    out.characteristic = characteristic_polynomial(mm, out.lambda);
     const std::vector<GiNaC::ex>& a = out.characteristic;
     out.closed_form = characteristic_roots(a, d.values);
   }

@@ -146,6 +146,16 @@ TEST_F(Cli, ModesOfARigidScene) {
       R"~(scene.toml: error: the scene simulates the rigid model (no mesh_compliance in its effects), which has no elastic modes; add mesh_compliance to its effects, or give the model file)~");
 }
 
+TEST_F(Cli, ModesWithEveryBodyHeld) {
+  write_text("gear.toml", read_text(source_path("tests/vibration/pair.toml")));  // brakes Ba, Bb, one on each body
+
+  expect_pogear_error("modes gear.toml --engaged Ba,Bb", 2,
+      R"~(gear.toml: error: the engaged brakes hold every body, so nothing can vibrate; engage fewer elements)~");
+  // One brake leaves the other wheel free: the command succeeds.
+  const Command one = run(pogear() + " modes gear.toml --engaged Ba");
+  EXPECT_EQ(one.status, 0) << one.err;
+}
+
 TEST_F(Cli, ModesOfFrequenciesTooFarApart) {
   write_text("gear.toml", edited(base_model(), {{R"(K_sg = "K_ps")", R"(K_sg = "1e13*Newton/mm")"}}));
   expect_pogear_error("modes gear.toml", 2,

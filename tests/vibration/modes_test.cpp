@@ -19,29 +19,8 @@
 namespace pogear::test {
 namespace {
 
-// One mesh between a central wheel and a wheel on a fixed axis.
-const char* pair_model = R"(name = "pair"
-[[body]]
-name = "a"
-
-[[body]]
-name = "b"
-axis = { fixed = "below" }
-
-[[mesh]]
-first = "a"
-second = "b"
-
-[parameters]
-r_a = "10*cm"
-r_b = "25*cm"
-J_a = "0.02*kg*meters^2"
-J_b = "0.3*kg*meters^2"
-b_a = "0*Nm/rpm"
-b_b = "0*Nm/rpm"
-K_ab = "500*Newton/mm"
-b_ab = "2*Newton*s/cm"
-)";
+// One mesh between a central wheel and a wheel on a fixed axis (its brakes left open).
+const std::string pair_model = read_text(source_path("tests/vibration/pair.toml"));
 
 Derivation derive_text(const std::string& text, const std::string& name) {
   return derive_topology(parse_topology_text(text, name), std::nullopt, SourceLocation{name, 0, 0});
