@@ -36,7 +36,7 @@ struct Reader : TomlReader {
     return out;
   }
 
-  // A quantity with a unit of the given dimension; bare numbers are SI.
+  // A quantity with a unit of the given dimension; bare numbers are SI, except for speeds and torques.
   double quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
     std::map<std::string, Quantity> known;
     for (const auto& p : model->parameters) known[p.name] = p.value;
@@ -54,6 +54,14 @@ struct Reader : TomlReader {
                                 describe(dim))
                   : fmt::format("{} has unit {}; it needs {}", what, describe(q.dimension), describe(dim)));
     if (!std::isfinite(q.si)) fail(n, fmt::format("{} is not finite", what));
+    // A speed or a torque without a unit is ambiguous (rad/s or rpm? N m or kN m?): it needs one.
+    if (!q.has_unit && (dim == angular_velocity_dimension() || dim == torque_dimension())) {
+      const std::string value = n.is_string() ? *n.value<std::string>() : fmt::format("{}", q.si);
+      fail(n, dim == torque_dimension()
+                  ? fmt::format("{} has no unit ({}); a torque needs one, e.g. \"{}*N*m\"", what, value, value)
+                  : fmt::format("{} has no unit ({}); a speed needs one, e.g. \"{}*rpm\" or \"{}*rad/s\"", what,
+                                value, value, value));
+    }
     return q.si;
   }
 };
@@ -330,6 +338,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
 
   if (const toml::node* n = root.get("initial")) {
     if (!n->is_table()) r.fail(*n, "[initial] must be a table of omega_<body> and F_<mesh> values");
+    s.initial_where = r.loc(*n);
     for (const auto& [key, value] : *n->as_table()) {
       const std::string name(key.str());
       const auto v = find_variable(topology, name, {VariableKind::velocity, VariableKind::force});

@@ -64,7 +64,7 @@ struct Scene {
   double tolerance = 1e-8;  // adaptive methods, relative
   double step = 1e-4;       // fixed-step methods
   long max_steps = 10000000;  // adaptive methods: a stiff scene stops with an error, not a hang
-  SourceLocation solver_where, outputs_where, keep_where, tunable_where, sample_where;
+  SourceLocation solver_where, outputs_where, keep_where, tunable_where, sample_where, initial_where;
 };
 
 // Reads a scene and its model, applies the scene's parameter overrides to the model, and checks

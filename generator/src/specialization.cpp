@@ -8,6 +8,7 @@
 
 #include "engagement.hpp"
 #include "exact_algebra.hpp"
+#include "initial_state.hpp"
 #include "linear_form.hpp"
 #include "model_parameters.hpp"
 #include "operation_count.hpp"
@@ -252,9 +253,20 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
       sys.implicit = std::move(f);
     }
   }
-  for (const Variable v : sys.state_variables) {
-    const auto it = sc.initial.find(v);
-    sys.x0.push_back(it == sc.initial.end() ? 0.0 : it->second);
+  // The rigid model starts from the state the named speeds determine (initial_state.hpp); with
+  // compare_rigid the elastic model starts from that same state, unnamed bodies included.
+  std::vector<double> rigid_x0;
+  if (!elastic || sc.compare_rigid) rigid_x0 = rigid_initial_state(sc, d, parameter_folding(sc, d, false));
+  Eigen::VectorXd omega;
+  if (elastic && sc.compare_rigid)
+    omega = evaluate_matrix(d.rigid.Q1, parameter_folding(sc, d, false)) *
+            Eigen::Map<const Eigen::VectorXd>(rigid_x0.data(), static_cast<Eigen::Index>(rigid_x0.size()));
+  for (std::size_t i = 0; i < sys.state_variables.size(); ++i) {
+    const Variable v = sys.state_variables[i];
+    if (const auto it = sc.initial.find(v); it != sc.initial.end()) sys.x0.push_back(it->second);  // exactly as given
+    else if (!elastic) sys.x0.push_back(rigid_x0[i]);
+    else if (v.kind == VariableKind::velocity && omega.size()) sys.x0.push_back(omega(v.index));
+    else sys.x0.push_back(0.0);
   }
   if (!sys.implicit) linear_form(s, sys);
 

@@ -715,6 +715,8 @@ TEST_F(Signals, WrongType) { expect_signal_error("true",
 TEST_F(Signals, WrongUnit) { expect_signal_error(R"({ constant = "100*N" })",
     R"~(scene.toml:9:22: error: constant has unit kg*m/s^2; it needs kg*m^2/s^2)~"); }
 TEST_F(Signals, NotFinite) { expect_signal_error("inf", R"~(scene.toml:9:9: error: an input torque is not finite)~"); }
+TEST_F(Signals, TorqueWithoutAUnit) { expect_signal_error("{ constant = 100 }",
+    R"~(scene.toml:9:22: error: constant has no unit (100); a torque needs one, e.g. "100*N*m")~"); }
 TEST_F(Signals, UnknownKey) { expect_signal_error(R"({ constant = "100*Nm", at = "1*s" })",
     R"~(scene.toml:9:32: error: unknown key 'at' in a constant signal; the keys are constant)~"); }
 TEST_F(Signals, StepWithoutTime) { expect_signal_error(R"({ step = "100*Nm" })",
@@ -784,6 +786,13 @@ TEST_F(Initial, ForceOfARigidScene) {
   expect_scene_error({{R"("mesh_compliance", "mesh_damping", )", ""}, {"compare_rigid = true\n", ""},
                       {"omega_c = \"0*rpm\"", "F_ps = \"10*N\""}},
                      R"~(scene.toml:11:1: error: initial force 'F_ps' needs mesh_compliance: the rigid model has no force states)~");
+}
+TEST_F(Initial, SpeedWithoutAUnit) { expect_scene_error({{"omega_c = \"0*rpm\"", "omega_c = \"1000\""}},
+    R"~(scene.toml:12:11: error: omega_c has no unit (1000); a speed needs one, e.g. "1000*rpm" or "1000*rad/s")~"); }
+// Carrier and ring at rest hold the sun: the paper's gear has two degrees of freedom.
+TEST_F(Initial, SpeedsContradictTheGear) {
+  expect_scene_error({{"omega_c = \"0*rpm\"", "omega_c = \"0*rpm\"\nomega_r = \"0*rpm\"\nomega_s = \"100*rpm\""}},
+    R"~(scene.toml:11:1: error: the initial speeds omega_c, omega_s, omega_r contradict the gear's kinematics, which require -omega_c + 0.337838*omega_s + 0.662162*omega_r = 0 (with these speeds it is 3.53783 rad/s); give speeds that satisfy it, or name fewer bodies)~");
 }
 TEST_F(Initial, WrongUnit) { expect_scene_error({{"omega_c = \"0*rpm\"", "omega_c = \"10*rev\""}},
     R"~(scene.toml:12:11: error: omega_c has no unit (rad, deg, rev and pi are plain numbers); it needs 1/s)~"); }
