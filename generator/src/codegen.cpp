@@ -14,6 +14,7 @@
 #include "build_config.hpp"
 #include "codegen_system.hpp"
 #include "cpp_text.hpp"
+#include "initial_state.hpp"
 #include "pogear/command_line.hpp"
 #include "printer.hpp"
 
@@ -269,6 +270,7 @@ std::string operation_summary(const SpecializedScene& model) {
     s += diagnostics_text(system_diagnostics(model, sys), "  ");
   };
   one(model.main);
+  s += initial_deflection_note(model);
   if (model.rigid) one(*model.rigid);
   if (!model.friction.empty()) {
     std::string names;

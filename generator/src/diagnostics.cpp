@@ -2,8 +2,10 @@
 // fastest one counts as not decaying (a free rotation without friction, an undamped mesh).
 #include "diagnostics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -38,6 +40,14 @@ Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const 
       continue;
     }
     slowest_decay = std::min(slowest_decay, decay);
+  }
+  for (Eigen::Index i = 0; i < lambda.size(); ++i)
+    if (std::abs(lambda(i).imag()) > floor)
+      d.fastest_oscillation_hz = std::max(d.fastest_oscillation_hz, std::abs(lambda(i).imag()) / (2 * std::numbers::pi));
+  d.sample = sample;
+  if (sample > 0 && d.fastest_oscillation_hz > 0) {
+    const double cycles = d.fastest_oscillation_hz * sample;  // per sample
+    d.sampled_peak_shortfall = cycles >= 0.5 ? 1.0 : 1 - std::cos(std::numbers::pi * cycles);
   }
   if (std::isfinite(slowest_decay) && slowest_decay > 0) {
     d.slowest_time_constant = 1 / slowest_decay;
@@ -81,6 +91,16 @@ std::string diagnostics_text(const Diagnostics& d, const std::string& in) {
                    d.cond_RRt ? number(*d.cond_RRt) : "singular (redundant meshes)");
   s += fmt::format("{}largest stable rk4 step {} s; suggested solver: {} ({})\n", in, number(d.rk4_max_step),
                    d.suggested_solver, d.reason);
+  // Above 1 %: the output would show the scene's fastest vibration visibly lower than it is.
+  if (d.sampled_peak_shortfall > 0.01) {
+    const double f = d.fastest_oscillation_hz;
+    s += fmt::format("{}warning: sample period {} s is {} of a period of the fastest oscillation ({} Hz): ", in,
+                     number(d.sample), number(d.sample * f), number(f));
+    s += d.sampled_peak_shortfall >= 1
+             ? "the samples do not resolve it (fewer than 2 per period), and its peaks can be missed entirely"
+             : fmt::format("its sampled peaks can read up to {:.3g} % low", 100 * d.sampled_peak_shortfall);
+    s += fmt::format("; for 1 % take sample <= {} s\n", number(std::acos(0.99) / (std::numbers::pi * f)));
+  }
   if (d.lowest_natural_frequency_hz)
     s += fmt::format("{}lowest natural frequency {} Hz (undamped elastic model): the rigid model holds for inputs "
                      "well below it\n", in, fmt::format("{:.6g}", *d.lowest_natural_frequency_hz));
@@ -99,6 +119,7 @@ std::string diagnostics_json(const Diagnostics& d, const std::string& in) {
   s += fmt::format("{}  \"cond_L1\": {},\n", in, num(d.cond_L1));
   s += fmt::format("{}  \"cond_RRt\": {},\n", in, d.cond_RRt ? num(*d.cond_RRt) : "null");
   s += fmt::format("{}  \"rk4_max_step\": {},\n", in, num(d.rk4_max_step));
+  s += fmt::format("{}  \"fastest_oscillation_hz\": {},\n", in, num(d.fastest_oscillation_hz));
   s += fmt::format("{}  \"suggested_solver\": \"{}\",\n", in, d.suggested_solver);
   s += fmt::format("{}  \"lowest_natural_frequency_hz\": {}\n", in,
                    d.lowest_natural_frequency_hz ? num(*d.lowest_natural_frequency_hz) : "null");

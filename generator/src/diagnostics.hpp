@@ -19,6 +19,11 @@ struct Diagnostics {
   double cond_L1 = 0;                 // 2-norm condition number of the reduced inertia
   std::optional<double> cond_RRt;     // of R R^T; none when singular (redundant meshes)
   double rk4_max_step = 0;            // largest stable rk4 step [s]
+  // The fastest oscillation of M, max |Im lambda| / 2 pi [Hz] (0: none), and with a sample period
+  // the most its sampled peaks can read low, 1 - cos(pi f T): a peak midway between two samples.
+  double fastest_oscillation_hz = 0;
+  double sampled_peak_shortfall = 0;
+  double sample = 0;
   std::string suggested_solver;
   std::string adaptive_solver;        // the adaptive method to use: "dopri5", or "implicit" when stiff
   std::string reason;

@@ -11,6 +11,7 @@
 
 #include "exact_algebra.hpp"
 #include "numeric_rank.hpp"
+#include "parameter_folding.hpp"
 
 namespace pogear {
 
@@ -81,6 +82,34 @@ std::vector<double> rigid_initial_state(const Scene& scene, const Derivation& d,
     xa(j) = 0;
   }
   return std::vector<double>(xa.data(), xa.data() + k1);
+}
+
+std::string initial_deflection_note(const SpecializedScene& model) {
+  const SpecializedSystem& sys = model.main;
+  if (sys.kind != SystemKind::elastic) return "";
+  const Derivation& d = model.derivation;
+  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  const Eigen::MatrixXd R = evaluate_matrix(d.elastic.R, values);
+  const Eigen::VectorXd J = evaluate_matrix(d.elastic.J, values).diagonal();
+  const Eigen::VectorXd K = evaluate_matrix(d.elastic.K, values).diagonal();
+  Eigen::VectorXd omega = Eigen::VectorXd::Zero(R.cols());
+  for (std::size_t i = 0; i < sys.state_variables.size(); ++i)
+    if (sys.state_variables[i].kind == VariableKind::velocity) omega(sys.state_variables[i].index) = sys.x0[i];
+  const Eigen::VectorXd rate = R * omega;
+  // R's rows are radii: rates below 1e-12 of the largest |r omega| are the rounding of consistent speeds.
+  const double scale = (R.cwiseAbs() * omega.cwiseAbs()).maxCoeff();
+  std::string s;
+  for (Eigen::Index i = 0; i < rate.size(); ++i) {
+    if (!(std::abs(rate(i)) > 1e-12 * scale)) continue;
+    // The mesh alone between its bodies: effective mass 1 / (R_i J^-1 R_i^T), and the spring force
+    // that stops a relative speed v on it is v sqrt(K m) (undamped, the other meshes left out).
+    const double mass = 1 / R.row(i).cwiseAbs2().dot(J.cwiseInverse());
+    s += fmt::format("initial speeds deflect mesh {} at {:.4g} m/s (they break the rigid kinematics): a force of the "
+                     "order of {:.3g} N, v sqrt(K m) on the mesh's effective mass; name the speeds of a rigid motion, "
+                     "or use compare_rigid = true to start from the rigid model's state\n",
+                     d.topology.meshes[static_cast<std::size_t>(i)].name, rate(i), std::abs(rate(i)) * std::sqrt(K(i) * mass));
+  }
+  return s;
 }
 
 }  // namespace pogear

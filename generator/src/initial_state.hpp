@@ -2,12 +2,14 @@
 // exactly, the freedom they leave fixed by one documented rule (docs/scene-format.md, [initial]).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <ginac/ginac.h>
 
 #include "derivation.hpp"
 #include "scene.hpp"
+#include "specialization.hpp"
 
 namespace pogear {
 
@@ -17,5 +19,10 @@ namespace pogear {
 // a number. Throws InputError at the scene's [initial] when the named speeds contradict the gear's
 // kinematics, naming the bodies and the relation among their speeds that they violate.
 std::vector<double> rigid_initial_state(const Scene& scene, const Derivation& d, const GiNaC::exmap& values);
+
+// For an elastic main system whose initial speeds break the rigid kinematics (R omega0 != 0):
+// one summary line per mesh they deflect, with its deflection rate and the force that rate meets
+// on the mesh's own effective inertia; empty when every mesh starts at rest relative to its mate.
+std::string initial_deflection_note(const SpecializedScene& model);
 
 }  // namespace pogear

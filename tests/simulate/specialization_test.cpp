@@ -5,6 +5,7 @@
 
 #include "codegen.hpp"
 #include "exact_algebra.hpp"
+#include "initial_state.hpp"
 #include "sim_support.hpp"
 
 namespace pogear::test {
@@ -153,6 +154,29 @@ TEST(InitialState, CompareRigidStartsBothModelsFromOneConsistentState) {
   // No mesh is deflecting: R omega = 0 to rounding.
   EXPECT_LT((evaluate_matrix(d.elastic.R, d.values) * elastic).cwiseAbs().maxCoeff(), 1e-13 * omega.cwiseAbs().maxCoeff());
   EXPECT_GT(omega.cwiseAbs().maxCoeff(), 100);  // the state is not at rest
+}
+
+// An elastic scene may start off the rigid kinematics (that is physical), but the summary says
+// which meshes start deflecting and how fast.
+TEST(InitialState, ElasticSpeedsThatBreakTheKinematicsAreNamedInTheSummary) {
+  const std::string elastic = with_line(scene_text("paper_one_stage"), "compare_rigid = true", "compare_rigid = false");
+  const std::string sun = with_line(elastic, "omega_c = \"0*rpm\"", "omega_s = \"100*rpm\"");
+  const std::string note = initial_deflection_note(scene_model(sun));
+  // Only the sun turns: its two meshes (ps with wheel s1, sg with wheel s2) deflect, at r omega.
+  const SpecializedScene m = scene_model(sun);
+  const auto value = [&](const char* p) { return to_double(m.derivation.values.at(parameter_symbol(m.derivation.symbols, p))); };
+  const double w = 100 * 2 * std::numbers::pi / 60;
+  for (const auto& [mesh, radius] : {std::pair<std::string, const char*>{"ps", "r_s1"}, {"sg", "r_s2"}}) {
+    const auto at = note.find("deflect mesh " + mesh + " at ");
+    ASSERT_NE(at, std::string::npos) << note;
+    const double rate = std::stod(note.substr(at + 17 + mesh.size()));
+    EXPECT_NEAR(std::abs(rate) / (value(radius) * w), 1, 1e-3) << note;  // printed to 4 digits
+  }
+  EXPECT_EQ(note.find("mesh pr "), std::string::npos) << note;
+  EXPECT_EQ(note.find("mesh rm "), std::string::npos) << note;
+  // From rest, or from the rigid model's state with compare_rigid, no mesh deflects.
+  EXPECT_EQ(initial_deflection_note(scene_model(elastic)), "");
+  EXPECT_EQ(initial_deflection_note(scene_model(with_line(sun, "compare_rigid = false", "compare_rigid = true"))), "");
 }
 
 // The load split of redundant meshes has exact weights: each coefficient of the rigid force outputs

@@ -1,6 +1,7 @@
 // The frequency response against a time simulation: a sine torque, stepped exactly (the sine as two
 // more states of one linear system) until the transient has gone, gives the amplitude and phase of
 // H at that frequency; and the command line's files and peaks.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -10,7 +11,9 @@
 
 #include "../support/commands.hpp"
 #include "../support/files.hpp"
+#include "diagnostics.hpp"
 #include "frequency_response.hpp"
+#include "reference_model.hpp"
 #include "specialization.hpp"
 #include "vibration_modes.hpp"
 
@@ -200,6 +203,47 @@ TEST(Response, AFlatStretchHasNoPeaks) {
   // Far below every mode and past the bearings' time constant, |H| is flat to rounding.
   const std::vector<TransferFunction> h = frequency_response(scene, {tau_s}, {omega_c}, FrequencyGrid{1e-6, 1e-3, 1000});
   EXPECT_TRUE(h[0].peaks.empty()) << h[0].peaks.size() << " peaks, the first at " << h[0].peaks[0].frequency_hz;
+}
+
+// The sample period against the fastest oscillation: how low a sampled peak can read is checked
+// here by brute force over the phase of a sinusoid, and the frequency by a second eigensolver.
+TEST(SampledPeaks, SamplePeriodTooLongForTheFastestOscillationIsWarned) {
+  Scene scene = parse_scene(source_path("models/scenes/paper_one_stage.toml"));
+  scene.compare_rigid = false;
+  const SpecializedScene model = specialize(scene);
+  const Diagnostics diag = system_diagnostics(model, model.main);
+  const Eigen::MatrixXd M = numeric_system(model, model.main).M;
+  const Eigen::VectorXcd lambda = Eigen::ComplexEigenSolver<Eigen::MatrixXd>(M, false).eigenvalues();
+  double f = 0;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) f = std::max(f, std::abs(lambda(i).imag()) / (2 * std::numbers::pi));
+  // Two eigensolvers on a 10x10 matrix of condition ~1e3: ~1e-13 relative.
+  EXPECT_NEAR(diag.fastest_oscillation_hz / f, 1, 1e-10);
+  EXPECT_GT(f, 100);  // the paper gear's highest mode, 166 Hz undamped
+  // One peak (a transient's overshoot, not a steady oscillation, whose many periods bring some
+  // sample ever closer to a crest): the largest sample of cos(2 pi f t + phi) over one period of
+  // the grid k T, least over the phase phi.
+  const double T = scene.sample;
+  const int per_period = static_cast<int>(std::ceil(1 / (f * T)));
+  double worst = 1;
+  for (int p = 0; p < 200000; ++p) {
+    const double phi = -std::numbers::pi + 2 * std::numbers::pi * p / 200000;
+    double best = -1;
+    for (int k = -per_period / 2 - 1; k <= per_period / 2 + 1; ++k)
+      if (std::abs(2 * std::numbers::pi * f * k * T + phi) <= std::numbers::pi)  // the samples of the crest at t = -phi
+        best = std::max(best, std::cos(2 * std::numbers::pi * f * k * T + phi));
+    worst = std::min(worst, best);
+  }
+  // The worst phase sits at a kink (the nearest sample changes there), so the phase grid of
+  // 2 pi / 200000 misses it by up to pi/200000 in phase: sin(pi f T) * 1.6e-5 ~ 8e-6 of the peak.
+  EXPECT_NEAR(diag.sampled_peak_shortfall, 1 - worst, 1e-5);
+  EXPECT_GT(diag.sampled_peak_shortfall, 0.01);
+  EXPECT_NE(diagnostics_text(diag, "").find("warning: sample period 0.001 s"), std::string::npos) << diagnostics_text(diag, "");
+  // A sample of 0.01 ms resolves it: no warning.
+  scene.sample = 1e-5;
+  const SpecializedScene fine = specialize(scene);
+  const Diagnostics ok = system_diagnostics(fine, fine.main);
+  EXPECT_LT(ok.sampled_peak_shortfall, 0.01);
+  EXPECT_EQ(diagnostics_text(ok, "").find("warning"), std::string::npos);
 }
 
 }  // namespace
