@@ -12,7 +12,11 @@ seconds=${1:-45}
 build=${POGEAR_FUZZ_BUILD_DIR:-build-fuzz}  # another directory for a second checkout's runs
 targets=(model scene quantity)
 
-CC=clang CXX=clang++ cmake -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPOGEAR_FUZZ=ON -DPOGEAR_BUILD_TESTS=OFF >/dev/null
+# A build directory already configured with POGEAR_FUZZ (CI's build-asan, which also holds the
+# sanitized test suite) is used as it is; any other is configured for the fuzzers alone.
+if ! grep -qx 'POGEAR_FUZZ:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null; then
+  CC=clang CXX=clang++ cmake -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPOGEAR_FUZZ=ON -DPOGEAR_BUILD_TESTS=OFF >/dev/null
+fi
 cmake --build "$build" -j2 --target "${targets[@]/#/fuzz_}"
 
 # Seeds from the project's own files, taken at run time so that they follow the models.
