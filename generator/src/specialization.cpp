@@ -257,8 +257,8 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
   // compare_rigid the elastic model starts from that same state, unnamed bodies included.
   std::vector<double> rigid_x0;
   if (!elastic || sc.compare_rigid) rigid_x0 = rigid_initial_state(sc, d, parameter_folding(sc, d, false));
-  Eigen::VectorXd omega;
-  if (elastic && sc.compare_rigid)
+  Eigen::VectorXd omega;  // left empty from rest: Q1 of a long chain is costly to evaluate
+  if (elastic && sc.compare_rigid && std::any_of(rigid_x0.begin(), rigid_x0.end(), [](double x) { return x != 0; }))
     omega = evaluate_matrix(d.rigid.Q1, parameter_folding(sc, d, false)) *
             Eigen::Map<const Eigen::VectorXd>(rigid_x0.data(), static_cast<Eigen::Index>(rigid_x0.size()));
   for (std::size_t i = 0; i < sys.state_variables.size(); ++i) {
