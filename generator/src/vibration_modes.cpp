@@ -31,10 +31,37 @@ struct ModalModel {
   int rank = 0;       // of R_q
 };
 
+// Where each row or column of a gear matrix goes in the grouped one: (index, sign), index -1 when
+// it is dropped (a held body).
+using IndexMap = std::vector<std::pair<int, int>>;
+
+// S_rows^T X S_cols for such maps: entry (u, v) sums s_i s_j X(i, j) over the i and j sent to u
+// and v. Sums only, no symbolic matrix products: the (n + m)-square L and A of a long chain stay cheap.
+GiNaC::matrix grouped(const GiNaC::matrix& X, const IndexMap& rows, unsigned out_rows, const IndexMap& cols,
+                      unsigned out_cols) {
+  GiNaC::matrix Y(out_rows, out_cols);
+  for (unsigned i = 0; i < X.rows(); ++i) {
+    if (rows[i].first < 0) continue;
+    for (unsigned j = 0; j < X.cols(); ++j)
+      if (cols[j].first >= 0 && !X(i, j).is_zero())
+        Y(rows[i].first, cols[j].first) += rows[i].second * cols[j].second * X(i, j);
+  }
+  for (unsigned i = 0; i < out_rows; ++i)
+    for (unsigned j = 0; j < out_cols; ++j) Y(i, j) = Y(i, j).expand();
+  return Y;
+}
+
 ModalModel modal_model(const Derivation& d, const std::vector<int>& engaged) {
   const Topology& t = d.topology;
   const ElasticModel& e = d.elastic;
   const int n = static_cast<int>(t.bodies.size()), m = static_cast<int>(t.meshes.size());
+  ModalModel mm{e.J, e.K, e.R, e.B_J, e.B_K, e.L, e.A, Eigen::MatrixXd::Identity(n, n), 0};
+  if (engaged.empty()) {
+    // The gear's rank: the rigid model's when that is the gear's own, else numeric at the model's
+    // values, as every rank decision of the reduction is.
+    mm.rank = d.engaged.empty() ? d.rigid.rank : numeric_rank(evaluate_matrix(e.R, d.values));
+    return mm;
+  }
   std::vector<int> parent(n + 1);  // union-find over the bodies and the housing (index n)
   for (int i = 0; i <= n; ++i) parent[i] = i;
   auto root = [&](int i) {
@@ -52,31 +79,23 @@ ModalModel modal_model(const Derivation& d, const std::vector<int>& engaged) {
     if (root(i) != root(n) && group_of_root[root(i)] < 0) group_of_root[root(i)] = groups++;
   if (groups == 0)
     throw std::domain_error("the engaged brakes hold every body, so nothing can vibrate; engage fewer elements");
-  GiNaC::matrix P(n, groups);
-  ModalModel mm;
+  // omega_i = a_i a_r q for the group's root r, which turns at q itself.
+  IndexMap body(n), mesh(m), state(n + m);
   mm.P = Eigen::MatrixXd::Zero(n, groups);
-  for (int i = 0; i < n; ++i)
-    if (const int g = group_of_root[root(i)]; g >= 0) P(i, g) = t.bodies[i].arrow, mm.P(i, g) = t.bodies[i].arrow;
-  GiNaC::matrix T(n + m, groups + m);  // diag(P, I): the states (omega, F) from (q, F)
-  for (int i = 0; i < n; ++i)
-    for (int g = 0; g < groups; ++g) T(i, g) = P(i, g);
-  for (int i = 0; i < m; ++i) T(n + i, groups + i) = 1;
-  const GiNaC::matrix Pt = P.transpose(), Tt = T.transpose();
-  auto expanded = [](GiNaC::matrix x) {
-    for (unsigned i = 0; i < x.rows(); ++i)
-      for (unsigned j = 0; j < x.cols(); ++j) x(i, j) = x(i, j).expand();
-    return x;
-  };
-  mm.J = expanded(Pt.mul(e.J).mul(P));
-  mm.B_J = expanded(Pt.mul(e.B_J).mul(P));
-  mm.R = expanded(e.R.mul(P));
-  mm.K = e.K;
-  mm.B_K = e.B_K;
-  mm.L = expanded(Tt.mul(e.L).mul(T));
-  mm.A = expanded(Tt.mul(e.A).mul(T));
-  // The gear's rank is the rigid model's when it is the gear's own; otherwise numeric at the
-  // model's values, as every rank decision of the reduction is.
-  mm.rank = engaged.empty() && d.engaged.empty() ? d.rigid.rank : numeric_rank(evaluate_matrix(mm.R, d.values));
+  for (int i = 0; i < n; ++i) {
+    const int g = group_of_root[root(i)];
+    body[i] = {g, g < 0 ? 0 : t.bodies[i].arrow * t.bodies[root(i)].arrow};
+    if (g >= 0) mm.P(i, g) = body[i].second;
+    state[i] = body[i];
+  }
+  for (int i = 0; i < m; ++i) mesh[i] = {i, 1}, state[n + i] = {groups + i, 1};
+  const unsigned q = static_cast<unsigned>(groups), states = static_cast<unsigned>(groups + m);
+  mm.J = grouped(e.J, body, q, body, q);
+  mm.B_J = grouped(e.B_J, body, q, body, q);
+  mm.R = grouped(e.R, mesh, static_cast<unsigned>(m), body, q);
+  mm.L = grouped(e.L, state, states, state, states);
+  mm.A = grouped(e.A, state, states, state, states);
+  mm.rank = numeric_rank(evaluate_matrix(mm.R, d.values));
   return mm;
 }
 
