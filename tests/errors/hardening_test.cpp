@@ -2,12 +2,14 @@
 // script, a planted cached binary, outputs onto devices, FIFOs and links, concurrent runs into one
 // directory, failed figures reported as written, deep dotted keys, FIFOs as inputs, interrupts that
 // left children running, output sizes, and the messages that lacked a cause or what to do.
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <thread>
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "build_config.hpp"
 #include "error_support.hpp"
@@ -93,10 +95,28 @@ TEST_F(Hardening, CacheWithoutHomeIsInTheUsersHome) {
 
 TEST_F(Hardening, OutputOntoAFifoIsWrittenInPlace) {
   ASSERT_EQ(::mkfifo("report", 0600), 0);
-  const Command c = run("cat report > received & " + pogear() + " derive gear.toml -o report; s=$?; wait; exit $s");
+  // The reading end is open before pogear starts (pogear refuses a FIFO nobody reads), and a thread
+  // drains it while pogear writes, until pogear is done and the pipe is empty.
+  const int fd = ::open("report", O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  ASSERT_GE(fd, 0);
+  std::atomic<bool> done{false};
+  std::string received;
+  std::thread reader([&] {
+    char buffer[4096];
+    for (;;) {
+      const ssize_t got = ::read(fd, buffer, sizeof buffer);
+      if (got > 0) received.append(buffer, static_cast<std::size_t>(got));
+      else if (done) break;
+      else std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  });
+  const Command c = run(pogear() + " derive gear.toml -o report");
+  done = true;
+  reader.join();
+  ::close(fd);
   EXPECT_EQ(c.status, 0) << c.err;
   EXPECT_TRUE(is_fifo("report"));
-  EXPECT_NE(read_text("received").find("R ="), std::string::npos) << read_text("received");
+  EXPECT_NE(received.find("R ="), std::string::npos) << received;
 }
 
 TEST_F(Hardening, OutputOntoADeviceIsWrittenInPlace) {
