@@ -92,7 +92,17 @@ std::optional<int> sign_of(const ex& diff, const GiNaC::exmap& values) {
   return sign;
 }
 
-ContactSides contact_sides(const Topology& t, int mi, Heights& h, const SymbolTable& s, const GiNaC::exmap& values) {
+bool pinions_of_one_carrier(const Topology& t, int bi, int bj) {
+  const Body& a = t.bodies[bi];
+  const Body& b = t.bodies[bj];
+  return a.axis == AxisKind::carried && b.axis == AxisKind::carried && a.carrier == b.carrier;
+}
+
+// Which side of each axis a mesh's contact lies on. `solved`: the relations of the meshes before it,
+// asked only when the given values cannot tell; with `may_wait`, an undecided mesh is left for later
+// (nullopt) instead of being an error.
+std::optional<ContactSides> contact_sides(const Topology& t, int mi, Heights& h, const SymbolTable& s,
+                                          const GiNaC::exmap& values, const GiNaC::exmap& solved, bool may_wait) {
   const Mesh& m = t.meshes[mi];
   const int bi = m.first.body;
   const int bj = m.second.body;
@@ -112,9 +122,14 @@ ContactSides contact_sides(const Topology& t, int mi, Heights& h, const SymbolTa
                                           "central or carried wheel first", describe_mesh(t, mi)));
   else
     j_above = sign_of(h.symbolic[bj] - h.symbolic[bi], values);
+  if (!j_above && !fi && !fj) j_above = sign_of((h.symbolic[bj] - h.symbolic[bi]).subs(solved), values);
+  if (!j_above && may_wait) return std::nullopt;
   if (!j_above)
     throw InputError(m.where, fmt::format("{}: cannot tell which axis is drawn higher; give the numeric values "
                                           "of the axis distances", describe_mesh(t, mi)));
+  // Two pinions at one distance from the central axis are at an angle to each other: by
+  // convention the second is drawn higher, which fixes only the sign of F.
+  if (*j_above == 0 && pinions_of_one_carrier(t, bi, bj)) j_above = +1;
   if (*j_above == 0)
     throw InputError(m.where, fmt::format("{}: {} and {} turn about the same axis, so they cannot mesh; put one "
                                           "on a carrier or a fixed axis", describe_mesh(t, mi),
@@ -149,6 +164,24 @@ void add_point_velocity(const Topology& t, const SymbolTable& s, int k, const ex
   }
 }
 
+// A pinion pair's row in its carrier's frame, where both axes are fixed: each wheel's contact point
+// moves at side * r * (a omega - a_c omega_c) relative to the carrier, whatever the angle between
+// the axes. For pinions drawn on one line with the central axis it equals the side-view row.
+std::vector<ex> carrier_frame_row(const Topology& t, const SymbolTable& s, int mi, const ContactSides& c) {
+  const Mesh& m = t.meshes[mi];
+  const int carrier = find_body(t, t.bodies[m.first.body].carrier);
+  std::vector<ex> row(t.bodies.size(), ex(0));
+  auto add = [&](WheelRef w, int side, int sign) {
+    const ex r = parameter_symbol(s, wheel(t, w).radius_parameter);
+    row[w.body] += sign * side * r * t.bodies[w.body].arrow;
+    row[carrier] -= sign * side * r * t.bodies[carrier].arrow;
+  };
+  add(m.first, c.first, +1);
+  add(m.second, c.second, -1);
+  for (ex& e : row) e = e.expand();
+  return row;
+}
+
 // Priority when solving the contact equations: what a designer reads as derived comes first.
 int unknown_rank(const Topology& t, const std::string& name, int& order) {
   for (int k = static_cast<int>(t.bodies.size()) - 1; k >= 0; --k) {
@@ -160,6 +193,43 @@ int unknown_rank(const Topology& t, const std::string& name, int& order) {
   }
   order = -1;
   return -1;
+}
+
+// The angle between two pinions' axes from the triangle of their axis distances and their centre
+// distance; a triangle that cannot close is a layout no carrier can hold.
+double pinion_angle(const Topology& t, const SymbolTable& s, int mi, const RadiusMatrix& rm, const GiNaC::exmap& known) {
+  const Mesh& mesh = t.meshes[mi];
+  const Wheel& wi = wheel(t, mesh.first);
+  const Wheel& wj = wheel(t, mesh.second);
+  const Body& bi = t.bodies[mesh.first.body];
+  const Body& bj = t.bodies[mesh.second.body];
+  const ex ri = parameter_symbol(s, wi.radius_parameter);
+  const ex rj = parameter_symbol(s, wj.radius_parameter);
+  const ex centre = wi.internal ? ri - rj : (wj.internal ? rj - ri : ri + rj);
+  const auto d = value_of(centre, known);
+  const auto ai = value_of(parameter_symbol(s, bi.distance_parameter), known);
+  const auto aj = value_of(parameter_symbol(s, bj.distance_parameter), known);
+  if (!d || !ai || !aj) return 0;  // a missing value is reported where it is missing
+  auto origin = [&](const std::string& parameter) {
+    for (const auto& g : rm.relations)
+      if (g.parameter == parameter) return fmt::format(" (from mesh {})", t.meshes[g.mesh].name);
+    return std::string{};
+  };
+  const double lo = std::abs(*ai - *aj);
+  const double hi = *ai + *aj;
+  // Tolerance as for the relations: values typed to a few digits close a collinear layout to ~1e-15.
+  const double tol = 1e-9 * hi;
+  if (*d < lo - tol || *d > hi + tol || !(*d > 0))
+    throw InputError(mesh.where,
+                     fmt::format("{}: pinions {} and {} of carrier {} cannot mesh: their axes are {} = {:.6g} m{} "
+                                 "and {} = {:.6g} m{} from the central axis, so the centre distance {} = {:.6g} m "
+                                 "must lie between {:.6g} m and {:.6g} m; correct the radii or the axis distances",
+                                 describe_mesh(t, mi), bi.name, bj.name, bi.carrier, bi.distance_parameter, *ai,
+                                 origin(bi.distance_parameter), bj.distance_parameter, *aj,
+                                 origin(bj.distance_parameter), print_expression(centre, Notation::ginac), *d, lo, hi));
+  if (!(*ai > 0) || !(*aj > 0)) return 0;
+  const double c = (*ai * *ai + *aj * *aj - *d * *d) / (2 * *ai * *aj);
+  return std::acos(std::clamp(c, -1.0, 1.0));
 }
 
 }  // namespace
@@ -179,27 +249,14 @@ RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
   Heights h = axis_heights(t, s, known);
 
   rm.R = GiNaC::matrix(m, n);
-  std::vector<ex> contact_equations;  // a_i + side_i r_i - (a_j + side_j r_j) == 0, per mesh
-  for (std::size_t mi = 0; mi < m; ++mi) {
-    const Mesh& mesh = t.meshes[mi];
-    const ContactSides c = contact_sides(t, static_cast<int>(mi), h, s, known);
-    rm.sides.push_back(c);
-    const ex ri = parameter_symbol(s, wheel(t, mesh.first).radius_parameter);
-    const ex rj = parameter_symbol(s, wheel(t, mesh.second).radius_parameter);
-    std::vector<ex> row(n, ex(0));
-    add_point_velocity(t, s, mesh.first.body, c.first * ri, +1, row);
-    add_point_velocity(t, s, mesh.second.body, c.second * rj, -1, row);
-    for (std::size_t k = 0; k < n; ++k) rm.R(mi, k) = row[k].expand();
-    contact_equations.push_back(
-        (h.symbolic[mesh.first.body] + c.first * ri - h.symbolic[mesh.second.body] - c.second * rj).expand());
-  }
-
+  rm.sides.resize(m);
+  std::vector<ex> contact_equations(m);  // a_i + side_i r_i - (a_j + side_j r_j) == 0, per mesh
   // Solve the contact equations one at a time for the most "derived" unknown in each.
   GiNaC::exmap solved;
   std::map<std::string, int> solved_by;
-  for (std::size_t mi = 0; mi < m; ++mi) {
+  auto solve = [&](std::size_t mi) {
     const ex e = contact_equations[mi].subs(solved).expand();
-    if (e.is_zero()) continue;
+    if (e.is_zero()) return;
     std::optional<ex> best;
     int best_rank = -2;
     int best_order = -2;
@@ -227,6 +284,56 @@ RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
       if (v.has(*best)) v = v.subs(*best == value).expand();
     solved[*best] = value;
     solved_by[GiNaC::ex_to<GiNaC::symbol>(*best).get_name()] = static_cast<int>(mi);
+  };
+  // A pinion pair is on the side view's line when its numbers satisfy its contact equation, and at
+  // an angle otherwise; the numbers may come from later meshes, so an undecided pair waits for them
+  // (and, still undecided, is taken as drawn).
+  auto angled_pair = [&](std::size_t mi) -> std::optional<bool> {
+    const Mesh& mesh = t.meshes[mi];
+    const auto residual = value_of(contact_equations[mi].subs(solved), known);
+    const auto scale = value_of((parameter_symbol(s, wheel(t, mesh.first).radius_parameter) +
+                                 parameter_symbol(s, wheel(t, mesh.second).radius_parameter)).subs(solved), known);
+    if (!residual || !scale) return std::nullopt;
+    // The same 1e-9 relative as the check of given radii against the relations below.
+    return std::abs(*residual) > 1e-9 * std::abs(*scale);
+  };
+  // Each mesh in turn: its contact sides, its side-view row and contact equation, then that
+  // equation solved, unless it is a pinion pair at an angle. A pinion pair that earlier meshes do
+  // not yet place waits until every other mesh is laid out.
+  std::vector<int> angled;
+  auto lay_out = [&](std::size_t mi, bool may_wait) {
+    const Mesh& mesh = t.meshes[mi];
+    const bool pinions = pinions_of_one_carrier(t, mesh.first.body, mesh.second.body);
+    const auto c = contact_sides(t, static_cast<int>(mi), h, s, known, solved, pinions && may_wait);
+    if (!c) return false;
+    rm.sides[mi] = *c;
+    const ex ri = parameter_symbol(s, wheel(t, mesh.first).radius_parameter);
+    const ex rj = parameter_symbol(s, wheel(t, mesh.second).radius_parameter);
+    std::vector<ex> row(n, ex(0));
+    add_point_velocity(t, s, mesh.first.body, c->first * ri, +1, row);
+    add_point_velocity(t, s, mesh.second.body, c->second * rj, -1, row);
+    for (std::size_t k = 0; k < n; ++k) rm.R(mi, k) = row[k].expand();
+    contact_equations[mi] =
+        (h.symbolic[mesh.first.body] + c->first * ri - h.symbolic[mesh.second.body] - c->second * rj).expand();
+    if (pinions) {
+      const auto a = angled_pair(mi);
+      if (!a && may_wait) return false;
+      if (a.value_or(false)) {
+        angled.push_back(static_cast<int>(mi));
+        return true;
+      }
+    }
+    solve(mi);
+    return true;
+  };
+  std::vector<std::size_t> waiting;
+  for (std::size_t mi = 0; mi < m; ++mi)
+    if (!lay_out(mi, true)) waiting.push_back(mi);
+  for (std::size_t mi : waiting) lay_out(mi, false);
+  std::sort(angled.begin(), angled.end());
+  for (int mi : angled) {
+    const auto row = carrier_frame_row(t, s, mi, rm.sides[mi]);
+    for (std::size_t k = 0; k < n; ++k) rm.R(mi, k) = row[k];
   }
 
   for (const auto& [sym, rhs] : solved) {
@@ -280,6 +387,18 @@ RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
                                    g.parameter, p->text, given, describe_mesh(t, g.mesh), g.parameter, print_expression(g.rhs, Notation::ginac),
                                    *implied));
     }
+  }
+  for (int mi : angled) rm.angled.push_back({mi, pinion_angle(t, s, mi, rm, known)});
+  // With pinions at an angle, axis distances no longer describe the layout: every row is taken in
+  // the frame where both its axes are fixed, in wheel radii alone (for a planet and a central wheel
+  // that is the side-view row with its centre distance written out, a_p = r_s + r_p).
+  if (!angled.empty()) {
+    GiNaC::exmap distances;
+    for (const auto& g : rm.relations)
+      for (const auto& b : t.bodies)
+        if (b.axis == AxisKind::carried && b.distance_parameter == g.parameter)
+          distances[parameter_symbol(s, g.parameter)] = g.rhs;
+    rm.R = GiNaC::ex_to<GiNaC::matrix>(rm.R.subs(distances).expand());
   }
   return rm;
 }

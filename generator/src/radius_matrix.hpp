@@ -1,5 +1,6 @@
 // The radius matrix R from the side-view contact velocities (docs/design.md §2, the paper's Sec. III-A),
-// and the geometry relations the layout imposes on the radii (r_c = r_p + r_s1, ...).
+// pinion pairs at an angle in their carrier's frame, and the geometry relations the layout imposes
+// on the radii (r_c = r_p + r_s1, ...).
 #pragma once
 
 #include <map>
@@ -26,6 +27,15 @@ struct ContactSides {
   int second = +1;
 };
 
+// A mesh between two pinions of one carrier whose axes are not on one line through the central
+// axis (Ravigneaux and double-pinion sets): its row is taken in the carrier's frame, where both
+// axes are fixed, and the layout only has to close the triangle of the two axis distances and the
+// centre distance.
+struct AngledMesh {
+  int mesh = -1;
+  double angle = 0;  // rad, between the two pinions' axes seen from the central axis
+};
+
 // A radius or axis distance the model leaves out, with the value its relation gives.
 struct DerivedRadius {
   std::string parameter;
@@ -37,6 +47,7 @@ struct RadiusMatrix {
   std::vector<GeometryRelation> relations;
   std::vector<ContactSides> sides;  // per mesh
   std::vector<DerivedRadius> derived;  // radii not in the file, computed from the relations
+  std::vector<AngledMesh> angled;      // in mesh order
 };
 
 // Every parameter of the model in SI: the file's (its parameter table) and the derived radii.

@@ -2,6 +2,7 @@
 #include "report.hpp"
 
 #include <algorithm>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -19,6 +20,7 @@ struct Printed {
   std::vector<std::string> velocities, forces, kept, torques;
   std::vector<std::string> geometry;  // "r_c == r_p+r_s1"
   std::vector<std::string> geometry_mesh;
+  std::vector<std::string> angled;  // "ps and pl of carrier c: axes 41.99 deg apart (mesh pspl)"
   std::vector<std::vector<std::string>> R, Q1, L1, A1, B1;
   std::vector<std::pair<std::string, std::string>> closed_form;
   std::vector<std::string> force_recovery;
@@ -44,6 +46,12 @@ Printed print_all(const Derivation& d, Notation n) {
   for (const auto& g : d.radius.relations) {
     p.geometry.push_back(print_expression(parameter_symbol(d.symbols, g.parameter) == g.rhs, n));
     p.geometry_mesh.push_back(d.topology.meshes[g.mesh].name);
+  }
+  for (const AngledMesh& a : d.radius.angled) {
+    const Mesh& m = d.topology.meshes[a.mesh];
+    const Body& first = d.topology.bodies[m.first.body];
+    p.angled.push_back(fmt::format("{} and {} of carrier {}: axes {:.2f} deg apart (mesh {})", first.name,
+                                   d.topology.bodies[m.second.body].name, first.carrier, a.angle * 180 / std::numbers::pi, m.name));
   }
   p.R = print_matrix(d.elastic.R, n);
   p.Q1 = print_matrix(d.rigid.Q1, n);
@@ -137,6 +145,12 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
       g += "  " + rel.substr(0, eq) + " &= " + rel.substr(eq + 3) + " && \\text{(mesh " + p.geometry_mesh[i] + ")} \\\\\n";
     }
     s += w.display(g + "\\end{aligned}");
+  }
+  if (!p.angled.empty()) {
+    std::string a = "Pinions meshing at an angle, each such row taken in the carrier's frame:";
+    for (const auto& line : p.angled) a += " " + line + ";";
+    a.back() = '.';
+    s += w.paragraph(a);
   }
   s += w.heading("Elastic model");
   s += w.paragraph(fmt::format("State $\\mathbf{{x}} = [\\boldsymbol{{\\omega}}; \\mathbf{{F}}]$ of size {}, "
@@ -237,6 +251,11 @@ std::string report_text(const Derivation& d) {
     if (!derived.empty()) s += "  computed from them: " + join(derived, ", ") + "\n";
     s += "\n";
   }
+  if (!p.angled.empty()) {
+    s += "pinions meshing at an angle (each such row taken in the carrier's frame):\n";
+    for (const auto& line : p.angled) s += "  " + line + "\n";
+    s += "\n";
+  }
   s += "diagnostics (elastic model, every effect, at the model's values):\n" + diagnostics_text(d.diagnostics, "  ") + "\n";
   if (!p.engaged.empty()) {
     s += "engaged: " + join(p.engaged, ", ") + ", stuck: their rows E_S (E_S omega is each one's slip) join R, and\n"
@@ -306,6 +325,11 @@ std::string report_json(const Derivation& d) {
   j += "  \"forces\": " + json_strings(p.forces) + ",\n";
   j += "  \"keep\": " + json_strings(names) + ",\n";
   j += "  \"geometry\": " + json_strings(p.geometry) + ",\n";
+  std::vector<std::string> angled;
+  for (const AngledMesh& a : d.radius.angled)
+    angled.push_back(fmt::format("{{\"mesh\": {}, \"angle_deg\": {}}}", json_string(d.topology.meshes[a.mesh].name),
+                                 json_number(a.angle * 180 / std::numbers::pi)));
+  j += "  \"angled_pinions\": [" + join(angled, ", ") + "],\n";
   j += "  \"R\": " + json_string_matrix(p.R, "  ") + ",\n";
   j += "  \"Q1\": " + json_string_matrix(p.Q1, "  ") + ",\n";
   j += "  \"L1\": " + json_string_matrix(p.L1, "  ") + ",\n";

@@ -527,6 +527,17 @@ TEST_F(Geometry, Contradiction) {
       R"~(gear.toml:41:7: error: 'r_c' = 15*cm (0.15 m) contradicts the geometry: mesh ps (p with s1 of body s) implies r_c = r_p+r_s1 = 0.148 m; correct the value, or the layout if the drawing differs)~");
 }
 
+TEST_F(Geometry, PinionTriangleCannotClose) {
+  // The Ravigneaux set with a small sun of 10 mm and a large sun of 40 mm: the pinions' axes are
+  // 15 mm and 45 mm out, too far apart for two 5 mm pinions to reach each other.
+  const std::string model = edited(read_text(source_path("models/ravigneaux.toml")),
+                                   {{R"(r_ss = "30*mm")", R"(r_ss = "10*mm")"}, {R"(r_sl = "36*mm")", R"(r_sl = "40*mm")"},
+                                    {R"(r_ps = "18*mm")", R"(r_ps = "5*mm")"}, {R"(r_pl = "20*mm")", R"(r_pl = "5*mm")"},
+                                    {R"(r_r = "76*mm")", R"(r_r = "50*mm")"}});
+  expect_documented(model_error(model),
+      R"~(gear.toml:44:9: error: mesh pspl (ps with pl): pinions ps and pl of carrier c cannot mesh: their axes are a_ps = 0.015 m (from mesh ssps) and a_pl = 0.045 m (from mesh plsl) from the central axis, so the centre distance r_pl+r_ps = 0.01 m must lie between 0.03 m and 0.06 m; correct the radii or the axis distances)~");
+}
+
 class Reduction : public ErrorTest {};
 
 TEST_F(Reduction, KeepUnknownBody) {
