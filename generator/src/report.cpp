@@ -6,9 +6,11 @@
 
 #include <fmt/format.h>
 
+#include "block_triangular_solve.hpp"
 #include "exact_algebra.hpp"
 #include "json_text.hpp"
 #include "printer.hpp"
+#include "tooth_counts.hpp"
 
 namespace pogear {
 namespace {
@@ -21,6 +23,7 @@ struct Printed {
   std::vector<std::string> geometry;  // "r_c == r_p+r_s1"
   std::vector<std::string> geometry_mesh;
   std::vector<std::string> angled;  // "ps and pl of carrier c: axes 41.99 deg apart (mesh pspl)"
+  bool teeth = false;               // Q1, L1, A1 in tooth counts
   std::vector<std::vector<std::string>> R, Q1, L1, A1, B1;
   std::vector<std::pair<std::string, std::string>> closed_form;
   std::vector<std::string> force_recovery;
@@ -34,6 +37,44 @@ std::vector<std::vector<std::string>> print_matrix(const GiNaC::matrix& m, Notat
   for (unsigned i = 0; i < m.rows(); ++i)
     for (unsigned j = 0; j < m.cols(); ++j) out[i].push_back(print_expression(m(i, j), n));
   return out;
+}
+
+// The rigid model as the reports print it: with toothed wheels, each pitch radius written m Z / 2 and
+// each other length the geometry fixes (axis distances, radii left out) through its relation, so that ratios read in tooth counts (the module
+// cancels within a set of meshing wheels); L1 and A1 are rebuilt from that Q1 as the reduction builds
+// them. Without teeth, the derivation's own matrices.
+struct RigidForms {
+  GiNaC::matrix Q1, L1, A1;
+  bool in_teeth = false;
+};
+
+RigidForms rigid_forms(const Derivation& d) {
+  const GiNaC::exmap teeth = tooth_count_substitutions(d.topology, d.symbols);
+  if (teeth.empty() || d.rigid.L1.rows() != d.rigid.Q1.cols()) return {d.rigid.Q1, d.rigid.L1, d.rigid.A1, false};
+  // Every relation whose left side is no pitch radius: axis distances, radii the geometry gives.
+  GiNaC::exmap distances;
+  for (const auto& g : d.radius.relations)
+    if (!teeth.count(parameter_symbol(d.symbols, g.parameter))) distances[parameter_symbol(d.symbols, g.parameter)] = g.rhs;
+  RigidForms f;
+  f.in_teeth = true;
+  f.Q1 = GiNaC::matrix(d.rigid.Q1.rows(), d.rigid.Q1.cols());
+  for (unsigned i = 0; i < f.Q1.rows(); ++i)
+    for (unsigned j = 0; j < f.Q1.cols(); ++j) f.Q1(i, j) = d.rigid.Q1(i, j).subs(distances).subs(teeth).normal();
+  const unsigned k = f.Q1.cols();
+  f.L1 = f.A1 = GiNaC::matrix(k, k);
+  for (unsigned i = 0; i < k; ++i)
+    for (unsigned j = i; j < k; ++j) {
+      GiNaC::exvector l, a;
+      for (unsigned b = 0; b < f.Q1.rows(); ++b) {
+        const GiNaC::ex q = normal_product(f.Q1(b, i), f.Q1(b, j));
+        if (q.is_zero()) continue;
+        l.push_back(d.elastic.J(b, b) * q);
+        a.push_back(-d.elastic.B_J(b, b) * q);
+      }
+      f.L1(i, j) = f.L1(j, i) = GiNaC::add(l);
+      f.A1(i, j) = f.A1(j, i) = GiNaC::add(a);
+    }
+  return f;
 }
 
 Printed print_all(const Derivation& d, Notation n) {
@@ -54,14 +95,16 @@ Printed print_all(const Derivation& d, Notation n) {
                                    d.topology.bodies[m.second.body].name, first.carrier, a.angle * 180 / std::numbers::pi, m.name));
   }
   p.R = print_matrix(d.elastic.R, n);
-  p.Q1 = print_matrix(d.rigid.Q1, n);
-  p.L1 = print_matrix(d.rigid.L1, n);
-  p.A1 = print_matrix(d.rigid.A1, n);
-  p.B1 = print_matrix(d.rigid.B1, n);
-  if (d.rigid.kept.size() == 2) {
+  const RigidForms rigid = rigid_forms(d);
+  p.teeth = rigid.in_teeth;
+  p.Q1 = print_matrix(rigid.Q1, n);
+  p.L1 = print_matrix(rigid.L1, n);
+  p.A1 = print_matrix(rigid.A1, n);
+  p.B1 = print_matrix(rigid.Q1.transpose(), n);
+  if (d.rigid.kept.size() == 2 && rigid.L1.rows() == 2) {
     auto at = [&](const GiNaC::matrix& m, int i, int j) { return print_expression(m(i, j), n); };
-    p.closed_form = {{"J1", at(d.rigid.L1, 0, 0)}, {"J2", at(d.rigid.L1, 1, 1)}, {"J3", at(d.rigid.L1, 0, 1)},
-                     {"b1", at(d.rigid.A1, 0, 0)}, {"b2", at(d.rigid.A1, 1, 1)}, {"b3", at(d.rigid.A1, 0, 1)}};
+    p.closed_form = {{"J1", at(rigid.L1, 0, 0)}, {"J2", at(rigid.L1, 1, 1)}, {"J3", at(rigid.L1, 0, 1)},
+                     {"b1", at(rigid.A1, 0, 0)}, {"b2", at(rigid.A1, 1, 1)}, {"b3", at(rigid.A1, 0, 1)}};
   }
   // The split of redundant meshes has exact weights, long fractions of the parameter values: they
   // print as decimals, each correctly rounded.
@@ -172,6 +215,9 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
                                "$\\boldsymbol{{\\omega}} = \\mathbf{{Q}}_1 \\mathbf{{x}}_1$, "
                                "$\\mathbf{{L}}_1 \\dot{{\\mathbf{{x}}}}_1 = \\mathbf{{A}}_1 \\mathbf{{x}}_1 + \\mathbf{{B}}_1 \\boldsymbol{{\\tau}}$.",
                                p.engaged.empty() ? "R" : "C", d.rigid.rank, join(p.kept, ", ")));
+  if (p.teeth)
+    s += w.paragraph("In tooth counts: each pitch radius is $r = m Z / 2$, each length the geometry fixes follows "
+                     "its relation, and the module $m$ cancels between meshing wheels.");
   s += w.display("\\mathbf{Q}_1 = " + latex_matrix(p.Q1));
   if (!p.closed_form.empty()) {
     s += w.display("\\mathbf{L}_1 = \\begin{bmatrix} J_{1} & J_{3} \\\\ J_{3} & J_{2} \\end{bmatrix}, \\quad "
@@ -264,6 +310,9 @@ std::string report_text(const Derivation& d) {
   }
   s += fmt::format("rank {} = {}, degrees of freedom = {}, kept x1 = ({})\n\n", p.engaged.empty() ? "R" : "C", d.rigid.rank,
                    d.elastic.velocities.size() - d.rigid.rank, join(p.kept, ", "));
+  if (p.teeth)
+    s += "in tooth counts: each pitch radius is r = m*Z/2, each length the geometry fixes follows its relation,\n"
+         "and the module m cancels between meshing wheels\n";
   s += text_matrix("Q1", p.Q1) + "\n";
   if (!p.closed_form.empty()) {
     s += "L1 = [J1 J3; J3 J2], A1 = [b1 b3; b3 b2], B1 = Q1^T\n";

@@ -18,6 +18,7 @@
 #include "pogear/input_file.hpp"
 #include "model_parameters.hpp"
 #include "toml_reader.hpp"
+#include "tooth_counts.hpp"
 
 namespace pogear {
 namespace {
@@ -59,8 +60,38 @@ const toml::array& array_of_tables(const Reader& r, const toml::table& root, std
   return *n->as_array();
 }
 
+// `teeth` and `module` of a wheel (or of a body's one wheel): a whole tooth count, and the module as
+// a length expression or a number in metres.
+void read_module(const Reader& r, const toml::node& n, std::string& text, SourceLocation& where, int& column_offset) {
+  where = r.loc(n);
+  if (n.is_string()) {
+    text = *n.value<std::string>();
+    column_offset = 1;
+  } else if ((n.is_integer() || n.is_floating_point()) && std::isfinite(*n.value<double>())) {
+    text = fmt::format("{}", *n.value<double>());
+    column_offset = 0;
+  } else {
+    r.fail(n, "a module is a length, e.g. module = \"2*mm\"");
+  }
+}
+
+void read_teeth(const Reader& r, const toml::table& t, Wheel& w) {
+  const toml::node* z = t.get("teeth");
+  const toml::node* m = t.get("module");
+  if (m && !z) r.fail(*m, "a module without teeth; give the tooth count too, e.g. teeth = 30");
+  if (!z) return;
+  if (const toml::node* radius = t.get("radius"))
+    r.fail(*radius, "a wheel is given by its radius or by its teeth, not both; leave out the radius");
+  constexpr int fewest = 3, most = 10000;
+  if (!z->is_integer() || **z->as_integer() < fewest || **z->as_integer() > most)
+    r.fail(*z, fmt::format("teeth is a whole number of teeth from {} to {}", fewest, most));
+  w.teeth = static_cast<int>(**z->as_integer());
+  w.teeth_where = r.loc(*z);
+  if (m) read_module(r, *m, w.module, w.module_where, w.module_column_offset);
+}
+
 Body read_body(const Reader& r, const toml::table& t) {
-  r.only_keys(t, {"name", "axis", "arrow", "inertia", "friction", "wheels"}, "a [[body]]");
+  r.only_keys(t, {"name", "axis", "arrow", "inertia", "friction", "wheels", "teeth", "module"}, "a [[body]]");
   Body b;
   b.where = r.loc(t);
   const toml::node* name = t.get("name");
@@ -116,7 +147,7 @@ Body read_body(const Reader& r, const toml::table& t) {
     if (!wheels->is_array()) r.fail(*wheels, "wheels must be a list: [ { name = \"s1\", radius = \"r_s1\" } ]");
     for (const toml::node& w : *wheels->as_array()) {
       const toml::table& wt = as_table(r, w, "a wheel");
-      r.only_keys(wt, {"name", "radius", "internal"}, "a wheel");
+      r.only_keys(wt, {"name", "radius", "internal", "teeth", "module"}, "a wheel");
       Wheel wheel;
       const toml::node* wn = wt.get("name");
       if (!wn) r.fail(w, "a wheel needs a name, e.g. { name = \"s1\", radius = \"r_s1\" }");
@@ -128,13 +159,23 @@ Body read_body(const Reader& r, const toml::table& t) {
         if (!in->is_boolean()) r.fail(*in, "internal must be true or false");
         wheel.internal = **in->as_boolean();
       }
+      read_teeth(r, wt, wheel);
       b.wheels.push_back(std::move(wheel));
     }
     if (b.wheels.empty()) r.fail(*wheels, "an empty wheel list; leave 'wheels' out for a body without teeth");
+    for (std::string_view key : {"teeth", "module"})
+      if (const toml::node* n = t.get(key))
+        r.fail(*n, fmt::format("the {} of a body with a wheel list goes on its wheel: wheels = [ {{ name = \"{}\", "
+                               "teeth = 30, module = \"2*mm\" }} ]", key, b.wheels[0].name));
   } else {
     // The common case: one wheel named like its body, radius r_<body>. A carrier without
     // teeth simply never appears in a mesh, so its default wheel is harmless.
-    b.wheels.push_back(Wheel{b.name, "r_" + b.name, false, b.where});
+    Wheel w;
+    w.name = b.name;
+    w.radius_parameter = "r_" + b.name;
+    w.where = b.where;
+    b.wheels.push_back(std::move(w));
+    read_teeth(r, t, b.wheels.back());
   }
   return b;
 }
@@ -388,7 +429,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
                                "with the size); model a smaller part of the gear", meshes.size(), max_meshes));
   for (const toml::node& n : meshes) {
     const toml::table& mt = *n.as_table();
-    r.only_keys(mt, {"first", "second", "name", "stiffness", "damping"}, "a [[mesh]]");
+    r.only_keys(mt, {"first", "second", "name", "stiffness", "damping", "module"}, "a [[mesh]]");
     const toml::node* f = mt.get("first");
     const toml::node* s = mt.get("second");
     if (!f || !s) r.fail(mt, "a [[mesh]] needs first = \"<wheel>\" and second = \"<wheel>\"");
@@ -403,6 +444,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
     m.damping_parameter = "b_" + m.name;
     if (const toml::node* nn = mt.get("stiffness")) m.stiffness_parameter = r.identifier(*nn, "stiffness");
     if (const toml::node* nn = mt.get("damping")) m.damping_parameter = r.identifier(*nn, "damping");
+    if (const toml::node* nn = mt.get("module")) read_module(r, *nn, m.module, m.module_where, m.module_column_offset);
     t.meshes.push_back(std::move(m));
   }
   check_unique_names(t, true);
@@ -410,6 +452,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
 
   if (const toml::node* p = root.get("parameters")) read_parameters(r, as_table(r, *p, "[parameters]"), t);
   evaluate_parameters(t.parameters);
+  add_pitch_radii(t);
   check_parameter_roles(t);
 
   if (const toml::node* k = root.get("keep")) {

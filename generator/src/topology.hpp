@@ -23,6 +23,13 @@ struct Wheel {
   std::string radius_parameter;  // the name of the parameter that holds the radius, e.g. r_s1
   bool internal = false;  // teeth on the inside (a ring)
   SourceLocation where;
+  // A wheel given by its tooth count (0: by its radius) and module (here, or on one of its meshes):
+  // its pitch radius m Z / 2 is the parameter radius_parameter (tooth_counts.hpp).
+  int teeth = 0;
+  SourceLocation teeth_where;
+  std::string module;  // an expression of length, e.g. "2*mm"; empty when the mesh gives it
+  SourceLocation module_where;
+  int module_column_offset = 1;
 };
 
 struct Body {
@@ -50,6 +57,9 @@ struct Mesh {
   std::string stiffness_parameter;  // K_<name> unless set
   std::string damping_parameter;    // b_<name> unless set
   SourceLocation where;
+  std::string module;  // the module of its toothed wheels, when they do not give it
+  SourceLocation module_where;
+  int module_column_offset = 1;
 };
 
 // A brake (holds a body against the housing) or a clutch (joins two bodies on one axis). Its

@@ -86,8 +86,12 @@ Ravigneaux ravigneaux(const std::vector<std::string>& keep) { return {derive_pap
 TEST(AngledPinions, RavigneauxIsTheGearOfItsTeeth) {
   const Ravigneaux g = ravigneaux({});
   const std::map<std::string, double> teeth{{"r_ss", Z_ss}, {"r_sl", Z_sl}, {"r_ps", Z_ps}, {"r_pl", Z_pl}, {"r_r", Z_r}};
-  for (const auto& [radius, z] : teeth)
+  for (const auto& [radius, z] : teeth) {
     EXPECT_DOUBLE_EQ(as_number(GiNaC::ex(sym(g.d, radius)).subs(g.d.values)).to_double(), z * 1e-3) << radius;
+    const int body = find_body(g.d.topology, radius.substr(2));
+    ASSERT_GE(body, 0) << radius;
+    EXPECT_EQ(g.d.topology.bodies[body].wheels[0].teeth, z) << radius;
+  }
 }
 
 // Willis in the carrier's frame, one equation per mesh: Z_i (w_i - w_c) = -+ Z_j (w_j - w_c).

@@ -99,7 +99,7 @@ TEST_F(ModelStructure, TooManyBodies) {
 
 TEST_F(ModelStructure, BodyUnknownKey) {
   expect_model_error({{R"(axis = { fixed = "below" })", R"(axsi = { fixed = "below" })"}},
-      R"~(gear.toml:22:1: error: unknown key 'axsi' in a [[body]]; the keys are name, axis, arrow, inertia, friction, wheels)~");
+      R"~(gear.toml:22:1: error: unknown key 'axsi' in a [[body]]; the keys are name, axis, arrow, inertia, friction, wheels, teeth, module)~");
 }
 
 TEST_F(ModelStructure, BodyWithoutName) {
@@ -162,8 +162,8 @@ TEST_F(ModelStructure, WheelNotATable) {
 }
 
 TEST_F(ModelStructure, WheelUnknownKey) {
-  expect_model_error({{"internal = true }", "internal = true, teeth = 80 }"}},
-      R"~(gear.toml:18:61: error: unknown key 'teeth' in a wheel; the keys are name, radius, internal)~");
+  expect_model_error({{"internal = true }", "internal = true, pitch = 80 }"}},
+      R"~(gear.toml:18:61: error: unknown key 'pitch' in a wheel; the keys are name, radius, internal, teeth, module)~");
 }
 
 TEST_F(ModelStructure, WheelWithoutName) {
@@ -215,7 +215,7 @@ TEST_F(ModelStructure, TooManyMeshes) {
 
 TEST_F(ModelStructure, MeshUnknownKey) {
   expect_model_error({{R"(second = "g")", "second = \"g\"\nratio = 2"}},
-      R"~(gear.toml:35:1: error: unknown key 'ratio' in a [[mesh]]; the keys are first, second, name, stiffness, damping)~");
+      R"~(gear.toml:35:1: error: unknown key 'ratio' in a [[mesh]]; the keys are first, second, name, stiffness, damping, module)~");
 }
 
 TEST_F(ModelStructure, MeshIncomplete) {
@@ -528,14 +528,48 @@ TEST_F(Geometry, Contradiction) {
 }
 
 TEST_F(Geometry, PinionTriangleCannotClose) {
-  // The Ravigneaux set with a small sun of 10 mm and a large sun of 40 mm: the pinions' axes are
-  // 15 mm and 45 mm out, too far apart for two 5 mm pinions to reach each other.
+  // The Ravigneaux set with suns of 10 and 40 teeth and pinions of 5 (module 2 mm): the pinions'
+  // axes are 15 mm and 45 mm out, too far apart for two 5 mm pinions to reach each other.
   const std::string model = edited(read_text(source_path("models/ravigneaux.toml")),
-                                   {{R"(r_ss = "30*mm")", R"(r_ss = "10*mm")"}, {R"(r_sl = "36*mm")", R"(r_sl = "40*mm")"},
-                                    {R"(r_ps = "18*mm")", R"(r_ps = "5*mm")"}, {R"(r_pl = "20*mm")", R"(r_pl = "5*mm")"},
-                                    {R"(r_r = "76*mm")", R"(r_r = "50*mm")"}});
+                                   {{"teeth = 30", "teeth = 10"}, {"teeth = 36", "teeth = 40"}, {"teeth = 18", "teeth = 5"},
+                                    {"teeth = 20", "teeth = 5"}, {"teeth = 76", "teeth = 50"}});
   expect_documented(model_error(model),
-      R"~(gear.toml:44:9: error: mesh pspl (ps with pl): pinions ps and pl of carrier c cannot mesh: their axes are a_ps = 0.015 m (from mesh ssps) and a_pl = 0.045 m (from mesh plsl) from the central axis, so the centre distance r_pl+r_ps = 0.01 m must lie between 0.03 m and 0.06 m; correct the radii or the axis distances)~");
+      R"~(gear.toml:49:9: error: mesh pspl (ps with pl): pinions ps and pl of carrier c cannot mesh: their axes are a_ps = 0.015 m (from mesh ssps) and a_pl = 0.045 m (from mesh plsl) from the central axis, so the centre distance r_pl+r_ps = 0.01 m must lie between 0.03 m and 0.06 m; correct the radii or the axis distances)~");
+}
+
+// ---------------------------------------------------------------- tooth counts and modules
+
+class Teeth : public ErrorTest {
+ protected:
+  static constexpr const char* planet = "name = \"p\"\naxis = { carrier = \"c\", distance = \"r_c\" }";
+  static std::string planet_with(const std::string& keys) { return std::string(planet) + "\n" + keys; }
+};
+
+TEST_F(Teeth, WithoutModule) {
+  expect_model_error({{planet, planet_with("teeth = 24")}, {"r_p = \"4.8*cm\"\n", ""}},
+      R"~(gear.toml:11:9: error: p has 24 teeth but no module; give module = "2*mm" with its teeth or on one of its meshes)~");
+}
+
+TEST_F(Teeth, ModulesDiffer) {
+  expect_model_error({{planet, planet_with("teeth = 24\nmodule = \"4*mm\"")}, {"r_p = \"4.8*cm\"\n", ""},
+                      {R"({ name = "s1", radius = "r_s1" })", R"({ name = "s1", teeth = 50, module = "5*mm" })"},
+                      {"r_s1 = \"10*cm\"\n", ""}},
+      R"~(gear.toml:27:9: error: mesh ps: p has module 4 mm and s1 of body s module 5 mm; meshing wheels share one module)~");
+}
+
+TEST_F(Teeth, RadiusGivenTwice) {
+  expect_model_error({{planet, planet_with("teeth = 24\nmodule = \"4*mm\"")}},
+      R"~(gear.toml:41:7: error: 'r_p' is the pitch radius of p, which its 24 teeth give; leave it out of [parameters])~");
+}
+
+TEST_F(Teeth, RadiusAndTeeth) {
+  expect_model_error({{R"({ name = "s1", radius = "r_s1" })", R"({ name = "s1", radius = "r_s1", teeth = 50 })"}},
+      R"~(gear.toml:14:36: error: a wheel is given by its radius or by its teeth, not both; leave out the radius)~");
+}
+
+TEST_F(Teeth, ModuleWithoutUnit) {
+  expect_model_error({{planet, planet_with("teeth = 24\nmodule = \"4\"")}, {"r_p = \"4.8*cm\"\n", ""}},
+      R"~(gear.toml:12:10: error: the module '4' has no unit; a module is a length, e.g. "2*mm")~");
 }
 
 class Reduction : public ErrorTest {};
