@@ -332,6 +332,20 @@ std::string latex_symbol(const std::string& name) {
   return out;
 }
 
+std::string latex_text(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '\\': out += "\\textbackslash{}"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '{': case '}': case '$': case '&': case '%': case '#': case '_': out += '\\'; out += c; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
 std::string cpp_double(double v) {
   std::string s = fmt::format("{}", v);
   if (s.find_first_of(".eEn") == std::string::npos) s += ".0";

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include <ginac/ginac.h>
 
@@ -19,6 +20,10 @@ std::string print_expression(const GiNaC::ex& e, Notation notation);
 
 // `omega_c` -> `\omega_{c}`, `r_s1` -> `r_{s1}`, `domega_c` -> `\dot{\omega}_{c}`.
 std::string latex_symbol(const std::string& name);
+
+// Text for LaTeX's text mode (a title, a body's name in \text{}): every character LaTeX gives a
+// meaning (\ { } $ & % # _ ^ ~) written so that it prints as itself.
+std::string latex_text(std::string_view text);
 
 // Shortest decimal that reads back as the same double, always with a '.' or an exponent.
 std::string cpp_double(double v);

@@ -91,8 +91,10 @@ Printed print_all(const Derivation& d, Notation n) {
   for (const AngledMesh& a : d.radius.angled) {
     const Mesh& m = d.topology.meshes[a.mesh];
     const Body& first = d.topology.bodies[m.first.body];
-    p.angled.push_back(fmt::format("{} and {} of carrier {}: axes {:.2f} deg apart (mesh {})", first.name,
-                                   d.topology.bodies[m.second.body].name, first.carrier, a.angle * 180 / std::numbers::pi, m.name));
+    auto name = [&](const std::string& x) { return n == Notation::latex ? latex_text(x) : x; };
+    p.angled.push_back(fmt::format("{} and {} of carrier {}: axes {:.2f} deg apart (mesh {})", name(first.name),
+                                   name(d.topology.bodies[m.second.body].name), name(first.carrier),
+                                   a.angle * 180 / std::numbers::pi, name(m.name)));
   }
   p.R = print_matrix(d.elastic.R, n);
   const RigidForms rigid = rigid_forms(d);
@@ -185,7 +187,7 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
     for (std::size_t i = 0; i < p.geometry.size(); ++i) {
       std::string rel = p.geometry[i];
       const auto eq = rel.find(" = ");
-      g += "  " + rel.substr(0, eq) + " &= " + rel.substr(eq + 3) + " && \\text{(mesh " + p.geometry_mesh[i] + ")} \\\\\n";
+      g += "  " + rel.substr(0, eq) + " &= " + rel.substr(eq + 3) + " && \\text{(mesh " + latex_text(p.geometry_mesh[i]) + ")} \\\\\n";
     }
     s += w.display(g + "\\end{aligned}");
   }
@@ -347,9 +349,7 @@ std::string report_latex(const Derivation& d) {
   s += "\\documentclass{article}\n\\usepackage{amsmath,amssymb}\n\\usepackage[margin=2cm,landscape]{geometry}\n";
   s += "\\setcounter{MaxMatrixCols}{64}\n\\allowdisplaybreaks\n\\begin{document}\n";
   std::string title = title_of(d);
-  std::string escaped;
-  for (char c : title) escaped += (c == '_' || c == '&' || c == '%' || c == '#') ? std::string("\\") + c : std::string(1, c);
-  s += "\\section*{" + escaped + "}\n";
+  s += "\\section*{" + latex_text(title) + "}\n";
   s += math_body(d, w);
   s += "\\end{document}\n";
   return s;

@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/files.hpp"
+#include "derivation.hpp"
+#include "report.hpp"
+
 namespace pogear::test {
 namespace {
 
@@ -52,6 +56,37 @@ TEST(Printer, CppDoublesReadBackExactly) {
     EXPECT_EQ(std::stod(s), v) << s;
     EXPECT_NE(s.find_first_of(".e"), std::string::npos) << s;
   }
+}
+
+}  // namespace
+}  // namespace pogear::test
+
+namespace pogear::test {
+namespace {
+
+TEST(LatexText, EverySpecialCharacterPrintsAsItself) {
+  EXPECT_EQ(latex_text("inertias in kg*m^2"), "inertias in kg*m\\textasciicircum{}2");
+  EXPECT_EQ(latex_text("mg_2 & 100% #1 {x} $5 ~a \\b"),
+            "mg\\_2 \\& 100\\% \\#1 \\{x\\} \\$5 \\textasciitilde{}a \\textbackslash{}b");
+  EXPECT_EQ(latex_text("plain text, 1.5 (ok)"), "plain text, 1.5 (ok)");
+}
+
+TEST(LatexText, TitleAndNamesOfALatexReportAreEscaped) {
+  // The title a user wrote and a mesh named with '_' (which reaches \text{} in the geometry lines).
+  std::string model = read_text(source_path("tests/errors/gear.toml"));
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const auto pos = model.find(from);
+    ASSERT_NE(pos, std::string::npos) << from;
+    model.replace(pos, from.size(), to);
+  };
+  replace("name = \"gear\"", "name = \"gear\"\ntitle = \"inertias in kg*m^2, 50% & more\"");
+  replace("first = \"p\"\nsecond = \"s1\"\n", "first = \"p\"\nsecond = \"s1\"\nname = \"p_s\"\n");
+  replace("K_ps = \"1000*Newton/mm\"", "K_p_s = \"1000*Newton/mm\"\nK_ps = \"K_p_s\"");
+  replace("b_ps = \"0.4*Newton*s/cm\"", "b_p_s = \"0.4*Newton*s/cm\"\nb_ps = \"b_p_s\"");
+  const Derivation d = derive_topology(parse_topology_text(model, "gear.toml"), std::nullopt, SourceLocation{"gear.toml", 0, 0});
+  const std::string tex = report_latex(d);
+  EXPECT_NE(tex.find("\\section*{gear: inertias in kg*m\\textasciicircum{}2, 50\\% \\& more}"), std::string::npos) << tex;
+  EXPECT_NE(tex.find("\\text{(mesh p\\_s)}"), std::string::npos) << tex;
 }
 
 }  // namespace
