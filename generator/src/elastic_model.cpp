@@ -14,13 +14,17 @@ ElasticModel assemble_elastic_model(const Topology& t, const RadiusMatrix& rm, c
   for (unsigned k = 0; k < n; ++k) {
     e.velocities.push_back(variable_name(t, {VariableKind::velocity, static_cast<int>(k)}));
     e.torques.push_back(variable_name(t, {VariableKind::torque, static_cast<int>(k)}));
-    e.J(k, k) = parameter_symbol(s, t.bodies[k].inertia_parameter);
-    e.B_J(k, k) = parameter_symbol(s, t.bodies[k].friction_parameter);
+    // A lumped planet is its count of planets turning together: their inertia and friction add.
+    const int count = t.bodies[k].count;
+    e.J(k, k) = count * parameter_symbol(s, t.bodies[k].inertia_parameter);
+    e.B_J(k, k) = count * parameter_symbol(s, t.bodies[k].friction_parameter);
   }
   for (unsigned i = 0; i < m; ++i) {
     e.forces.push_back(variable_name(t, {VariableKind::force, static_cast<int>(i)}));
-    e.K(i, i) = parameter_symbol(s, t.meshes[i].stiffness_parameter);
-    e.B_K(i, i) = parameter_symbol(s, t.meshes[i].damping_parameter);
+    // Its planets' meshes act in parallel, so F_<mesh> here is the sum of their forces.
+    const int count = mesh_count(t, t.meshes[i]);
+    e.K(i, i) = count * parameter_symbol(s, t.meshes[i].stiffness_parameter);
+    e.B_K(i, i) = count * parameter_symbol(s, t.meshes[i].damping_parameter);
   }
   e.R = rm.R;
   const GiNaC::matrix Rt = e.R.transpose();

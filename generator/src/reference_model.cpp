@@ -88,6 +88,15 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
       }
     }
   }
+  // A lumped planet's meshes: the model's force is its planets' sum, the output one planet's.
+  for (std::size_t i = 0; i < ny; ++i) {
+    const Variable y = sys.output_variables[i];
+    if (y.kind != VariableKind::force) continue;
+    const double count = mesh_count(d.topology, d.topology.meshes[y.index]);
+    out.C.row(i) /= count;
+    out.D.row(i) /= count;
+    out.E.row(i) /= count;
+  }
   return out;
 }
 

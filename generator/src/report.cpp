@@ -23,6 +23,7 @@ struct Printed {
   std::vector<std::string> geometry;  // "r_c == r_p+r_s1"
   std::vector<std::string> geometry_mesh;
   std::vector<std::string> angled;  // "ps and pl of carrier c: axes 41.99 deg apart (mesh pspl)"
+  std::vector<std::string> lumped;  // "p stands for 3 planets (meshes ps, pr)"
   bool teeth = false;               // Q1, L1, A1 in tooth counts
   std::vector<std::vector<std::string>> R, Q1, L1, A1, B1;
   std::vector<std::pair<std::string, std::string>> closed_form;
@@ -96,6 +97,16 @@ Printed print_all(const Derivation& d, Notation n) {
                                    name(d.topology.bodies[m.second.body].name), name(first.carrier),
                                    a.angle * 180 / std::numbers::pi, name(m.name)));
   }
+  for (const Body& b : d.topology.bodies) {
+    if (b.count == 1) continue;
+    std::vector<std::string> meshes;
+    for (const Mesh& m : d.topology.meshes)
+      if (&d.topology.bodies[m.first.body] == &b || &d.topology.bodies[m.second.body] == &b) meshes.push_back(m.name);
+    auto text = [&](const std::string& x) { return n == Notation::latex ? latex_text(x) : x; };
+    std::string list;
+    for (const auto& m : meshes) list += (list.empty() ? "" : ", ") + text(m);
+    p.lumped.push_back(fmt::format("{} stands for {} planets (meshes {})", text(b.name), b.count, list));
+  }
   p.R = print_matrix(d.elastic.R, n);
   const RigidForms rigid = rigid_forms(d);
   p.teeth = rigid.in_teeth;
@@ -110,8 +121,12 @@ Printed print_all(const Derivation& d, Notation n) {
   }
   // The split of redundant meshes has exact weights, long fractions of the parameter values: they
   // print as decimals, each correctly rounded.
-  for (const auto& f : d.rigid.force_recovery)
+  // A lumped planet's meshes carry its planets' sum; the reports give one planet's share.
+  for (std::size_t i = 0; i < d.rigid.force_recovery.size(); ++i) {
+    const int count = i < d.topology.meshes.size() ? mesh_count(d.topology, d.topology.meshes[i]) : 1;
+    const GiNaC::ex f = (d.rigid.force_recovery[i] / count).expand();
     p.force_recovery.push_back(print_expression(d.rigid.redundant_meshes ? f.evalf() : f, n));
+  }
   for (const auto& r : d.rigid.reactions) p.reactions.push_back(name(r));
   for (int k : d.engaged) p.engaged.push_back(d.topology.friction_elements[k].name);
   const unsigned meshes = d.elastic.R.rows();
@@ -197,6 +212,10 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
     a.back() = '.';
     s += w.paragraph(a);
   }
+  if (!p.lumped.empty())
+    s += w.paragraph("Lumped planets, each body standing for identical planets that share the load equally: " +
+                     join(p.lumped, "; ") + ". The model multiplies their inertia and friction, and their meshes' "
+                     "stiffness and damping, by the count; the mesh forces below are one planet's.");
   s += w.heading("Elastic model");
   s += w.paragraph(fmt::format("State $\\mathbf{{x}} = [\\boldsymbol{{\\omega}}; \\mathbf{{F}}]$ of size {}, "
                                "$\\mathbf{{L}}\\dot{{\\mathbf{{x}}}} = \\mathbf{{A}}\\mathbf{{x}} + \\mathbf{{B}}\\boldsymbol{{\\tau}}$ with",
@@ -304,6 +323,12 @@ std::string report_text(const Derivation& d) {
     for (const auto& line : p.angled) s += "  " + line + "\n";
     s += "\n";
   }
+  if (!p.lumped.empty()) {
+    s += "lumped planets (identical planets sharing the load equally; inertia, friction and the meshes'\n"
+         "stiffness and damping count each planet; the mesh forces below are one planet's):\n";
+    for (const auto& line : p.lumped) s += "  " + line + "\n";
+    s += "\n";
+  }
   s += "diagnostics (elastic model, every effect, at the model's values):\n" + diagnostics_text(d.diagnostics, "  ") + "\n";
   if (!p.engaged.empty()) {
     s += "engaged: " + join(p.engaged, ", ") + ", stuck: their rows E_S (E_S omega is each one's slip) join R, and\n"
@@ -379,6 +404,10 @@ std::string report_json(const Derivation& d) {
     angled.push_back(fmt::format("{{\"mesh\": {}, \"angle_deg\": {}}}", json_string(d.topology.meshes[a.mesh].name),
                                  json_number(a.angle * 180 / std::numbers::pi)));
   j += "  \"angled_pinions\": [" + join(angled, ", ") + "],\n";
+  std::vector<std::string> lumped;
+  for (const Body& b : d.topology.bodies)
+    if (b.count > 1) lumped.push_back(fmt::format("{{\"body\": {}, \"count\": {}}}", json_string(b.name), b.count));
+  j += "  \"lumped_planets\": [" + join(lumped, ", ") + "],\n";
   j += "  \"R\": " + json_string_matrix(p.R, "  ") + ",\n";
   j += "  \"Q1\": " + json_string_matrix(p.Q1, "  ") + ",\n";
   j += "  \"L1\": " + json_string_matrix(p.L1, "  ") + ",\n";

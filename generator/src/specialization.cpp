@@ -263,7 +263,8 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
             Eigen::Map<const Eigen::VectorXd>(rigid_x0.data(), static_cast<Eigen::Index>(rigid_x0.size()));
   for (std::size_t i = 0; i < sys.state_variables.size(); ++i) {
     const Variable v = sys.state_variables[i];
-    if (const auto it = sc.initial.find(v); it != sc.initial.end()) sys.x0.push_back(it->second);  // exactly as given
+    if (const auto it = sc.initial.find(v); it != sc.initial.end())  // exactly as given, a lumped force per planet
+      sys.x0.push_back(v.kind == VariableKind::force ? it->second * mesh_count(t, t.meshes[v.index]) : it->second);
     else if (!elastic) sys.x0.push_back(rigid_x0[i]);
     else if (v.kind == VariableKind::velocity && omega.size()) sys.x0.push_back(omega(v.index));
     else sys.x0.push_back(0.0);
@@ -292,6 +293,9 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
       sys.output_values.push_back(folded(d.rigid.force_recovery.at(out.index).subs(body_torques)));
       need_derivatives = true;
     }
+    // The model's force of a lumped planet's mesh is its planets' sum; users read one planet's.
+    if (out.kind == VariableKind::force && mesh_count(t, t.meshes[out.index]) > 1)
+      sys.output_values.back() = folded(sys.output_values.back() / mesh_count(t, t.meshes[out.index]));
   }
   sys.output_derivatives = need_derivatives;
   sys.rhs_ops = sys.implicit ? implicit_operations(*sys.implicit) : count_all(sys.rhs_temporaries, sys.rhs);

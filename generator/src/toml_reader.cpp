@@ -98,6 +98,28 @@ std::string TomlReader::string(const toml::node& n, std::string_view what) const
   return *n.value<std::string>();
 }
 
+const toml::table& TomlReader::table(const toml::node& n, std::string_view what) const {
+  if (!n.is_table()) fail(n, fmt::format("{} must be a table {{ ... }}", what));
+  return *n.as_table();
+}
+
+std::optional<std::string> TomlReader::optional_string(const toml::table& t, std::string_view key,
+                                                       std::string_view what) const {
+  const toml::node* n = t.get(key);
+  if (!n) return std::nullopt;
+  return string(*n, what);
+}
+
+std::string TomlReader::identifier(const toml::node& n, std::string_view what) const {
+  std::string s = string(n, what);
+  const bool ok = !s.empty() && std::isalpha(static_cast<unsigned char>(s[0])) &&
+                  std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  if (!ok) fail(n, fmt::format("{} '{}' is not a name; use letters, digits and '_', starting with a letter", what, s));
+  if (s.size() > max_name_length)
+    fail(n, fmt::format("{} is {} characters long; names have at most {}", what, s.size(), max_name_length));
+  return s;
+}
+
 std::string text_digest(std::string_view text) {
   std::uint64_t h = 14695981039346656037ull;
   for (const char c : text) {

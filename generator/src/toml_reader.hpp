@@ -3,6 +3,7 @@
 #pragma once
 
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -13,6 +14,9 @@
 namespace pogear {
 
 SourceLocation toml_location(const std::string& file, const toml::source_region& region);
+
+// Names become C++ identifiers and column headers; 64 characters is generous for `J_planet_3`.
+inline constexpr std::size_t max_name_length = 64;
 
 // Dotted keys (`a.b.c = 1`, `[a.b.c]`) of more parts than this are refused before parsing.
 inline constexpr std::size_t max_key_parts = 64;
@@ -39,6 +43,11 @@ struct TomlReader {
   // Refuses keys of `t` outside `allowed`, listing the allowed ones; `what` names the table.
   void only_keys(const toml::table& t, std::initializer_list<std::string_view> allowed, std::string_view what) const;
   std::string string(const toml::node& n, std::string_view what) const;
+  const toml::table& table(const toml::node& n, std::string_view what) const;
+  std::optional<std::string> optional_string(const toml::table& t, std::string_view key, std::string_view what) const;
+  // A name that becomes an identifier in generated code: letters, digits and '_', from a letter,
+  // at most max_name_length characters.
+  std::string identifier(const toml::node& n, std::string_view what) const;
 };
 
 }  // namespace pogear

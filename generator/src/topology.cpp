@@ -17,40 +17,14 @@
 
 #include "pogear/input_file.hpp"
 #include "model_parameters.hpp"
+#include "body_table.hpp"
 #include "toml_reader.hpp"
 #include "tooth_counts.hpp"
 
 namespace pogear {
 namespace {
 
-struct Reader : TomlReader {
-  std::optional<std::string> optional_string(const toml::table& t, std::string_view key,
-                                             std::string_view what) const {
-    const toml::node* n = t.get(key);
-    if (!n) return std::nullopt;
-    return string(*n, what);
-  }
-
-  std::string identifier(const toml::node& n, std::string_view what) const {
-    std::string s = string(n, what);
-    const bool ok = !s.empty() && std::isalpha(static_cast<unsigned char>(s[0])) &&
-                    std::all_of(s.begin(), s.end(), [](char c) {
-                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-                    });
-    if (!ok)
-      fail(n, fmt::format("{} '{}' is not a name; use letters, digits and '_', starting with a letter", what, s));
-    if (s.size() > max_name_length)
-      fail(n, fmt::format("{} is {} characters long; names have at most {}", what, s.size(), max_name_length));
-    return s;
-  }
-};
-
-const toml::table& as_table(const Reader& r, const toml::node& n, std::string_view what) {
-  if (!n.is_table()) r.fail(n, fmt::format("{} must be a table {{ ... }}", what));
-  return *n.as_table();
-}
-
-const toml::array& array_of_tables(const Reader& r, const toml::table& root, std::string_view key,
+const toml::array& array_of_tables(const TomlReader& r, const toml::table& root, std::string_view key,
                                    std::string_view example) {
   const toml::node* n = root.get(key);
   if (!n) throw InputError(SourceLocation{r.file, 0, 0},
@@ -60,127 +34,7 @@ const toml::array& array_of_tables(const Reader& r, const toml::table& root, std
   return *n->as_array();
 }
 
-// `teeth` and `module` of a wheel (or of a body's one wheel): a whole tooth count, and the module as
-// a length expression or a number in metres.
-void read_module(const Reader& r, const toml::node& n, std::string& text, SourceLocation& where, int& column_offset) {
-  where = r.loc(n);
-  if (n.is_string()) {
-    text = *n.value<std::string>();
-    column_offset = 1;
-  } else if ((n.is_integer() || n.is_floating_point()) && std::isfinite(*n.value<double>())) {
-    text = fmt::format("{}", *n.value<double>());
-    column_offset = 0;
-  } else {
-    r.fail(n, "a module is a length, e.g. module = \"2*mm\"");
-  }
-}
-
-void read_teeth(const Reader& r, const toml::table& t, Wheel& w) {
-  const toml::node* z = t.get("teeth");
-  const toml::node* m = t.get("module");
-  if (m && !z) r.fail(*m, "a module without teeth; give the tooth count too, e.g. teeth = 30");
-  if (!z) return;
-  if (const toml::node* radius = t.get("radius"))
-    r.fail(*radius, "a wheel is given by its radius or by its teeth, not both; leave out the radius");
-  constexpr int fewest = 3, most = 10000;
-  if (!z->is_integer() || **z->as_integer() < fewest || **z->as_integer() > most)
-    r.fail(*z, fmt::format("teeth is a whole number of teeth from {} to {}", fewest, most));
-  w.teeth = static_cast<int>(**z->as_integer());
-  w.teeth_where = r.loc(*z);
-  if (m) read_module(r, *m, w.module, w.module_where, w.module_column_offset);
-}
-
-Body read_body(const Reader& r, const toml::table& t) {
-  r.only_keys(t, {"name", "axis", "arrow", "inertia", "friction", "wheels", "teeth", "module"}, "a [[body]]");
-  Body b;
-  b.where = r.loc(t);
-  const toml::node* name = t.get("name");
-  if (!name) r.fail(t, "a [[body]] needs a name, e.g. name = \"c\"");
-  b.name = r.identifier(*name, "a body name");
-  b.where = r.loc(*name);
-
-  if (const toml::node* axis = t.get("axis")) {
-    if (axis->is_string()) {
-      const std::string a = r.string(*axis, "axis");
-      if (a != "central")
-        r.fail(*axis, fmt::format("axis \"{}\" is not known; write \"central\", {{ fixed = \"below\" }} or "
-                                  "{{ carrier = \"c\", distance = \"r_c\" }}", a));
-      b.axis = AxisKind::central;
-    } else {
-      const toml::table& at = as_table(r, *axis, "axis");
-      r.only_keys(at, {"carrier", "distance", "side", "fixed"}, "an axis");
-      if (const toml::node* f = at.get("fixed")) {
-        if (at.get("carrier") || at.get("distance"))
-          r.fail(*axis, "an axis is either fixed or carried, not both");
-        b.axis = AxisKind::fixed;
-        const std::string side = r.string(*f, "fixed");
-        if (side != "above" && side != "below")
-          r.fail(*f, "fixed must be \"above\" or \"below\": where the axis is drawn relative to the wheels it meshes with");
-        b.side = side == "above" ? +1 : -1;
-      } else {
-        const toml::node* c = at.get("carrier");
-        const toml::node* d = at.get("distance");
-        if (!c || !d) r.fail(*axis, "a carried axis needs carrier = \"<body>\" and distance = \"<parameter>\"");
-        b.axis = AxisKind::carried;
-        b.carrier = r.identifier(*c, "carrier");
-        b.distance_parameter = r.identifier(*d, "distance");
-        if (const toml::node* s = at.get("side")) {
-          const std::string side = r.string(*s, "side");
-          if (side != "above" && side != "below") r.fail(*s, "side must be \"above\" or \"below\"");
-          b.side = side == "above" ? +1 : -1;
-        }
-      }
-    }
-  }
-  if (const toml::node* arrow = t.get("arrow")) {
-    const std::string a = r.string(*arrow, "arrow");
-    if (a != "right" && a != "left")
-      r.fail(*arrow, "arrow must be \"right\" or \"left\": the positive direction of omega as drawn");
-    b.arrow = a == "right" ? +1 : -1;
-  }
-  b.inertia_parameter = "J_" + b.name;
-  b.friction_parameter = "b_" + b.name;
-  if (const toml::node* n = t.get("inertia")) b.inertia_parameter = r.identifier(*n, "inertia");
-  if (const toml::node* n = t.get("friction")) b.friction_parameter = r.identifier(*n, "friction");
-
-  if (const toml::node* wheels = t.get("wheels")) {
-    if (!wheels->is_array()) r.fail(*wheels, "wheels must be a list: [ { name = \"s1\", radius = \"r_s1\" } ]");
-    for (const toml::node& w : *wheels->as_array()) {
-      const toml::table& wt = as_table(r, w, "a wheel");
-      r.only_keys(wt, {"name", "radius", "internal", "teeth", "module"}, "a wheel");
-      Wheel wheel;
-      const toml::node* wn = wt.get("name");
-      if (!wn) r.fail(w, "a wheel needs a name, e.g. { name = \"s1\", radius = \"r_s1\" }");
-      wheel.name = r.identifier(*wn, "a wheel name");
-      wheel.where = r.loc(*wn);
-      wheel.radius_parameter = "r_" + wheel.name;
-      if (const toml::node* rn = wt.get("radius")) wheel.radius_parameter = r.identifier(*rn, "radius");
-      if (const toml::node* in = wt.get("internal")) {
-        if (!in->is_boolean()) r.fail(*in, "internal must be true or false");
-        wheel.internal = **in->as_boolean();
-      }
-      read_teeth(r, wt, wheel);
-      b.wheels.push_back(std::move(wheel));
-    }
-    if (b.wheels.empty()) r.fail(*wheels, "an empty wheel list; leave 'wheels' out for a body without teeth");
-    for (std::string_view key : {"teeth", "module"})
-      if (const toml::node* n = t.get(key))
-        r.fail(*n, fmt::format("the {} of a body with a wheel list goes on its wheel: wheels = [ {{ name = \"{}\", "
-                               "teeth = 30, module = \"2*mm\" }} ]", key, b.wheels[0].name));
-  } else {
-    // The common case: one wheel named like its body, radius r_<body>. A carrier without
-    // teeth simply never appears in a mesh, so its default wheel is harmless.
-    Wheel w;
-    w.name = b.name;
-    w.radius_parameter = "r_" + b.name;
-    w.where = b.where;
-    b.wheels.push_back(std::move(w));
-    read_teeth(r, t, b.wheels.back());
-  }
-  return b;
-}
-
-WheelRef resolve_wheel(const Reader& r, const Topology& t, const toml::node& n) {
+WheelRef resolve_wheel(const TomlReader& r, const Topology& t, const toml::node& n) {
   const std::string name = r.identifier(n, "a mesh terminal");
   std::vector<WheelRef> found;
   for (int bi = 0; bi < static_cast<int>(t.bodies.size()); ++bi)
@@ -239,6 +93,19 @@ void check_carriers(Topology& t) {
   }
 }
 
+// A mesh between two lumped planets (a pinion pair of a double-pinion set) stands for as many pairs
+// as each of them counts planets.
+void check_lumped_meshes(const Topology& t) {
+  for (const auto& m : t.meshes) {
+    const Body& a = t.bodies[m.first.body];
+    const Body& b = t.bodies[m.second.body];
+    if (a.count != b.count && a.axis == AxisKind::carried && b.axis == AxisKind::carried)
+      throw InputError(m.where, fmt::format("mesh '{}' joins planet '{}' (count {}) and planet '{}' (count {}); "
+                                            "planets that mesh with each other are lumped in equal numbers",
+                                            m.name, a.name, a.count, b.name, b.count));
+  }
+}
+
 // Whether two bodies turn about one axis, as a clutch needs. Central bodies do; planets do when one
 // carrier holds them at one distance on one side. Fixed axes are placed by the wheels they mesh
 // with, which a clutch's pair of bodies need not share, so two fixed-axis bodies are taken at
@@ -259,7 +126,7 @@ const char* axis_description(const Body& b) {
 }
 
 // [[brake]] and [[clutch]] tables, each checked as it is read; duplicates once all are read.
-void read_friction_elements(const Reader& r, const toml::table& root, Topology& t) {
+void read_friction_elements(const TomlReader& r, const toml::table& root, Topology& t) {
   for (const bool brake : {true, false}) {
     const char* key = brake ? "brake" : "clutch";
     const toml::node* list = root.get(key);
@@ -354,7 +221,7 @@ void read_friction_elements(const Reader& r, const toml::table& root, Topology& 
 }
 
 // Reads [parameters] as written; evaluate_parameters gives them values.
-void read_parameters(const Reader& r, const toml::table& params, Topology& t) {
+void read_parameters(const TomlReader& r, const toml::table& params, Topology& t) {
   if (params.size() > max_parameters)
     r.fail(params, fmt::format("{} parameters; a model has at most {}", params.size(), max_parameters));
   for (const auto& [key, node] : params) {
@@ -397,7 +264,7 @@ void read_parameters(const Reader& r, const toml::table& params, Topology& t) {
 }  // namespace
 
 Topology parse_topology_text(const std::string& text, const std::string& path) {
-  Reader r{{path}};
+  TomlReader r{path};
   const toml::table root = parse_toml_document(
       text, path, max_model_file_bytes,
       fmt::format("the file is larger than {} bytes; a model or scene file is a few kilobytes", max_model_file_bytes));
@@ -448,9 +315,10 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
     t.meshes.push_back(std::move(m));
   }
   check_unique_names(t, true);
+  check_lumped_meshes(t);
   read_friction_elements(r, root, t);
 
-  if (const toml::node* p = root.get("parameters")) read_parameters(r, as_table(r, *p, "[parameters]"), t);
+  if (const toml::node* p = root.get("parameters")) read_parameters(r, r.table(*p, "[parameters]"), t);
   evaluate_parameters(t.parameters);
   add_pitch_radii(t);
   check_parameter_roles(t);
@@ -475,6 +343,10 @@ int find_body(const Topology& t, const std::string& name) {
   for (int i = 0; i < static_cast<int>(t.bodies.size()); ++i)
     if (t.bodies[i].name == name) return i;
   return -1;
+}
+
+int mesh_count(const Topology& t, const Mesh& m) {
+  return std::max(t.bodies[m.first.body].count, t.bodies[m.second.body].count);
 }
 
 int find_friction_element(const Topology& t, const std::string& name) {

@@ -44,6 +44,10 @@ struct Body {
   std::string friction_parameter;
   std::vector<Wheel> wheels;
   SourceLocation where;
+  // A planet that stands for `count` identical planets sharing the load equally (lumped): the model
+  // multiplies its inertia and friction, and its meshes' stiffness and damping, by the count.
+  int count = 1;
+  SourceLocation count_where;
 };
 
 struct WheelRef {
@@ -120,8 +124,6 @@ inline constexpr std::size_t max_parameters = 2048;
 // `pogear ratios` looks at every set of engaged elements (2^k of them); automatic transmissions
 // have 5 to 7 shift elements.
 inline constexpr std::size_t max_friction_elements = 12;
-// Names become C++ identifiers and column headers; 64 characters is generous for `J_planet_3`.
-inline constexpr std::size_t max_name_length = 64;
 
 
 // Reads a model file (TOML). Throws InputError for anything wrong, located in the file.
@@ -131,6 +133,9 @@ Topology parse_topology_text(const std::string& text, const std::string& path);
 
 
 int find_body(const Topology& t, const std::string& name);  // -1 when absent
+// How many identical planets a mesh stands for: its lumped planet's count, 1 for other meshes. The
+// model's F_<mesh> is their sum; the outputs and reports give one planet's share.
+int mesh_count(const Topology& t, const Mesh& m);
 int find_friction_element(const Topology& t, const std::string& name);  // -1 when absent
 const Wheel& wheel(const Topology& t, WheelRef w);
 std::string wheel_label(const Topology& t, WheelRef w);  // "s1 (body s)" or "p"

@@ -99,7 +99,7 @@ TEST_F(ModelStructure, TooManyBodies) {
 
 TEST_F(ModelStructure, BodyUnknownKey) {
   expect_model_error({{R"(axis = { fixed = "below" })", R"(axsi = { fixed = "below" })"}},
-      R"~(gear.toml:22:1: error: unknown key 'axsi' in a [[body]]; the keys are name, axis, arrow, inertia, friction, wheels, teeth, module)~");
+      R"~(gear.toml:22:1: error: unknown key 'axsi' in a [[body]]; the keys are name, axis, arrow, inertia, friction, wheels, teeth, module, count)~");
 }
 
 TEST_F(ModelStructure, BodyWithoutName) {
@@ -570,6 +570,27 @@ TEST_F(Teeth, RadiusAndTeeth) {
 TEST_F(Teeth, ModuleWithoutUnit) {
   expect_model_error({{planet, planet_with("teeth = 24\nmodule = \"4\"")}, {"r_p = \"4.8*cm\"\n", ""}},
       R"~(gear.toml:12:10: error: the module '4' has no unit; a module is a length, e.g. "2*mm")~");
+}
+
+// ---------------------------------------------------------------- lumped planets
+
+class Lumped : public ErrorTest {};
+
+TEST_F(Lumped, CountOnACentralBody) {
+  expect_model_error({{"[[body]]\nname = \"c\"\n", "[[body]]\nname = \"c\"\ncount = 3\n"}},
+      R"~(gear.toml:7:9: error: count lumps identical planets; it goes on a body with a carried axis (a planet))~");
+}
+
+TEST_F(Lumped, CountIsNotAWholeNumber) {
+  expect_model_error({{"distance = \"r_c\" }", "distance = \"r_c\" }\ncount = 2.5"}},
+      R"~(gear.toml:11:9: error: count is the number of identical planets, a whole number from 1 to 64)~");
+}
+
+TEST_F(Lumped, MeshingPlanetsOfDifferentCounts) {
+  const std::string model = edited(read_text(source_path("models/ravigneaux.toml")),
+                                   {{"distance = \"a_ps\" }", "distance = \"a_ps\" }\ncount = 3"}});
+  expect_documented(model_error(model),
+      R"~(gear.toml:50:9: error: mesh 'pspl' joins planet 'ps' (count 3) and planet 'pl' (count 1); planets that mesh with each other are lumped in equal numbers)~");
 }
 
 class Reduction : public ErrorTest {};

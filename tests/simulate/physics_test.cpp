@@ -118,5 +118,61 @@ TEST(PowerBalance, HoldsAlongElasticAndRigidTrajectories) {
   }
 }
 
+// A lumped planet (count = 3) against the same gear with its three planets explicit
+// (models/three_planets.toml): started alike, identical planets share the load equally, so every
+// speed and each planet's mesh force must agree, in the elastic run and in the rigid one.
+TEST(LumpedPlanets, MoveAsThreeExplicitPlanetsSharingTheLoad) {
+  const SpecializedScene lumped = scene_model(scene_text("lumped_planets"));
+  const SpecializedScene explicit_planets = scene_model(scene_text("three_planets"));
+  const std::vector<std::pair<std::string, std::string>> same = {
+      {"omega_c", "omega_c"}, {"omega_s", "omega_s"}, {"omega_r", "omega_r"}, {"omega_p", "omega_p1"},
+      {"omega_p", "omega_p3"}, {"F_ps", "F_p1s"}, {"F_pr", "F_p1r"},   {"F_ps", "F_p2s"}, {"F_pr", "F_p3r"}};
+  for (const bool elastic : {true, false}) {
+    const SpecializedSystem& a = elastic ? lumped.main : *lumped.rigid;
+    const SpecializedSystem& b = elastic ? explicit_planets.main : *explicit_planets.rigid;
+    const Trajectory ta = interpret_trajectory(lumped, a, run_settings(lumped));
+    const Trajectory tb = interpret_trajectory(explicit_planets, b, run_settings(explicit_planets));
+    ASSERT_TRUE(ta.status.ok && tb.status.ok);
+    ASSERT_EQ(ta.t.size(), tb.t.size());
+    auto column = [](const SpecializedSystem& s, const std::string& name) {
+      const auto it = std::find(s.outputs.begin(), s.outputs.end(), name);
+      EXPECT_NE(it, s.outputs.end()) << name;
+      return static_cast<Eigen::Index>(it - s.outputs.begin());
+    };
+    for (const auto& [x, y] : same) {
+      const Eigen::Index i = column(a, x), j = column(b, y);
+      double gap = 0, scale = 0;
+      for (std::size_t k = 0; k < ta.t.size(); ++k) {
+        gap = std::max(gap, std::abs(ta.y[k](i) - tb.y[k](j)));
+        scale = std::max(scale, std::abs(tb.y[k](j)));
+      }
+      // Two exact-stepping runs of different matrices (8 and 16 states elastic) agree to their
+      // exponentials' rounding, some 1e-13 of the scale; 1e-9 leaves room and still fails on any
+      // missing factor of 3 (which gives gaps of order one).
+      EXPECT_GT(scale, 0) << x;
+      EXPECT_LT(gap, 1e-9 * scale) << (elastic ? "elastic " : "rigid ") << x << " against " << y;
+    }
+  }
+}
+
+// The rigid model of the lumped gear is the explicit gear's, term by term: the count enters L1 and
+// A1 exactly as three planets' inertia and friction do.
+TEST(LumpedPlanets, RigidModelEqualsTheExplicitGears) {
+  const Derivation lumped = derive_model(source_path("models/lumped_planets.toml"), std::nullopt, {});
+  const Derivation explicit_planets = derive_model(source_path("models/three_planets.toml"), std::nullopt, {});
+  ASSERT_EQ(lumped.rigid.L1.rows(), 2u);
+  ASSERT_EQ(explicit_planets.rigid.L1.rows(), 2u);
+  // Each derivation has its own symbols: the explicit gear's are renamed to the lumped gear's.
+  GiNaC::exmap same_names;
+  for (const auto& [name, symbol] : explicit_planets.symbols.parameters)
+    if (const auto it = lumped.symbols.parameters.find(name); it != lumped.symbols.parameters.end())
+      same_names[symbol] = it->second;
+  for (unsigned i = 0; i < 2; ++i)
+    for (unsigned j = 0; j < 2; ++j) {
+      EXPECT_TRUE((lumped.rigid.L1(i, j) - explicit_planets.rigid.L1(i, j).subs(same_names)).normal().is_zero()) << i << j;
+      EXPECT_TRUE((lumped.rigid.A1(i, j) - explicit_planets.rigid.A1(i, j).subs(same_names)).normal().is_zero()) << i << j;
+    }
+}
+
 }  // namespace
 }  // namespace pogear::test

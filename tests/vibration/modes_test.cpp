@@ -93,6 +93,28 @@ TEST(Modes, ThreeEqualPlanetsHaveDoublePlanetModesWithTheCentralMembersAtRest) {
     }
 }
 
+// Lumping the three planets (count = 3) keeps the modes in which they move alike and drops the
+// planet pair, which only unequal planet motions make.
+TEST(Modes, LumpedPlanetsKeepTheSymmetricModes) {
+  const Derivation lumped = derive_file("lumped_planets");
+  const Derivation explicit_planets = derive_file("three_planets");
+  const VibrationModes a = vibration_modes(lumped, lumped.values, "none");
+  const VibrationModes b = vibration_modes(explicit_planets, explicit_planets.values, "none");
+  std::vector<double> symmetric;
+  for (const VibrationMode& mode : b.modes)
+    if (mode.kind == ModeKind::elastic) symmetric.push_back(mode.frequency_hz);
+  std::vector<double> kept;
+  for (const VibrationMode& mode : a.modes) {
+    EXPECT_NE(mode.kind, ModeKind::planet);
+    if (mode.kind == ModeKind::elastic) kept.push_back(mode.frequency_hz);
+  }
+  ASSERT_EQ(kept.size(), 2u);
+  ASSERT_EQ(symmetric.size(), kept.size());
+  // Two eigenproblems of different size, each to ~eps * lambda_max / lambda.
+  for (std::size_t i = 0; i < kept.size(); ++i) EXPECT_NEAR(kept[i] / symmetric[i], 1, 1e-12);
+}
+
+
 TEST(Modes, AHeavierPlanetSplitsThePlanetModes) {
   std::string text = read_text(source_path("models/three_planets.toml"));
   const std::string from = "name = \"p1\"\naxis = { carrier = \"c\", distance = \"r_c\" }\nwheels = [ { name = \"p1\", "
