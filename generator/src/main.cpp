@@ -14,6 +14,7 @@
 #include "engagement.hpp"
 #include "interrupts.hpp"
 #include "modes_report.hpp"
+#include "plot.hpp"
 #include "output_file.hpp"
 #include "ratios_report.hpp"
 #include "pogear/run_limits.hpp"
@@ -121,6 +122,15 @@ int main(int argc, char** argv) {
   modes->add_option("--format", modes_format, "Report format")->check(CLI::IsMember({"text", "latex", "markdown", "json"}));
   modes->add_option("-o,--output", modes_output, "Write the report to FILE instead of standard output")
       ->check(non_empty_path());
+  std::optional<std::string> campbell_file;
+  pogear::CampbellRequest campbell_request;
+  std::string campbell_held;
+  modes->add_option("--campbell", campbell_file, "Also draw the Campbell diagram as an SVG FILE (needs tooth counts)")
+      ->check(non_empty_path());
+  modes->add_option("--input", campbell_request.input, "Campbell: the input body whose speed is the axis, e.g. s");
+  modes->add_option("--hold", campbell_held, "Campbell: bodies held at rest on the operating line, e.g. r");
+  modes->add_option("--to", campbell_request.to, "Campbell: the highest input speed, e.g. 6000*rpm");
+  modes->add_option("--harmonics", campbell_request.harmonics, "Campbell: harmonics of each mesh frequency (default 3)");
 
   pogear::ResponseRequest response_request;
   std::string response_dir = "out";
@@ -186,13 +196,36 @@ int main(int argc, char** argv) {
                 << sources.main_name << "\n"
                 << pogear::operation_summary(model);
     } else if (*modes) {
-      const pogear::VibrationModes m = pogear::modes_of_file(modes_file, modes_engaged);
+      const pogear::SourceLocation where{modes_file, 0, 0};
+      for (const char* option : {"--input", "--hold", "--to", "--harmonics"})
+        if (!campbell_file && modes->count(option))
+          throw pogear::InputError(where, fmt::format("{} belongs to the Campbell diagram; add --campbell FILE.svg", option));
+      if (!campbell_file) {
+        const pogear::VibrationModes m = pogear::modes_of_file(modes_file, modes_engaged);
+        std::string text;
+        if (modes_format == "json") text = pogear::modes_json(m);
+        else if (modes_format == "latex") text = pogear::modes_latex(m);
+        else if (modes_format == "markdown") text = pogear::modes_markdown(m);
+        else text = pogear::modes_text(m);
+        emit(text, modes_output);
+        return 0;
+      }
+      if (campbell_request.input.empty())
+        throw pogear::InputError(where, "--campbell needs the input body whose speed is the axis, e.g. --input s");
+      if (!campbell_held.empty()) campbell_request.held = split_list(campbell_held);
+      const pogear::ModesWithCampbell mc = pogear::campbell_of_file(modes_file, modes_engaged, campbell_request);
       std::string text;
-      if (modes_format == "json") text = pogear::modes_json(m);
-      else if (modes_format == "latex") text = pogear::modes_latex(m);
-      else if (modes_format == "markdown") text = pogear::modes_markdown(m);
-      else text = pogear::modes_text(m);
+      if (modes_format == "json") text = pogear::modes_json(mc.modes, pogear::campbell_json_member(mc.campbell));
+      else if (modes_format == "latex") text = pogear::modes_latex(mc.modes, pogear::campbell_latex(mc.campbell));
+      else if (modes_format == "markdown") text = pogear::modes_markdown(mc.modes) + pogear::campbell_markdown(mc.campbell);
+      else text = pogear::modes_text(mc.modes) + pogear::campbell_text(mc.campbell);
+      const std::optional<std::string> gnuplot = pogear::gnuplot_program();
+      if (!gnuplot)
+        throw std::runtime_error("gnuplot is not installed, so the Campbell diagram cannot be drawn; install "
+                                 "gnuplot-nox (scripts/install-deps.sh)");
+      pogear::draw_svg(*gnuplot, pogear::campbell_script(mc.campbell), *campbell_file, "nothing was written");
       emit(text, modes_output);
+      if (modes_output) std::cout << "wrote " << *campbell_file << "\n";
     } else if (*ratios) {
       const pogear::SourceLocation where{ratios_model, 0, 0};
       const pogear::Derivation d = pogear::derive_topology(pogear::parse_topology(ratios_model), std::nullopt, where, false);

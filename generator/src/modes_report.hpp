@@ -9,7 +9,9 @@ namespace pogear {
 
 std::string modes_text(const VibrationModes& m);
 std::string modes_markdown(const VibrationModes& m);
-std::string modes_latex(const VibrationModes& m);
-std::string modes_json(const VibrationModes& m);
+// `extra`: more of the document before its end (the Campbell diagram's section).
+std::string modes_latex(const VibrationModes& m, const std::string& extra = "");
+// `extra_member`: one more member of the top-level object, e.g. "campbell": {...}.
+std::string modes_json(const VibrationModes& m, const std::string& extra_member = "");
 
 }  // namespace pogear

@@ -352,4 +352,6 @@ std::string cpp_double(double v) {
   return s;
 }
 
+std::string six_digits(double v) { return fmt::format("{:.6g}", v == 0.0 ? 0.0 : v); }
+
 }  // namespace pogear

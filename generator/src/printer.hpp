@@ -28,4 +28,8 @@ std::string latex_text(std::string_view text);
 // Shortest decimal that reads back as the same double, always with a '.' or an exponent.
 std::string cpp_double(double v);
 
+// A measured or computed number for a report line: 6 significant digits (the eigenproblems and
+// ratios behind them hold ~8), and -0 written as 0.
+std::string six_digits(double v);
+
 }  // namespace pogear

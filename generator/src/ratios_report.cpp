@@ -14,8 +14,6 @@
 namespace pogear {
 namespace {
 
-std::string g6(double v) { return fmt::format("{:.6g}", v == 0.0 ? 0.0 : v); }
-
 std::string engaged_or_none(const Topology& t, const EngagementRatio& e, const std::string& separator) {
   return e.engaged.empty() ? std::string("(none)") : engaged_names(t, e.engaged, separator);
 }
@@ -47,7 +45,7 @@ std::string ratios_text(const GearRatios& g, const Topology& t) {
   std::vector<std::array<std::string, 4>> rows{{"engaged", "status", "ratio", "value"}};
   for (const EngagementRatio& e : g.engagements)
     rows.push_back({engaged_or_none(t, e, " "), status_text(e),
-                    e.ratio ? print_expression(*e.ratio, Notation::text) : "", e.ratio ? g6(e.value) : ""});
+                    e.ratio ? print_expression(*e.ratio, Notation::text) : "", e.ratio ? six_digits(e.value) : ""});
   std::array<std::size_t, 4> width{};
   for (const auto& r : rows)
     for (std::size_t j = 0; j < 4; ++j) width[j] = std::max(width[j], r[j].size());
@@ -66,7 +64,7 @@ std::string ratios_markdown(const GearRatios& g, const Topology& t) {
   s += "| engaged | status | ratio | value |\n|---|---|---|---|\n";
   for (const EngagementRatio& e : g.engagements)
     s += fmt::format("| {} | {} | {} | {} |\n", engaged_or_none(t, e, ", "), status_text(e),
-                     e.ratio ? fmt::format("`{}`", print_expression(*e.ratio, Notation::text)) : "", e.ratio ? g6(e.value) : "");
+                     e.ratio ? fmt::format("`{}`", print_expression(*e.ratio, Notation::text)) : "", e.ratio ? six_digits(e.value) : "");
   return s + "\n" + footer(g) + "\n";
 }
 
@@ -82,7 +80,7 @@ std::string ratios_latex(const GearRatios& g, const Topology& t) {
   for (const EngagementRatio& e : g.engagements)
     s += fmt::format("{} & {} & {} & {} \\\\\n", latex_text(engaged_or_none(t, e, ", ")), status_text(e),
                      e.ratio ? fmt::format("$\\displaystyle {}$", print_expression(*e.ratio, Notation::latex)) : "",
-                     e.ratio ? fmt::format("${}$", g6(e.value)) : "");
+                     e.ratio ? fmt::format("${}$", six_digits(e.value)) : "");
   s += "\\end{tabular}\n\n" + footer(g) + "\n";
   return s + "\\end{document}\n";
 }

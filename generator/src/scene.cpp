@@ -341,6 +341,15 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     s.initial_where = r.loc(*n);
     for (const auto& [key, value] : *n->as_table()) {
       const std::string name(key.str());
+      if (name == "start") {
+        const std::string start = r.string(value, "start");
+        s.start_where = r.loc(value);
+        if (start == "rigid") s.start = Start::rigid;
+        else if (start == "steady") s.start = Start::steady;
+        else if (start == "given") s.start = Start::given;
+        else r.fail(value, fmt::format("start \"{}\" is not known; write \"given\" (the default), \"rigid\" or \"steady\"", start));
+        continue;
+      }
       const auto v = find_variable(topology, name, {VariableKind::velocity, VariableKind::force});
       if (!v)
         throw InputError(toml_location(path, key.source()),

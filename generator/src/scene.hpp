@@ -39,6 +39,11 @@ bool identically_zero(const rt::Signal& signal);
 
 using rt::Solver;
 
+// Where a scene starts (docs/scene-format.md, "Initial state"): from the speeds and forces [initial]
+// names; on the rigid model's trajectory (its state and its eq. (8) mesh forces); or at the
+// equilibrium of the inputs' values at t = 0.
+enum class Start { given, rigid, steady };
+
 struct Scene {
   std::string file;
   std::string digest;  // of the scene file's text (text_digest)
@@ -56,6 +61,8 @@ struct Scene {
   // listed, or whose command is zero at every time, is open throughout and leaves no term.
   std::vector<EngagementSpec> engagement;
   std::map<Variable, double> initial;  // velocities [rad/s] and forces [N]
+  Start start = Start::given;
+  SourceLocation start_where;
   std::vector<std::string> tunable;
   std::vector<Variable> outputs;  // velocities and forces; empty: every velocity, and every force with mesh_forces
   double horizon = 1.0;

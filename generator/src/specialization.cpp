@@ -1,6 +1,7 @@
 // Specialized equations are built as GiNaC expressions in the scene's own variables, with the
 // mesh velocities v = R omega (and damped forces w = F + B_K v) as the shared temporaries.
 #include "specialization.hpp"
+#include "start_state.hpp"
 
 #include <algorithm>
 
@@ -359,6 +360,7 @@ SpecializedScene specialize(const Scene& scene) {
     model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter),
                                          static_friction_ratio(t, f), e.command, f.one_way});
   }
+  apply_start(model);
   return model;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -21,31 +22,97 @@ bool is_scene_file(const std::string& path) {
   return root.contains("model");
 }
 
-VibrationModes modes_of_file(const std::string& path, const std::optional<std::string>& engaged) {
+namespace {
+
+// What the modes of a file are computed from: the derivation, the parameter values (the scene's),
+// which damping they include, and the engaged elements.
+struct ModesInput {
+  Derivation d;
+  GiNaC::exmap values;
+  std::string damping;
+  std::vector<int> engaged;
+};
+
+ModesInput modes_input(const std::string& path, const std::optional<std::string>& engaged) {
   const SourceLocation where{path, 0, 0};
   auto stuck = [&](const Topology& t) {
     return engaged ? parse_engaged(t, *engaged, where) : std::vector<int>{};
   };
+  if (!is_scene_file(path)) {
+    Derivation d = derive_model(path, std::nullopt, where);
+    GiNaC::exmap values = d.values;
+    std::vector<int> e = stuck(d.topology);
+    return {std::move(d), std::move(values), "mesh damping and bearing friction, as the model defines them", std::move(e)};
+  }
+  const Scene scene = parse_scene(path);
+  if (!scene.effects.mesh_compliance)
+    throw InputError(where, "the scene simulates the rigid model (no mesh_compliance in its effects), which has no "
+                            "elastic modes; add mesh_compliance to its effects, or give the model file");
+  std::optional<std::vector<std::string>> keep;
+  if (!scene.keep.empty()) keep = scene.keep;
+  Derivation d = derive_topology(scene.model, keep, scene.keep_where, false);
+  std::vector<std::string> damping;
+  if (scene.effects.mesh_damping) damping.push_back("mesh damping");
+  if (scene.effects.bearing_friction) damping.push_back("bearing friction");
+  const std::string which = damping.empty() ? std::string("none (the scene's effects have no damping)")
+                            : damping.size() == 1 ? damping[0] + ", as the scene calls for"
+                                                  : damping[0] + " and " + damping[1] + ", as the scene calls for";
+  GiNaC::exmap values = parameter_folding(scene, d, false);
+  std::vector<int> e = stuck(d.topology);
+  return {std::move(d), std::move(values), which, std::move(e)};
+}
+
+// An input speed from the command line: a quantity with a unit of angular velocity, above 0.
+double input_speed_rpm(const std::string& text, const SourceLocation& where) {
+  Quantity q;
   try {
-    if (!is_scene_file(path)) {
-      const Derivation d = derive_model(path, std::nullopt, where);
-      return vibration_modes(d, d.values, "mesh damping and bearing friction, as the model defines them",
-                             stuck(d.topology));
-    }
-    const Scene scene = parse_scene(path);
-    if (!scene.effects.mesh_compliance)
-      throw InputError(where, "the scene simulates the rigid model (no mesh_compliance in its effects), which has no "
-                              "elastic modes; add mesh_compliance to its effects, or give the model file");
-    std::optional<std::vector<std::string>> keep;
-    if (!scene.keep.empty()) keep = scene.keep;
-    const Derivation d = derive_topology(scene.model, keep, scene.keep_where, false);
-    std::vector<std::string> damping;
-    if (scene.effects.mesh_damping) damping.push_back("mesh damping");
-    if (scene.effects.bearing_friction) damping.push_back("bearing friction");
-    const std::string which = damping.empty() ? std::string("none (the scene's effects have no damping)")
-                              : damping.size() == 1 ? damping[0] + ", as the scene calls for"
-                                                    : damping[0] + " and " + damping[1] + ", as the scene calls for";
-    return vibration_modes(d, parameter_folding(scene, d, false), which, stuck(d.topology));
+    q = evaluate_quantity(text, {}, where, 0);
+  } catch (const InputError& e) {
+    throw InputError(where, fmt::format("--to '{}': {}", text, e.message()));
+  }
+  if (!q.has_unit || q.dimension != angular_velocity_dimension())
+    throw InputError(where, fmt::format("--to '{}' is not a speed; give it with its unit, e.g. --to 6000*rpm", text));
+  if (!(q.si > 0) || !std::isfinite(q.si))
+    throw InputError(where, fmt::format("--to '{}' is not a positive speed; the diagram runs from 0 to it", text));
+  return q.si * 60 / (2 * std::numbers::pi);
+}
+
+}  // namespace
+
+VibrationModes modes_of_file(const std::string& path, const std::optional<std::string>& engaged) {
+  try {
+    const ModesInput in = modes_input(path, engaged);
+    return vibration_modes(in.d, in.values, in.damping, in.engaged);
+  } catch (const std::domain_error& e) {
+    throw InputError(SourceLocation{path, 0, 0}, e.what());
+  }
+}
+
+ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<std::string>& engaged,
+                                   const CampbellRequest& request) {
+  const SourceLocation where{path, 0, 0};
+  try {
+    const ModesInput in = modes_input(path, engaged);
+    const Topology& t = in.d.topology;
+    auto body = [&](const std::string& name, const std::string& option) {
+      const int b = find_body(t, name);
+      if (b < 0) {
+        std::string list;
+        for (const Body& x : t.bodies) list += (list.empty() ? "" : ", ") + x.name;
+        throw InputError(where, fmt::format("{} '{}' is not a body of the model; the bodies are {}", option, name, list));
+      }
+      return b;
+    };
+    const int input = body(request.input, "--input");
+    std::vector<int> held;
+    for (const std::string& name : request.held) held.push_back(body(name, "--hold"));
+    if (request.harmonics < 1 || request.harmonics > max_harmonics)
+      throw InputError(where, fmt::format("--harmonics {} is not from 1 to {}", request.harmonics, max_harmonics));
+    const double max_rpm = request.to ? input_speed_rpm(*request.to, where) : 0.0;
+    ModesWithCampbell out;
+    out.modes = vibration_modes(in.d, in.values, in.damping, in.engaged);
+    out.campbell = campbell_diagram(in.d, in.values, out.modes, in.engaged, input, held, max_rpm, request.harmonics);
+    return out;
   } catch (const std::domain_error& e) {
     throw InputError(where, e.what());
   }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "campbell.hpp"
 #include "frequency_response.hpp"
 #include "vibration_modes.hpp"
 
@@ -18,6 +19,22 @@ bool is_scene_file(const std::string& path);
 // its effects call for), with the brakes and clutches `engaged` names ("B1,C2") stuck and the
 // others open. A rigid scene has no elastic modes and is refused.
 VibrationModes modes_of_file(const std::string& path, const std::optional<std::string>& engaged = std::nullopt);
+
+// `pogear modes ... --campbell FILE`: the operating line and the speed axis, as the user wrote them.
+struct CampbellRequest {
+  std::string input;                  // the input body
+  std::vector<std::string> held;      // bodies held at rest
+  std::optional<std::string> to;      // the highest input speed, e.g. "6000*rpm"; none: from the modes
+  int harmonics = 3;
+};
+
+// The modes of modes_of_file and, along the request's operating line, the Campbell diagram.
+struct ModesWithCampbell {
+  VibrationModes modes;
+  CampbellDiagram campbell;
+};
+ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<std::string>& engaged,
+                                   const CampbellRequest& request);
 
 struct ResponseRequest {
   std::string scene_file;

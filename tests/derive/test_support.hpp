@@ -18,6 +18,11 @@ inline Derivation derive_paper(const std::string& model, const std::vector<std::
   return derive_model(source_path("models/" + model + ".toml"), k, SourceLocation{"--keep", 0, 0});
 }
 
+// A model of models/ by name, with its own keep.
+inline Derivation derive_file(const std::string& model) {
+  return derive_model(source_path("models/" + model + ".toml"), std::nullopt, SourceLocation{model, 0, 0});
+}
+
 // The named parameter's or variable's symbol of a derivation (GiNaC symbols compare by identity,
 // not by name).
 inline GiNaC::ex sym(const Derivation& d, const std::string& name) {

@@ -167,6 +167,23 @@ TEST_F(Cli, ModesOfFrequenciesTooFarApart) {
       R"~(gear.toml: error: the natural frequencies span a ratio of 1.57e+05 (lambda from 2.9e+05 to 7.16e+15 1/s^2), above 1e+04, the widest span whose lowest frequency double precision gives to 8 digits; make the stiffnesses and inertias less disparate)~");
 }
 
+TEST_F(Cli, CampbellWithoutToothCounts) {
+  expect_pogear_error("modes gear.toml --campbell c.svg --input s --hold r", 2,
+      R"~(gear.toml: error: no mesh has a tooth count, so no mesh frequency is known; give the wheels' teeth (docs/model-format.md, "Tooth counts and modules"))~");
+  EXPECT_FALSE(std::filesystem::exists("c.svg"));
+}
+
+TEST_F(Cli, CampbellOnTwoDegreesOfFreedom) {
+  write_text("gear.toml", read_text(source_path("models/ravigneaux.toml")));
+  expect_pogear_error("modes gear.toml --campbell c.svg --input ss", 2,
+      R"~(gear.toml: error: a Campbell diagram follows one operating line, but with no body held the gear has 2 degrees of freedom; hold more bodies (--hold) or engage brakes or clutches (--engaged))~");
+}
+
+TEST_F(Cli, CampbellOptionWithoutCampbell) {
+  expect_pogear_error("modes gear.toml --input s", 2,
+      R"~(gear.toml: error: --input belongs to the Campbell diagram; add --campbell FILE.svg)~");
+}
+
 TEST_F(Cli, ResponseUnknownInput) {
   expect_pogear_error("response scene.toml --input tau_x --output omega_r", 2,
       R"~(scene.toml: error: --input 'tau_x' is not tau_<body> of the model; give the torque of one of its bodies, e.g. tau_c)~");

@@ -860,6 +860,25 @@ TEST_F(Initial, SpeedsContradictTheGear) {
   expect_scene_error({{"omega_c = \"0*rpm\"", "omega_c = \"0*rpm\"\nomega_r = \"0*rpm\"\nomega_s = \"100*rpm\""}},
     R"~(scene.toml:11:1: error: the initial speeds omega_c, omega_s, omega_r contradict the gear's kinematics, which require -omega_c + 0.337838*omega_s + 0.662162*omega_r = 0 (with these speeds it is 3.53783 rad/s); give speeds that satisfy it, or name fewer bodies)~");
 }
+TEST_F(Initial, StartUnknown) { expect_scene_error({{"omega_c = \"0*rpm\"", "start = \"warm\""}},
+    R"~(scene.toml:12:9: error: start "warm" is not known; write "given" (the default), "rigid" or "steady")~"); }
+TEST_F(Initial, SteadyStartWithANamedSpeed) {
+  expect_scene_error({{"omega_c = \"0*rpm\"", "omega_c = \"0*rpm\"\nstart = \"steady\""}},
+    R"~(scene.toml:13:9: error: start = "steady" computes the whole state from the inputs at t = 0; remove omega_c from [initial])~");
+}
+TEST_F(Initial, SteadyStartWithoutEquilibrium) {
+  expect_scene_error({{R"(, "bearing_friction")", ""}, {"omega_c = \"0*rpm\"", "start = \"steady\""}},
+    R"~(scene.toml:12:9: error: start = "steady": the elastic model has no equilibrium (its state matrix is singular: a body without bearing friction turns freely, so a constant torque accelerates it for ever); add bearing_friction to the effects, or start from given speeds)~");
+}
+TEST_F(Initial, RigidStartWithAForce) {
+  expect_scene_error({{"omega_c = \"0*rpm\"", "F_ps = \"10*N\"\nstart = \"rigid\""}},
+    R"~(scene.toml:13:9: error: start = "rigid" takes the mesh forces from the rigid model; remove F_ps from [initial])~");
+}
+TEST_F(Initial, RigidStartOfARigidScene) {
+  expect_scene_error({{R"("mesh_compliance", "mesh_damping", )", ""}, {"compare_rigid = true\n", ""},
+                      {"omega_c = \"0*rpm\"", "start = \"rigid\""}},
+    R"~(scene.toml:11:9: error: start = "rigid" starts the elastic model on the rigid model's trajectory; this scene simulates the rigid model (no mesh_compliance), which starts there already: remove start)~");
+}
 TEST_F(Initial, WrongUnit) { expect_scene_error({{"omega_c = \"0*rpm\"", "omega_c = \"10*rev\""}},
     R"~(scene.toml:12:11: error: omega_c has no unit (rad, deg, rev and pi are plain numbers); it needs 1/s)~"); }
 

@@ -179,6 +179,58 @@ TEST(InitialState, ElasticSpeedsThatBreakTheKinematicsAreNamedInTheSummary) {
   EXPECT_EQ(initial_deflection_note(scene_model(with_line(sun, "compare_rigid = false", "compare_rigid = true"))), "");
 }
 
+// start = "rigid": the elastic model starts on the rigid model's trajectory, its speeds the rigid
+// state's and its forces eq. (8)'s at t = 0, so it has no start-up transient to ring down.
+TEST(InitialState, RigidStartMeetsTheRigidModelAtTheStart) {
+  const std::string sun = with_line(scene_text("paper_one_stage"), "omega_c = \"0*rpm\"", "omega_s = \"3600*rpm\"");
+  const SpecializedScene given = scene_model(sun);
+  const SpecializedScene rigid_start = scene_model(with_line(sun, "omega_s = \"3600*rpm\"", "omega_s = \"3600*rpm\"\nstart = \"rigid\""));
+  ASSERT_TRUE(rigid_start.rigid.has_value());
+  const Trajectory r = interpret_trajectory(rigid_start, *rigid_start.rigid, run_settings(rigid_start));
+  const Trajectory e = interpret_trajectory(rigid_start, rigid_start.main, run_settings(rigid_start));
+  const Trajectory e0 = interpret_trajectory(given, given.main, run_settings(given));
+  ASSERT_TRUE(r.status.ok && e.status.ok && e0.status.ok);
+  // Outputs of both systems: omega of every body, then F of every mesh, in the model's order. The
+  // rigid run's first sample is the reference model's eq. (8) (its own solve, in doubles); the
+  // start's is exact and rounded once: they agree to the reference's rounding.
+  const Eigen::VectorXd& y0 = r.y.front();
+  EXPECT_LT((e.y.front() - y0).cwiseAbs().maxCoeff(), 1e-12 * y0.cwiseAbs().maxCoeff());
+  const auto n = static_cast<Eigen::Index>(rigid_start.derivation.topology.bodies.size());
+  const auto m = static_cast<Eigen::Index>(rigid_start.derivation.topology.meshes.size());
+  EXPECT_GT(y0.segment(n, m).cwiseAbs().maxCoeff(), 100);  // the forces at t = 0 are not zero
+  // Over the first 50 ms the given start's forces ring around the rigid ones (the meshes start
+  // unloaded); the rigid start's follow them. Measured: 71 N against 5783 N.
+  auto force_gap = [&](const Trajectory& x) {
+    double gap = 0;
+    for (std::size_t i = 0; i < x.t.size() && x.t[i] <= 0.05; ++i)
+      gap = std::max(gap, (x.y[i].segment(n, m) - r.y[i].segment(n, m)).cwiseAbs().maxCoeff());
+    return gap;
+  };
+  EXPECT_LT(force_gap(e), force_gap(e0) / 10) << force_gap(e) << " " << force_gap(e0);
+}
+
+// start = "steady": the equilibrium of the inputs at t = 0, M x0 + N u0 = 0, where a constant input
+// keeps the run (elastic and rigid) to rounding.
+TEST(InitialState, SteadyStartStaysAtTheEquilibrium) {
+  const SpecializedScene m = scene_model(with_line(scene_text("paper_one_stage"), "omega_c = \"0*rpm\"", "start = \"steady\""));
+  ASSERT_TRUE(m.rigid.has_value());
+  for (const SpecializedSystem* sys : {&m.main, &*m.rigid}) {
+    // The reference model's M and N (another formula, in doubles) at the start: zero to its rounding.
+    const NumericSystem ref = numeric_system(m, *sys);
+    const Eigen::VectorXd u = Eigen::VectorXd::Constant(1, rt::value(m.scene.inputs[0].signal, 0.0));
+    const Eigen::VectorXd dx = ref.M * ref.x0 + ref.N * u;
+    const double scale = (ref.M.cwiseAbs() * ref.x0.cwiseAbs()).maxCoeff();
+    EXPECT_LT(dx.cwiseAbs().maxCoeff(), 1e-13 * scale) << sys->kind;
+    EXPECT_GT(ref.x0.cwiseAbs().maxCoeff(), 1) << sys->kind;  // not the rest state
+    // Exact stepping of a constant input from an equilibrium moves by rounding only.
+    const Trajectory tr = interpret_trajectory(m, *sys, run_settings(m));
+    ASSERT_TRUE(tr.status.ok);
+    double drift = 0;
+    for (const Eigen::VectorXd& x : tr.x) drift = std::max(drift, (x - ref.x0).cwiseAbs().maxCoeff());
+    EXPECT_LT(drift, 1e-9 * ref.x0.cwiseAbs().maxCoeff()) << sys->kind;
+  }
+}
+
 // The load split of redundant meshes has exact weights: each coefficient of the rigid force outputs
 // is the correctly rounded value of an exact number, the one the reference model rounds, and not
 // a sum of rounded weights whose last bits (1.7e-18 for an exact 0) follow GiNaC's term order.

@@ -14,6 +14,7 @@
 #include "../support/commands.hpp"
 #include "../support/files.hpp"
 #include "../support/json.hpp"
+#include "../derive/test_support.hpp"
 #include "engagement.hpp"
 #include "exact_algebra.hpp"
 #include "numeric_rank.hpp"
@@ -21,10 +22,6 @@
 
 namespace pogear::test {
 namespace {
-
-Derivation derive_file(const std::string& model) {
-  return derive_model(source_path("models/" + model + ".toml"), std::nullopt, SourceLocation{model, 0, 0});
-}
 
 // The engagement rows written from the topology here: a stuck element keeps its slip
 // a_first omega_first - a_second omega_second at 0 (a brake: a_first omega_first).

@@ -13,6 +13,7 @@
 #include "../support/commands.hpp"
 #include "../support/files.hpp"
 #include "../support/json.hpp"
+#include "../derive/test_support.hpp"
 #include "exact_algebra.hpp"
 #include "vibration_modes.hpp"
 
@@ -24,10 +25,6 @@ const std::string pair_model = read_text(source_path("tests/vibration/pair.toml"
 
 Derivation derive_text(const std::string& text, const std::string& name) {
   return derive_topology(parse_topology_text(text, name), std::nullopt, SourceLocation{name, 0, 0});
-}
-
-Derivation derive_file(const std::string& model) {
-  return derive_model(source_path("models/" + model + ".toml"), std::nullopt, SourceLocation{model, 0, 0});
 }
 
 double si(const Derivation& d, const std::string& parameter) {

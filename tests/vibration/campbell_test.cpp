@@ -1,0 +1,117 @@
+// The Campbell diagram against the Willis equations written here: the operating line's speeds,
+// each mesh's tooth-passing frequency, and every crossing with a natural frequency.
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "../support/commands.hpp"
+#include "../support/files.hpp"
+#include "../support/json.hpp"
+#include "../derive/test_support.hpp"
+#include "campbell.hpp"
+#include "engagement.hpp"
+
+namespace pogear::test {
+namespace {
+
+// Ravigneaux set of models/ravigneaux.toml: small sun 30, large sun 36, ring 76 teeth.
+constexpr double Z_ss = 30, Z_sl = 36, Z_r = 76;
+
+Derivation ravigneaux() { return derive_file("ravigneaux"); }
+
+int body(const Derivation& d, const std::string& name) {
+  const int b = find_body(d.topology, name);
+  EXPECT_GE(b, 0) << name;
+  return b;
+}
+
+// Large sun held, small sun driving. Willis for the train ss-ps-pl-r (two external meshes and an
+// internal one): (w_r - w_c) = +Z_ss/Z_r (w_ss - w_c); for sl-pl-r: (w_r - w_c) = -Z_sl/Z_r (w_sl - w_c).
+// With w_sl = 0 and w_ss = 1: w_c = Z_ss / (Z_ss + Z_sl). Every mesh of the set passes its teeth
+// through the pinions of one carrier, so all mesh at Z_ss |w_ss - w_c| / 2 pi: Z_ss Z_sl / (Z_ss + Z_sl)
+// per rev/s of the small sun.
+TEST(Campbell, RavigneauxLineAndMeshFrequenciesFollowTheWillisEquations) {
+  const Derivation d = ravigneaux();
+  const VibrationModes modes = vibration_modes(d, d.values, "none");
+  const CampbellDiagram c = campbell_diagram(d, d.values, modes, {}, body(d, "ss"), {body(d, "sl")}, 0, 3);
+  const double w_c = Z_ss / (Z_ss + Z_sl);
+  // The line is solved exactly and rounded once: the speeds are the correctly rounded ratios.
+  EXPECT_DOUBLE_EQ(c.speeds(body(d, "ss")), 1);
+  EXPECT_EQ(c.speeds(body(d, "sl")), 0);
+  EXPECT_DOUBLE_EQ(c.speeds(body(d, "c")), w_c);
+  EXPECT_DOUBLE_EQ(c.speeds(body(d, "r")), Z_ss * (Z_r + Z_sl) / (Z_r * (Z_ss + Z_sl)));
+  ASSERT_EQ(c.meshes.size(), d.topology.meshes.size());
+  EXPECT_TRUE(c.without_teeth.empty());
+  const double expected = Z_ss * Z_sl / (Z_ss + Z_sl) / 60;  // Hz per rpm
+  for (const MeshLine& m : c.meshes) {
+    EXPECT_EQ(m.frame, "c") << m.mesh;
+    // Z |w - w_c| / 60 from one ratio and a subtraction: within a few ulps of the exact value.
+    EXPECT_NEAR(m.hz_per_rpm / expected, 1, 1e-14) << m.mesh;
+  }
+  // The default axis reaches the slowest first harmonic to 1.2 times the highest natural frequency.
+  ASSERT_FALSE(c.natural_hz.empty());
+  EXPECT_NEAR(c.max_rpm, 1.2 * c.natural_hz.back() / expected, 1e-9 * c.max_rpm);
+  // Every crossing: a harmonic of a mesh line at a natural frequency, each one found once.
+  // All four meshes pass teeth alike: one line, whose crossings name them all.
+  std::size_t count = 0;
+  for (int h = 1; h <= 3; ++h)
+    for (double f : c.natural_hz) count += f / (h * expected) <= c.max_rpm;
+  EXPECT_EQ(c.crossings.size(), count);
+  for (std::size_t i = 0; i < c.crossings.size(); ++i) {
+    const Crossing& x = c.crossings[i];
+    EXPECT_NEAR(x.harmonic * expected * x.input_rpm / x.natural_hz, 1, 1e-12);
+    EXPECT_EQ(x.mesh, "ssps, pspl, plsl, plr");
+    if (i > 0) {
+      EXPECT_LE(c.crossings[i - 1].input_rpm, x.input_rpm);
+    }
+  }
+}
+
+// Carrier held: an ordinary gear train, the small sun's mesh at Z_ss per revolution of it.
+TEST(Campbell, CarrierHeldMeshesAtTheSunsToothCount) {
+  const Derivation d = ravigneaux();
+  const VibrationModes modes = vibration_modes(d, d.values, "none");
+  const CampbellDiagram c = campbell_diagram(d, d.values, modes, {}, body(d, "ss"), {body(d, "c")}, 6000, 2);
+  EXPECT_DOUBLE_EQ(c.speeds(body(d, "r")), Z_ss / Z_r);
+  EXPECT_DOUBLE_EQ(c.speeds(body(d, "sl")), -Z_ss / Z_sl);
+  for (const MeshLine& m : c.meshes) EXPECT_NEAR(m.hz_per_rpm / (Z_ss / 60), 1, 1e-14) << m.mesh;
+  EXPECT_EQ(c.max_rpm, 6000);
+}
+
+TEST(Campbell, OperatingLineMustBeOneDegreeOfFreedom) {
+  const Derivation d = ravigneaux();
+  const VibrationModes modes = vibration_modes(d, d.values, "none");
+  try {
+    campbell_diagram(d, d.values, modes, {}, body(d, "ss"), {}, 0, 3);
+    FAIL() << "two degrees of freedom accepted";
+  } catch (const std::domain_error& e) {
+    EXPECT_NE(std::string(e.what()).find("2 degrees of freedom"), std::string::npos) << e.what();
+  }
+}
+
+// The command: the SVG (a whole document, every mesh in its legend) and the JSON member.
+TEST(Campbell, CommandDrawsTheDiagramAndReportsTheCrossings) {
+  const auto dir = test_dir("campbell");
+  const std::string svg = (dir / "campbell.svg").string();
+  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " modes " + source_path("models/ravigneaux.toml") +
+                                " --campbell " + svg + " --input ss --hold sl --format json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  const std::string figure = read_text(svg);
+  EXPECT_NE(figure.find("<svg"), std::string::npos);
+  EXPECT_NE(figure.find("</svg>"), std::string::npos);
+  EXPECT_NE(figure.find("meshes ssps, pspl, plsl, plr, 1x"), std::string::npos);
+  const Json j = parse_json(c.out);
+  const Json& campbell = j["campbell"];
+  EXPECT_EQ(campbell["input"].str, "ss");
+  EXPECT_EQ(campbell["meshes"].size(), 4u);
+  const Derivation d = ravigneaux();
+  const VibrationModes modes = vibration_modes(d, d.values, "none");
+  const CampbellDiagram direct = campbell_diagram(d, d.values, modes, {}, body(d, "ss"), {body(d, "sl")}, 0, 3);
+  ASSERT_EQ(campbell["crossings"].size(), direct.crossings.size());
+  for (std::size_t i = 0; i < direct.crossings.size(); ++i)
+    EXPECT_EQ(campbell["crossings"][i]["input_rpm"].num, direct.crossings[i].input_rpm);
+}
+
+}  // namespace
+}  // namespace pogear::test
