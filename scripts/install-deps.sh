@@ -8,6 +8,7 @@ packages=(
   libfmt-dev libtomlplusplus-dev libcli11-dev
   libgtest-dev googletest
   gnuplot-nox                      # plots of simulations
+  texlive-latex-base texlive-latex-recommended  # the tests compile the LaTeX reports with pdflatex
   libsundials-dev libboost-dev     # benchmark peers (bench/): CVODE, Boost.Odeint
   python3-scipy python3-numpy      # benchmark peer: SciPy's solve_ivp
   clang libclang-rt-14-dev         # fuzzing: libFuzzer, ASan and UBSan for clang (scripts/fuzz.sh)

@@ -39,7 +39,7 @@ Eigen::VectorXd operating_line(const Derivation& d, const GiNaC::exmap& values, 
   const unsigned freedom = n - C.rank();
   std::vector<std::string> names;
   for (int h : held) names.push_back(t.bodies[h].name);
-  const std::string line = fmt::format("with {}{}", names.empty() ? "no body held" : "held " + join(names),
+  const std::string line = fmt::format("with {}{}", names.empty() ? "no body held" : join(names) + " held",
                                        engaged.empty() ? "" : " and the engaged elements stuck");
   if (freedom != 1)
     throw std::domain_error(fmt::format(
@@ -230,13 +230,10 @@ std::string campbell_json_member(const CampbellDiagram& c) {
 }
 
 std::string campbell_script(const CampbellDiagram& c) {
-  // Distinguishable on white, no yellow; one colour per mesh, one dash pattern per harmonic.
-  static constexpr const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b",
-                                            "#e377c2", "#17becf", "#ff7f0e", "#7f7f7f", "#000000"};
   const double top = 1.25 * (c.natural_hz.empty() ? c.meshes.front().hz_per_rpm * c.max_rpm : c.natural_hz.back());
   // Every word is pogear's own or a name the model reader checked to be an identifier.
   std::string s;
-  s += "set terminal svg size 900,600 dynamic enhanced font 'Helvetica,13' background rgb 'white'\n";
+  s += gnuplot_svg_preamble(900, 600);
   s += fmt::format("set title 'Campbell diagram of {}: {}' noenhanced\n", c.model, line_description(c));
   s += fmt::format("set xlabel 'speed of {} [rpm]' noenhanced\nset ylabel 'frequency [Hz]'\n", c.input);
   s += fmt::format("set xrange [0:{}]\nset yrange [0:{}]\nset samples 400\n", c.max_rpm, top);
@@ -261,8 +258,9 @@ std::string campbell_script(const CampbellDiagram& c) {
   for (std::size_t k = 0; k < groups.size(); ++k)
     for (int h = 1; h <= c.harmonics; ++h) {
       next();
-      s += fmt::format("x*{} with lines lw 2 dt {} lc rgb '{}' title '{} {}, {}x' noenhanced", h * groups[k].first,
-                       std::min(h, 5), colours[k % std::size(colours)],
+      // One colour per line of meshes, one dash pattern per harmonic.
+      s += fmt::format("x*{} with lines lw 2 dt {} lt {} title '{} {}, {}x' noenhanced", h * groups[k].first,
+                       std::min(h, 5), k + 1,
                        groups[k].second.find(',') == std::string::npos ? "mesh" : "meshes", groups[k].second, h);
     }
   if (!points.empty()) {

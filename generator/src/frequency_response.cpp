@@ -116,6 +116,8 @@ std::vector<TransferFunction> frequency_response(const Scene& scene, const std::
   for (const Variable y : outputs) s.effects.mesh_forces = s.effects.mesh_forces || y.kind == VariableKind::force;
   s.compare_rigid = s.effects.mesh_compliance;
   s.tunable.clear();
+  s.start = Start::given;      // the response is of the system, from any state
+  s.speeds_in_rpm = false;     // transfer functions in SI
   const SpecializedScene model = specialize(s);
   const HessenbergSystem main = hessenberg_system(numeric_system(model, model.main));
   std::optional<HessenbergSystem> rigid;

@@ -103,11 +103,14 @@ std::string initial_deflection_note(const SpecializedScene& model) {
     if (!(std::abs(rate(i)) > 1e-12 * scale)) continue;
     // The mesh alone between its bodies: effective mass 1 / (R_i J^-1 R_i^T), and the spring force
     // that stops a relative speed v on it is v sqrt(K m) (undamped, the other meshes left out).
+    // A lumped planet's mesh carries its planets' sum; the note gives one planet's share.
     const double mass = 1 / R.row(i).cwiseAbs2().dot(J.cwiseInverse());
+    const double count = mesh_count(d.topology, d.topology.meshes[static_cast<std::size_t>(i)]);
     s += fmt::format("initial speeds deflect mesh {} at {:.4g} m/s (they break the rigid kinematics): a force of the "
                      "order of {:.3g} N, v sqrt(K m) on the mesh's effective mass; name the speeds of a rigid motion, "
-                     "or use compare_rigid = true to start from the rigid model's state\n",
-                     d.topology.meshes[static_cast<std::size_t>(i)].name, rate(i), std::abs(rate(i)) * std::sqrt(K(i) * mass));
+                     "or start from the rigid model's state (compare_rigid = true, or start = \"rigid\")\n",
+                     d.topology.meshes[static_cast<std::size_t>(i)].name, rate(i),
+                     std::abs(rate(i)) * std::sqrt(K(i) * mass) / count);
   }
   return s;
 }

@@ -35,6 +35,15 @@ std::vector<std::string> split_list(const std::string& s) {
   return out;
 }
 
+// An output file must not be an input of the command, nor another of its outputs.
+void refuse_same_file(const std::string& output, const std::string& other, const std::string& what) {
+  std::error_code e1, e2;
+  const auto a = std::filesystem::weakly_canonical(output, e1), b = std::filesystem::weakly_canonical(other, e2);
+  if (!e1 && !e2 && a == b)
+    throw pogear::InputError(pogear::SourceLocation{output, 0, 0},
+                             fmt::format("this output is also {}; write it to another file", what));
+}
+
 void emit(const std::string& text, const std::optional<std::string>& output) {
   if (!output) std::fwrite(text.data(), 1, text.size(), stdout);
   else pogear::write_file_atomically(*output, text);
@@ -178,6 +187,7 @@ int main(int argc, char** argv) {
       else if (format == "latex") text = pogear::report_latex(d);
       else if (format == "markdown") text = pogear::report_markdown(d);
       else text = pogear::report_text(d);
+      if (output) refuse_same_file(*output, model, "the model file");
       emit(text, output);
     } else if (*generate) {
       const pogear::SpecializedScene model = pogear::specialize(pogear::parse_scene(scene_file));
@@ -200,6 +210,11 @@ int main(int argc, char** argv) {
       for (const char* option : {"--input", "--hold", "--to", "--harmonics"})
         if (!campbell_file && modes->count(option))
           throw pogear::InputError(where, fmt::format("{} belongs to the Campbell diagram; add --campbell FILE.svg", option));
+      if (modes_output) refuse_same_file(*modes_output, modes_file, "the model or scene file");
+      if (campbell_file) {
+        refuse_same_file(*campbell_file, modes_file, "the model or scene file");
+        if (modes_output) refuse_same_file(*campbell_file, *modes_output, "the report (-o)");
+      }
       if (!campbell_file) {
         const pogear::VibrationModes m = pogear::modes_of_file(modes_file, modes_engaged);
         std::string text;
@@ -212,7 +227,7 @@ int main(int argc, char** argv) {
       }
       if (campbell_request.input.empty())
         throw pogear::InputError(where, "--campbell needs the input body whose speed is the axis, e.g. --input s");
-      if (!campbell_held.empty()) campbell_request.held = split_list(campbell_held);
+      if (modes->count("--hold")) campbell_request.hold = campbell_held;
       const pogear::ModesWithCampbell mc = pogear::campbell_of_file(modes_file, modes_engaged, campbell_request);
       std::string text;
       if (modes_format == "json") text = pogear::modes_json(mc.modes, pogear::campbell_json_member(mc.campbell));
@@ -223,9 +238,22 @@ int main(int argc, char** argv) {
       if (!gnuplot)
         throw std::runtime_error("gnuplot is not installed, so the Campbell diagram cannot be drawn; install "
                                  "gnuplot-nox (scripts/install-deps.sh)");
-      pogear::draw_svg(*gnuplot, pogear::campbell_script(mc.campbell), *campbell_file, "nothing was written");
-      emit(text, modes_output);
-      if (modes_output) std::cout << "wrote " << *campbell_file << "\n";
+      // Both made before either is written; the report first when it goes to a file, so that a bad -o
+      // leaves no figure behind.
+      const std::string svg = pogear::render_svg(*gnuplot, pogear::campbell_script(mc.campbell), *campbell_file,
+                                                 "nothing was written");
+      if (modes_output) {
+        emit(text, modes_output);
+        try {
+          pogear::write_file_atomically(*campbell_file, svg);
+        } catch (const std::exception& e) {
+          throw std::runtime_error(std::string(e.what()) + " (the report " + *modes_output + " is written)");
+        }
+        std::cout << "wrote " << *modes_output << " and " << *campbell_file << "\n";
+      } else {
+        pogear::write_file_atomically(*campbell_file, svg);
+        emit(text, modes_output);
+      }
     } else if (*ratios) {
       const pogear::SourceLocation where{ratios_model, 0, 0};
       const pogear::Derivation d = pogear::derive_topology(pogear::parse_topology(ratios_model), std::nullopt, where, false);
@@ -235,6 +263,7 @@ int main(int argc, char** argv) {
       else if (ratios_format == "latex") text = pogear::ratios_latex(g, d.topology);
       else if (ratios_format == "markdown") text = pogear::ratios_markdown(g, d.topology);
       else text = pogear::ratios_text(g, d.topology);
+      if (ratios_file) refuse_same_file(*ratios_file, ratios_model, "the model file");
       emit(text, ratios_file);
     } else if (*response) {
       response_request.inputs = split_list(response_inputs);

@@ -102,10 +102,19 @@ std::vector<std::vector<double>> thinned_csv_rows(const std::string& path, doubl
   return kept;
 }
 
+std::string gnuplot_svg_preamble(int width, int height) {
+  static constexpr const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b",
+                                            "#e377c2", "#17becf", "#ff7f0e", "#7f7f7f", "#000000"};
+  std::string s = fmt::format("set terminal svg size {},{} dynamic enhanced font 'Helvetica,13' background rgb 'white'\n",
+                              width, height);
+  for (std::size_t i = 0; i < std::size(colours); ++i) s += fmt::format("set linetype {} lc rgb '{}'\n", i + 1, colours[i]);
+  return s + fmt::format("set linetype cycle {}\n", std::size(colours));
+}
+
 std::optional<std::string> gnuplot_program() { return find_program("gnuplot"); }
 
-void draw_svg(const std::string& gnuplot, const std::string& script, const std::string& svg,
-              const std::string& already_written) {
+std::string render_svg(const std::string& gnuplot, const std::string& script, const std::string& svg,
+                       const std::string& already_written) {
   ChildRequest request;
   // The script as a file argument: gnuplot reads a script file in blocks, but its standard input
   // a few bytes per call (0.28 s instead of 0.04 s for a 2000-sample figure).
@@ -118,7 +127,12 @@ void draw_svg(const std::string& gnuplot, const std::string& script, const std::
   if (!result.ok() || end == std::string::npos || result.out.find_first_not_of(" \n", end + 6) != std::string::npos)
     throw std::runtime_error(fmt::format("gnuplot failed drawing {} ({}){}{}; {}", svg, result.describe(),
                                          result.err.empty() ? "" : ": ", result.err.substr(0, 2000), already_written));
-  write_file_atomically(svg, result.out);
+  return result.out;
+}
+
+void draw_svg(const std::string& gnuplot, const std::string& script, const std::string& svg,
+              const std::string& already_written) {
+  write_file_atomically(svg, render_svg(gnuplot, script, svg, already_written));
 }
 
 namespace {
@@ -128,7 +142,7 @@ namespace {
 std::string shift_script(const SpecializedScene& model, const std::vector<std::vector<double>>& rows) {
   const std::size_t ny = model.main.outputs.size(), ne = model.friction.size();
   std::string script;
-  script += "set terminal svg size 900,900 dynamic enhanced font 'Helvetica,13' background rgb 'white'\n";
+  script += gnuplot_svg_preamble(900, 900);
   script += "set datafile separator ','\n";
   script += gnuplot_datablock("run", rows);
   script += "set grid\nset key outside right top\nset multiplot layout 3,1\n";
@@ -158,7 +172,8 @@ std::string shift_script(const SpecializedScene& model, const std::vector<std::v
   }
   // The scene's name and the elements' names are identifiers, checked when the files were read.
   if (!speeds.empty())
-    panel(model.scene.name + ": angular velocities", "{/Symbol w} [rad/s]", speeds, speed_names, false);
+    panel(model.scene.name + ": angular velocities", model.scene.speeds_in_rpm ? "n [rpm]" : "{/Symbol w} [rad/s]",
+          speeds, speed_names, false);
   panel("brake and clutch torques", "T [N m]", torques, torque_names, false);
   panel("slips", "slip [rad/s]", slips, slip_names, true);
   return script + "unset multiplot\n";
@@ -185,26 +200,26 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
     // Every word of the script is pogear's own or a validated name: the scene's name and the
     // outputs' names are identifiers (checked when the files are read), and the data are numbers.
     std::string script;
-    script += "set terminal svg size 900,560 dynamic enhanced font 'Helvetica,13' background rgb 'white'\n";
+    script += gnuplot_svg_preamble(900, 560);
     script += "set datafile separator ','\n";
     script += gnuplot_datablock("elastic", elastic);
     if (model.rigid) script += gnuplot_datablock("rigid", rigid);
     script += "set grid\nset key outside right top\n";
     script += fmt::format("set title '{}: {}{}' noenhanced\n", name, kind == "velocities" ? "angular velocities" : "mesh forces",
-                          model.rigid ? " (rigid model dashed)" : "");
+                          model.rigid ? " (rigid model dashed, in the same colour)" : "");
     script += "set xlabel 't [s]'\n";
-    script += fmt::format("set ylabel '{}'\n", kind == "velocities" ? "{/Symbol w} [rad/s]" : "F [N]");
+    script += fmt::format("set ylabel '{}'\n", kind == "velocities" ? (model.scene.speeds_in_rpm ? "n [rpm]" : "{/Symbol w} [rad/s]")
+                                                                   : "F [N]");
     script += "plot ";
-    bool first = true;
-    for (int c : columns) {
-      script += fmt::format("{}$elastic using 1:{} with lines lw 2 title '{}'", first ? "" : ", \\\n     ", c,
-                            gnuplot_label(model.main.outputs[c - 2]));
-      first = false;
-    }
-    if (model.rigid)
+    // One colour per quantity; its rigid curve dashed in that colour, one legend entry saying so.
+    for (std::size_t k = 0; k < columns.size(); ++k)
+      script += fmt::format("{}$elastic using 1:{} with lines lt {} lw 2 title '{}'", k ? ", \\\n     " : "", columns[k],
+                            k + 1, gnuplot_label(model.main.outputs[columns[k] - 2]));
+    if (model.rigid) {
       for (std::size_t k = 0; k < columns.size(); ++k)
-        script += fmt::format(", \\\n     $rigid using 1:{} with lines dt 2 lw 1.5 lc rgb 'red' {}", columns[k],
-                              k == 0 ? "title 'rigid'" : "notitle");
+        script += fmt::format(", \\\n     $rigid using 1:{} with lines lt {} dt 2 lw 1.5 notitle", columns[k], k + 1);
+      script += ", \\\n     NaN with lines dt 2 lw 1.5 lc rgb 'black' title 'rigid model'";
+    }
     script += "\n";
 
     const fs::path svg = fs::path(dir) / fmt::format("{}.{}.svg", name, kind);

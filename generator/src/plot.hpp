@@ -27,6 +27,14 @@ std::optional<std::string> gnuplot_program();
 // with `already_written` (what the user still has).
 void draw_svg(const std::string& gnuplot, const std::string& script, const std::string& svg,
               const std::string& already_written);
+// The same SVG, returned instead of written (for a command that writes several files only once all
+// of them are made).
+std::string render_svg(const std::string& gnuplot, const std::string& script, const std::string& svg,
+                       const std::string& already_written);
+// The SVG terminal on white and ten line colours that stay apart on it (no yellow, no pale hue),
+// cycling: every figure's script starts with it.
+std::string gnuplot_svg_preamble(int width, int height);
+
 // `$name << EOD` with the rows as comma-separated numbers.
 std::string gnuplot_datablock(const std::string& name, const std::vector<std::vector<double>>& rows);
 // omega_c -> {/Symbol w}_{c}, F_ps -> F_{ps} (enhanced text).

@@ -340,7 +340,10 @@ std::string latex_text(std::string_view text) {
       case '^': out += "\\textasciicircum{}"; break;
       case '~': out += "\\textasciitilde{}"; break;
       case '{': case '}': case '$': case '&': case '%': case '#': case '_': out += '\\'; out += c; break;
-      default: out += c;
+      default:
+        // A control character (a line break in a file name) would end a comment line or a paragraph.
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) out += '?';
+        else out += c;
     }
   }
   return out;

@@ -88,14 +88,20 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
       }
     }
   }
-  // A lumped planet's meshes: the model's force is its planets' sum, the output one planet's.
+  // A lumped planet's meshes: the model's force is its planets' sum, the output one planet's. Speeds
+  // in rpm when the scene asks.
   for (std::size_t i = 0; i < ny; ++i) {
     const Variable y = sys.output_variables[i];
-    if (y.kind != VariableKind::force) continue;
-    const double count = mesh_count(d.topology, d.topology.meshes[y.index]);
-    out.C.row(i) /= count;
-    out.D.row(i) /= count;
-    out.E.row(i) /= count;
+    if (y.kind == VariableKind::force) {
+      const double count = mesh_count(d.topology, d.topology.meshes[y.index]);
+      out.C.row(i) /= count;
+      out.D.row(i) /= count;
+      out.E.row(i) /= count;
+    } else if (model.scene.speeds_in_rpm) {
+      out.C.row(i) *= rpm_per_rad_per_s;
+      out.D.row(i) *= rpm_per_rad_per_s;
+      out.E.row(i) *= rpm_per_rad_per_s;
+    }
   }
   return out;
 }

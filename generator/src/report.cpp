@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <numbers>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -182,10 +183,58 @@ std::string latex_vector(const std::vector<std::string>& v) {
 // LaTeX and Markdown share the mathematics; only the wrapping differs.
 struct MathDisplay {
   std::string math_open, math_close, heading_open, heading_close;
+  bool latex = false;
   std::string display(const std::string& math) const { return math_open + math + math_close; }
   std::string heading(const std::string& text) const { return heading_open + text + heading_close; }
   std::string paragraph(const std::string& text) const { return text + "\n\n"; }
+  // Plain text cells (names, values as written), escaped for the format.
+  std::string table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) const {
+    auto cell = [&](const std::string& x) {
+      if (latex) return latex_text(x);
+      std::string out;
+      for (char c : x) out += c == '|' ? std::string("\\|") : std::string(1, c);
+      return out;
+    };
+    auto line = [&](const std::vector<std::string>& r) {
+      std::vector<std::string> c;
+      for (const auto& x : r) c.push_back(cell(x));
+      return latex ? join(c, " & ") + " \\\\\n" : "| " + join(c, " | ") + " |\n";
+    };
+    std::string s = latex ? "\\begin{tabular}{" + std::string(header.size(), 'l') + "}\n" + line(header) + "\\hline\n"
+                          : line(header) + "|" + [&] {
+                              std::string d;
+                              for (std::size_t i = 0; i < header.size(); ++i) d += "---|";
+                              return d;
+                            }() + "\n";
+    for (const auto& r : rows) s += line(r);
+    return s + (latex ? "\\end{tabular}\n\n" : "\n");
+  }
 };
+
+// Every parameter: as written in the model file (or given by teeth), in SI, and where it comes from;
+// then the radii the geometry gives.
+std::vector<std::vector<std::string>> parameter_rows(const Derivation& d) {
+  std::vector<std::vector<std::string>> rows;
+  auto pitch_radius = [&](const std::string& name) {
+    for (const Body& b : d.topology.bodies)
+      for (const Wheel& w : b.wheels)
+        if (w.teeth > 0 && w.radius_parameter == name) return true;
+    return false;
+  };
+  for (const Parameter& p : d.topology.parameters) {
+    const std::string unit = p.value.has_unit ? " " + describe(p.value.dimension) : "";
+    const std::string line = fmt::format("line {}", p.where.line);
+    rows.push_back({p.name, p.text, fmt::format("{:.6g}{}", p.value.si, unit),
+                    pitch_radius(p.name) ? "its teeth, " + line : line});
+  }
+  for (const DerivedRadius& r : d.radius.derived) {
+    std::string mesh;
+    for (const auto& g : d.radius.relations)
+      if (g.parameter == r.parameter) mesh = d.topology.meshes[g.mesh].name;
+    rows.push_back({r.parameter, "(geometry)", fmt::format("{:.6g} m", r.value), "mesh " + mesh});
+  }
+  return rows;
+}
 
 std::string math_body(const Derivation& d, const MathDisplay& w) {
   const Printed p = print_all(d, Notation::latex);
@@ -216,6 +265,15 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
     s += w.paragraph("Lumped planets, each body standing for identical planets that share the load equally: " +
                      join(p.lumped, "; ") + ". The model multiplies their inertia and friction, and their meshes' "
                      "stiffness and damping, by the count; the mesh forces below are one planet's.");
+  s += w.heading("Diagnostics");
+  s += w.paragraph("Of the elastic model with every effect, at the model's values:");
+  {
+    std::string list;
+    std::istringstream lines(diagnostics_text(d.diagnostics, ""));
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty()) list += w.latex ? latex_text(line) + "\\\\\n" : "- " + line + "\n";
+    s += list + "\n";
+  }
   s += w.heading("Elastic model");
   s += w.paragraph(fmt::format("State $\\mathbf{{x}} = [\\boldsymbol{{\\omega}}; \\mathbf{{F}}]$ of size {}, "
                                "$\\mathbf{{L}}\\dot{{\\mathbf{{x}}}} = \\mathbf{{A}}\\mathbf{{x}} + \\mathbf{{B}}\\boldsymbol{{\\tau}}$ with",
@@ -225,7 +283,7 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
                  "-\\mathbf{R}^{\\mathsf{T}} \\\\ \\mathbf{R} & 0 \\end{bmatrix}, \\quad "
                  "\\mathbf{B} = \\begin{bmatrix} \\mathbf{I} \\\\ 0 \\end{bmatrix}");
   if (!p.engaged.empty()) {
-    s += w.heading("Engaged: " + join(p.engaged, ", "));
+    s += w.heading("Engaged: " + latex_text(join(p.engaged, ", ")));
     s += w.paragraph("Each engaged brake or clutch is stuck: its row $\\mathbf{e}_k$ ($\\mathbf{e}_k \\boldsymbol{\\omega}$ "
                      "is its slip) joins the constraints, $\\mathbf{C} = [\\mathbf{R}; \\mathbf{E}_S]$, and the rigid "
                      "model below is that of this mode; its torques $T$ are recovered with the mesh forces.");
@@ -269,11 +327,13 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
     s += w.paragraph("Eq. (8): $" + lhs + " = (" + C + C + "^{\\mathsf{T}})^{-1}" + C + "(\\boldsymbol{\\tau} - "
                      "\\mathbf{J}\\mathbf{Q}_1\\dot{\\mathbf{x}}_1 - \\mathbf{B}_J\\mathbf{Q}_1\\mathbf{x}_1)$. "
                      "On the rigid model the bracket lies in the range of $" + C + "^{\\mathsf{T}}$, so this equals "
-                     "$(" + C + "_S^{\\mathsf{T}})^{-1}$ applied to the rows $S$ = (" + force_bodies(d) + ") of the bracket:");
+                     "$(" + C + "_S^{\\mathsf{T}})^{-1}$ applied to the rows $S$ = (" + latex_text(force_bodies(d)) + ") of the bracket:");
     std::string f = "\\begin{aligned}\n";
     for (std::size_t i = 0; i < p.reactions.size(); ++i) f += fmt::format("  {} &= {} \\\\\n", p.reactions[i], p.force_recovery[i]);
     s += w.display(f + "\\end{aligned}");
   }
+  s += w.heading("Parameters");
+  s += w.table({"parameter", "as given", "value (SI)", "defined at"}, parameter_rows(d));
   return s;
 }
 
@@ -368,9 +428,9 @@ std::string report_text(const Derivation& d) {
 }
 
 std::string report_latex(const Derivation& d) {
-  const MathDisplay w{"\\[\n", "\n\\]\n", "\\subsection*{", "}\n"};
+  const MathDisplay w{"\\[\n", "\n\\]\n", "\\subsection*{", "}\n", true};
   std::string s;
-  s += "% Generated by pogear derive from " + d.topology.file + ". Compile with pdflatex.\n";
+  s += "% Generated by pogear derive from " + latex_text(d.topology.file) + ". Compile with pdflatex.\n";
   s += "\\documentclass{article}\n\\usepackage{amsmath,amssymb}\n\\usepackage[margin=2cm,landscape]{geometry}\n";
   s += "\\setcounter{MaxMatrixCols}{64}\n\\allowdisplaybreaks\n\\begin{document}\n";
   std::string title = title_of(d);

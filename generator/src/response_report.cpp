@@ -51,7 +51,7 @@ bool any_accurate(const std::vector<bool>& accurate) {
 
 std::string bode_script(const std::string& scene_name, const TransferFunction& t) {
   std::string s;
-  s += "set terminal svg size 900,700 dynamic enhanced font 'Helvetica,13' background rgb 'white'\n";
+  s += gnuplot_svg_preamble(900, 700);
   s += gnuplot_datablock("elastic", bode_rows(t.frequency_hz, t.value, t.accurate));
   const bool rigid = !t.rigid.empty() && any_accurate(t.rigid_accurate);
   if (rigid) s += gnuplot_datablock("rigid", bode_rows(t.frequency_hz, t.rigid, t.rigid_accurate));

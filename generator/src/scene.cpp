@@ -222,7 +222,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       fmt::format("the scene file is larger than {} bytes; a model or scene file is a few kilobytes",
                   max_model_file_bytes));
   r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
-                     "parameters", "simulation", "engagement"},
+                     "parameters", "simulation", "engagement", "speed_unit"},
               "the scene file");
   Scene s;
   s.file = path;
@@ -277,6 +277,11 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       if (find_body(topology, k) < 0) r.fail(*n, fmt::format("keep names '{}', which is not a body of the model", k));
   } else {
     s.keep_where = SourceLocation{path, 0, 0};
+  }
+  if (const toml::node* n = root.get("speed_unit")) {
+    const std::string unit = r.string(*n, "speed_unit");
+    if (unit != "rpm" && unit != "rad/s") r.fail(*n, "speed_unit is \"rad/s\" (the default) or \"rpm\"");
+    s.speeds_in_rpm = unit == "rpm";
   }
   if (const toml::node* n = root.get("compare_rigid")) {
     if (!n->is_boolean()) r.fail(*n, "compare_rigid must be true or false");
@@ -355,6 +360,10 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         throw InputError(toml_location(path, key.source()),
                          fmt::format("'{}' is neither omega_<body> nor F_<mesh> of the model", name));
       if (v->kind == VariableKind::velocity) {
+        // Hz is 1/s, which as a speed would be read as rad/s: 2 pi short of the revolutions it usually means.
+        if (value.is_string() && value.value<std::string>()->find("Hz") != std::string::npos)
+          r.fail(value, fmt::format("{} is in Hz, which for a speed could mean rev/s or rad/s; give it in rpm or rad/s, "
+                                    "e.g. \"600*rpm\"", name));
         s.initial[*v] = r.quantity(value, angular_velocity_dimension(), name);
       } else {
         if (!s.effects.mesh_compliance)

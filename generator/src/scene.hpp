@@ -56,6 +56,7 @@ struct Scene {
   Effects effects;
   std::vector<std::string> keep;  // empty: the model's default
   bool compare_rigid = false;
+  bool speeds_in_rpm = false;  // speed outputs (CSV, figures) in rpm instead of rad/s
   std::vector<InputSpec> inputs;
   // Commands of the brakes and clutches the scene engages, in the model's order; an element not
   // listed, or whose command is zero at every time, is open throughout and leaves no term.

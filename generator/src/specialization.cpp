@@ -297,6 +297,10 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
     // The model's force of a lumped planet's mesh is its planets' sum; users read one planet's.
     if (out.kind == VariableKind::force && mesh_count(t, t.meshes[out.index]) > 1)
       sys.output_values.back() = folded(sys.output_values.back() / mesh_count(t, t.meshes[out.index]));
+    if (out.kind == VariableKind::velocity && sc.speeds_in_rpm) {
+      sys.output_values.back() = folded(sys.output_values.back() * exact_number(rpm_per_rad_per_s));
+      sys.output_units.back() = "rpm";
+    }
   }
   sys.output_derivatives = need_derivatives;
   sys.rhs_ops = sys.implicit ? implicit_operations(*sys.implicit) : count_all(sys.rhs_temporaries, sys.rhs);

@@ -93,6 +93,9 @@ struct SpecializedScene {
   std::optional<SpecializedSystem> rigid;  // the comparison, when the scene asks for it
 };
 
+// 60 / 2 pi, rounded once: a speed output in rpm is this times the speed in rad/s.
+inline constexpr double rpm_per_rad_per_s = 9.5492965855137201;
+
 SpecializedScene specialize(const Scene& scene);
 SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, bool elastic);
 

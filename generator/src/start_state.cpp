@@ -1,5 +1,5 @@
-// Both starts are solved in exact rationals and rounded once, so a run that starts steady stays
-// there to rounding, and one that starts rigid meets eq. (8) at t = 0 to rounding.
+// Both starts are solved in exact rationals on the rigid model and rounded once, so a run that
+// starts steady stays there to rounding, and one that starts rigid meets eq. (8) at t = 0 to rounding.
 #include "start_state.hpp"
 
 #include <fmt/format.h>
@@ -19,22 +19,14 @@ std::vector<GiNaC::numeric> torques_at_start(const Scene& sc, std::size_t bodies
   return tau;
 }
 
-void start_rigid(SpecializedScene& model, const GiNaC::exmap& values) {
+// The states on the rigid model's trajectory at x1 (exact, in the kept order) moving at dx1: the rigid
+// system's x1 and the elastic one's speeds Q1 x1 with eq. (8)'s mesh forces (the split by stiffness
+// for redundant meshes).
+void start_on_rigid_trajectory(SpecializedScene& model, const GiNaC::exmap& values, const RigidValues& rv,
+                               const std::vector<GiNaC::numeric>& tau, const GiNaC::matrix& x, const GiNaC::matrix& dx) {
   const Derivation& d = model.derivation;
   const std::size_t n = d.topology.bodies.size();
-  const std::vector<double> x1 = rigid_initial_state(model.scene, d, values);
-  const RigidValues rv = exact_rigid_values(d.rigid, d.elastic, values);
-  const std::vector<GiNaC::numeric> tau = torques_at_start(model.scene, n);
-  const unsigned k = rv.Q1.cols();
-  GiNaC::matrix x(k, 1), rhs(k, 1);
-  for (unsigned j = 0; j < k; ++j) x(j, 0) = exact_number(x1[j]);
-  GiNaC::matrix tau_m(n, 1);
-  for (std::size_t b = 0; b < n; ++b) tau_m(b, 0) = tau[b];
-  // L1 x1' = A1 x1 + Q1^T tau (eq. 7), then omega = Q1 x1 and domega = Q1 x1'.
-  const GiNaC::matrix forcing = exact_product(rv.A1, x).add(exact_product(rv.Q1.transpose(), tau_m));
-  const GiNaC::matrix dx = exact_solve(rv.L1, forcing);
   const GiNaC::matrix omega = exact_product(rv.Q1, x), domega = exact_product(rv.Q1, dx);
-  // Eq. (8) as the rigid model's force outputs read it (the split by stiffness for redundant meshes).
   GiNaC::exmap at_start = values;
   const SymbolTable& s = d.symbols;
   for (std::size_t b = 0; b < n; ++b) {
@@ -43,32 +35,49 @@ void start_rigid(SpecializedScene& model, const GiNaC::exmap& values) {
     at_start[variable_symbol(s, {VariableKind::acceleration, i})] = domega(b, 0);
     at_start[variable_symbol(s, {VariableKind::torque, i})] = tau[b];
   }
-  SpecializedSystem& sys = model.main;
-  for (std::size_t i = 0; i < sys.state_variables.size(); ++i) {
-    const Variable v = sys.state_variables[i];
-    sys.x0[i] = v.kind == VariableKind::velocity
-                    ? to_double(omega(static_cast<unsigned>(v.index), 0))
-                    : to_double(exact_value(d.rigid.force_recovery.at(static_cast<std::size_t>(v.index)), at_start));
+  for (SpecializedSystem* sys : {&model.main, model.rigid ? &*model.rigid : nullptr}) {
+    if (!sys) continue;
+    for (std::size_t i = 0; i < sys->state_variables.size(); ++i) {
+      if (sys->kind == SystemKind::rigid) {
+        sys->x0[i] = to_double(x(static_cast<unsigned>(i), 0));
+        continue;
+      }
+      const Variable v = sys->state_variables[i];
+      sys->x0[i] = v.kind == VariableKind::velocity
+                       ? to_double(omega(static_cast<unsigned>(v.index), 0))
+                       : to_double(exact_value(d.rigid.force_recovery.at(static_cast<std::size_t>(v.index)), at_start));
+    }
   }
 }
 
-// dx/dt = M x + N u = 0 for the inputs' values at t = 0.
-void start_steady(const SpecializedScene& model, SpecializedSystem& sys) {
-  const std::size_t nx = sys.states.size(), nu = sys.inputs.size();
-  GiNaC::matrix u(nu, 1);
-  for (std::size_t c = 0; c < nu; ++c)
-    u(c, 0) = exact_number(rt::value(model.scene.inputs[static_cast<std::size_t>(sys.input_signal[c])].signal, 0.0));
-  GiNaC::matrix x;
-  try {
-    x = exact_solve(sys.M, exact_product(sys.N, u).mul_scalar(-1));
-  } catch (const std::domain_error&) {
-    throw InputError(model.scene.start_where,
-                     fmt::format("start = \"steady\": the {} model has no equilibrium (its state matrix is singular: a "
-                                 "body without bearing friction turns freely, so a constant torque accelerates it for "
-                                 "ever); add bearing_friction to the effects, or start from given speeds",
-                                 kind_name(sys.kind)));
+// start = "rigid": x1 from the named speeds, moving as eq. (7) says: L1 x1' = A1 x1 + Q1^T tau.
+// start = "steady": the rigid equilibrium A1 x1 + Q1^T tau = 0, at rest relative to it. The elastic
+// model's equilibrium is that one: R omega = 0 stops the springs, Q1^T of its speed equation is the
+// rigid one, and from unloaded springs the redundant meshes' forces split by stiffness.
+void start_from_rigid_model(SpecializedScene& model, const GiNaC::exmap& values) {
+  const Derivation& d = model.derivation;
+  const RigidValues rv = exact_rigid_values(d.rigid, d.elastic, values);
+  const std::vector<GiNaC::numeric> tau = torques_at_start(model.scene, d.topology.bodies.size());
+  const unsigned k = rv.Q1.cols();
+  GiNaC::matrix tau_m(tau.size(), 1);
+  for (std::size_t b = 0; b < tau.size(); ++b) tau_m(b, 0) = tau[b];
+  const GiNaC::matrix driving = exact_product(rv.Q1.transpose(), tau_m);
+  GiNaC::matrix x(k, 1), dx(k, 1);
+  if (model.scene.start == Start::rigid) {
+    const std::vector<double> x1 = rigid_initial_state(model.scene, d, values);
+    for (unsigned j = 0; j < k; ++j) x(j, 0) = exact_number(x1[j]);
+    dx = exact_solve(rv.L1, exact_product(rv.A1, x).add(driving));
+  } else {
+    try {
+      x = exact_solve(rv.A1, driving.mul_scalar(-1));
+    } catch (const std::domain_error&) {
+      throw InputError(model.scene.start_where,
+                       "start = \"steady\": the gear has no equilibrium (a rigid motion meets no bearing friction, so "
+                       "a constant torque accelerates it for ever); add bearing_friction to the effects, or start "
+                       "from given speeds");
+    }
   }
-  for (std::size_t i = 0; i < nx; ++i) sys.x0[i] = to_double(x(static_cast<unsigned>(i), 0));
+  start_on_rigid_trajectory(model, values, rv, tau, x, dx);
 }
 
 }  // namespace
@@ -96,13 +105,7 @@ void apply_start(SpecializedScene& model) {
   if (sc.start == Start::rigid && model.main.kind == SystemKind::rigid)
     refuse("starts the elastic model on the rigid model's trajectory; this scene simulates the rigid model (no "
            "mesh_compliance), which starts there already: remove start");
-  const GiNaC::exmap values = parameter_folding(sc, model.derivation, false);
-  if (sc.start == Start::rigid) {
-    start_rigid(model, values);
-    return;
-  }
-  start_steady(model, model.main);
-  if (model.rigid) start_steady(model, *model.rigid);
+  start_from_rigid_model(model, parameter_folding(sc, model.derivation, false));
 }
 
 }  // namespace pogear

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -62,7 +63,7 @@ ModesInput modes_input(const std::string& path, const std::optional<std::string>
   return {std::move(d), std::move(values), which, std::move(e)};
 }
 
-// An input speed from the command line: a quantity with a unit of angular velocity, above 0.
+// An input speed from the command line in rpm: a quantity with a unit of angular velocity, above 0.
 double input_speed_rpm(const std::string& text, const SourceLocation& where) {
   Quantity q;
   try {
@@ -72,9 +73,17 @@ double input_speed_rpm(const std::string& text, const SourceLocation& where) {
   }
   if (!q.has_unit || q.dimension != angular_velocity_dimension())
     throw InputError(where, fmt::format("--to '{}' is not a speed; give it with its unit, e.g. --to 6000*rpm", text));
-  if (!(q.si > 0) || !std::isfinite(q.si))
-    throw InputError(where, fmt::format("--to '{}' is not a positive speed; the diagram runs from 0 to it", text));
-  return q.si * 60 / (2 * std::numbers::pi);
+  // Hz is 1/s, which as a speed would be read as rad/s: 2 pi short of the revolutions it usually means.
+  if (text.find("Hz") != std::string::npos)
+    throw InputError(where, fmt::format("--to '{}' is in Hz, which for a speed could mean rev/s or rad/s; give it in "
+                                        "rpm or rad/s, e.g. --to 6000*rpm", text));
+  // Divided by the evaluator's own rpm, so that --to 8000*rpm is 8000 exactly.
+  const double rpm = q.si / evaluate_quantity("rpm", {}, where, 0).si;
+  constexpr double most = 1e8;  // far above any gear (turbines run at 1e5 rpm)
+  if (!(rpm > 0) || !(rpm <= most))
+    throw InputError(where, fmt::format("--to '{}' is not a speed from 0 to {:g} rpm; the diagram runs from 0 to it",
+                                        text, most));
+  return rpm;
 }
 
 }  // namespace
@@ -105,7 +114,19 @@ ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<
     };
     const int input = body(request.input, "--input");
     std::vector<int> held;
-    for (const std::string& name : request.held) held.push_back(body(name, "--hold"));
+    if (request.hold) {
+      std::stringstream list(*request.hold);
+      std::string name;
+      while (std::getline(list, name, ',')) {
+        if (name.empty()) throw InputError(where, "--hold has an empty name; give bodies separated by single commas, e.g. --hold r,s");
+        const int b = body(name, "--hold");
+        if (std::find(held.begin(), held.end(), b) != held.end())
+          throw InputError(where, fmt::format("--hold names '{}' twice; name each body once", name));
+        held.push_back(b);
+      }
+      if (held.empty() || request.hold->back() == ',')
+        throw InputError(where, "--hold has an empty name; give bodies separated by single commas, e.g. --hold r,s");
+    }
     if (request.harmonics < 1 || request.harmonics > max_harmonics)
       throw InputError(where, fmt::format("--harmonics {} is not from 1 to {}", request.harmonics, max_harmonics));
     const double max_rpm = request.to ? input_speed_rpm(*request.to, where) : 0.0;

@@ -23,7 +23,7 @@ VibrationModes modes_of_file(const std::string& path, const std::optional<std::s
 // `pogear modes ... --campbell FILE`: the operating line and the speed axis, as the user wrote them.
 struct CampbellRequest {
   std::string input;                  // the input body
-  std::vector<std::string> held;      // bodies held at rest
+  std::optional<std::string> hold;    // bodies held at rest, comma-separated, as given
   std::optional<std::string> to;      // the highest input speed, e.g. "6000*rpm"; none: from the modes
   int harmonics = 3;
 };

@@ -179,6 +179,24 @@ TEST_F(Cli, CampbellOnTwoDegreesOfFreedom) {
       R"~(gear.toml: error: a Campbell diagram follows one operating line, but with no body held the gear has 2 degrees of freedom; hold more bodies (--hold) or engage brakes or clutches (--engaged))~");
 }
 
+TEST_F(Cli, CampbellSpeedInHz) {
+  write_text("gear.toml", read_text(source_path("models/ravigneaux.toml")));
+  expect_pogear_error("modes gear.toml --campbell c.svg --input ss --hold sl --to 100*Hz", 2,
+      R"~(gear.toml: error: --to '100*Hz' is in Hz, which for a speed could mean rev/s or rad/s; give it in rpm or rad/s, e.g. --to 6000*rpm)~");
+}
+
+TEST_F(Cli, CampbellHoldTwice) {
+  write_text("gear.toml", read_text(source_path("models/ravigneaux.toml")));
+  expect_pogear_error("modes gear.toml --campbell c.svg --input ss --hold sl,sl", 2,
+      R"~(gear.toml: error: --hold names 'sl' twice; name each body once)~");
+}
+
+TEST_F(Cli, OutputIsTheModel) {
+  expect_pogear_error("derive gear.toml -o ./gear.toml", 2,
+      R"~(./gear.toml: error: this output is also the model file; write it to another file)~");
+  EXPECT_NE(read_text("gear.toml").find("[[body]]"), std::string::npos);  // untouched
+}
+
 TEST_F(Cli, CampbellOptionWithoutCampbell) {
   expect_pogear_error("modes gear.toml --input s", 2,
       R"~(gear.toml: error: --input belongs to the Campbell diagram; add --campbell FILE.svg)~");

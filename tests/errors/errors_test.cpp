@@ -646,7 +646,7 @@ TEST_F(SceneFiles, TomlSyntax) {
 
 TEST_F(SceneFiles, UnknownKey) {
   expect_scene_error({{"compare_rigid = true", "compare_rigid = true\nduration = 2"}},
-      R"~(scene.toml:7:1: error: unknown key 'duration' in the scene file; the keys are name, model, effects, keep, compare_rigid, tunable, outputs, inputs, initial, parameters, simulation, engagement)~");
+      R"~(scene.toml:7:1: error: unknown key 'duration' in the scene file; the keys are name, model, effects, keep, compare_rigid, tunable, outputs, inputs, initial, parameters, simulation, engagement, speed_unit)~");
 }
 
 TEST_F(SceneFiles, ModelError) {
@@ -860,6 +860,12 @@ TEST_F(Initial, SpeedsContradictTheGear) {
   expect_scene_error({{"omega_c = \"0*rpm\"", "omega_c = \"0*rpm\"\nomega_r = \"0*rpm\"\nomega_s = \"100*rpm\""}},
     R"~(scene.toml:11:1: error: the initial speeds omega_c, omega_s, omega_r contradict the gear's kinematics, which require -omega_c + 0.337838*omega_s + 0.662162*omega_r = 0 (with these speeds it is 3.53783 rad/s); give speeds that satisfy it, or name fewer bodies)~");
 }
+TEST_F(Initial, SpeedInHz) { expect_scene_error({{"omega_c = \"0*rpm\"", "omega_c = \"10*Hz\""}},
+    R"~(scene.toml:12:11: error: omega_c is in Hz, which for a speed could mean rev/s or rad/s; give it in rpm or rad/s, e.g. "600*rpm")~"); }
+TEST_F(Initial, SpeedUnitUnknown) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\nspeed_unit = \"rev/min\""}},
+    R"~(scene.toml:7:14: error: speed_unit is "rad/s" (the default) or "rpm")~");
+}
 TEST_F(Initial, StartUnknown) { expect_scene_error({{"omega_c = \"0*rpm\"", "start = \"warm\""}},
     R"~(scene.toml:12:9: error: start "warm" is not known; write "given" (the default), "rigid" or "steady")~"); }
 TEST_F(Initial, SteadyStartWithANamedSpeed) {
@@ -868,7 +874,7 @@ TEST_F(Initial, SteadyStartWithANamedSpeed) {
 }
 TEST_F(Initial, SteadyStartWithoutEquilibrium) {
   expect_scene_error({{R"(, "bearing_friction")", ""}, {"omega_c = \"0*rpm\"", "start = \"steady\""}},
-    R"~(scene.toml:12:9: error: start = "steady": the elastic model has no equilibrium (its state matrix is singular: a body without bearing friction turns freely, so a constant torque accelerates it for ever); add bearing_friction to the effects, or start from given speeds)~");
+    R"~(scene.toml:12:9: error: start = "steady": the gear has no equilibrium (a rigid motion meets no bearing friction, so a constant torque accelerates it for ever); add bearing_friction to the effects, or start from given speeds)~");
 }
 TEST_F(Initial, RigidStartWithAForce) {
   expect_scene_error({{"omega_c = \"0*rpm\"", "F_ps = \"10*N\"\nstart = \"rigid\""}},

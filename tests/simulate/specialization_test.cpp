@@ -211,23 +211,54 @@ TEST(InitialState, RigidStartMeetsTheRigidModelAtTheStart) {
 
 // start = "steady": the equilibrium of the inputs at t = 0, M x0 + N u0 = 0, where a constant input
 // keeps the run (elastic and rigid) to rounding.
+// Redundant meshes (three planets) too: their force loops are unloaded, as from an unloaded start.
 TEST(InitialState, SteadyStartStaysAtTheEquilibrium) {
-  const SpecializedScene m = scene_model(with_line(scene_text("paper_one_stage"), "omega_c = \"0*rpm\"", "start = \"steady\""));
-  ASSERT_TRUE(m.rigid.has_value());
-  for (const SpecializedSystem* sys : {&m.main, &*m.rigid}) {
-    // The reference model's M and N (another formula, in doubles) at the start: zero to its rounding.
-    const NumericSystem ref = numeric_system(m, *sys);
-    const Eigen::VectorXd u = Eigen::VectorXd::Constant(1, rt::value(m.scene.inputs[0].signal, 0.0));
-    const Eigen::VectorXd dx = ref.M * ref.x0 + ref.N * u;
-    const double scale = (ref.M.cwiseAbs() * ref.x0.cwiseAbs()).maxCoeff();
-    EXPECT_LT(dx.cwiseAbs().maxCoeff(), 1e-13 * scale) << sys->kind;
-    EXPECT_GT(ref.x0.cwiseAbs().maxCoeff(), 1) << sys->kind;  // not the rest state
-    // Exact stepping of a constant input from an equilibrium moves by rounding only.
-    const Trajectory tr = interpret_trajectory(m, *sys, run_settings(m));
-    ASSERT_TRUE(tr.status.ok);
-    double drift = 0;
-    for (const Eigen::VectorXd& x : tr.x) drift = std::max(drift, (x - ref.x0).cwiseAbs().maxCoeff());
-    EXPECT_LT(drift, 1e-9 * ref.x0.cwiseAbs().maxCoeff()) << sys->kind;
+  for (const std::string name : {"paper_one_stage", "three_planets"}) {
+    const std::string text = scene_text(name);
+    const SpecializedScene m = scene_model(name == "three_planets" ? text + "\n[initial]\nstart = \"steady\"\n"
+                                                                   : with_line(text, "omega_c = \"0*rpm\"", "start = \"steady\""));
+    ASSERT_TRUE(m.rigid.has_value());
+    for (const SpecializedSystem* sys : {&m.main, &*m.rigid}) {
+      // The reference model's M and N (another formula, in doubles) at the start: zero to its rounding.
+      const NumericSystem ref = numeric_system(m, *sys);
+      const Eigen::VectorXd u = Eigen::VectorXd::Constant(1, rt::value(m.scene.inputs[0].signal, 0.0));
+      const Eigen::VectorXd dx = ref.M * ref.x0 + ref.N * u;
+      const double scale = (ref.M.cwiseAbs() * ref.x0.cwiseAbs()).maxCoeff();
+      EXPECT_LT(dx.cwiseAbs().maxCoeff(), 1e-13 * scale) << sys->kind;
+      EXPECT_GT(ref.x0.cwiseAbs().maxCoeff(), 1) << sys->kind;  // not the rest state
+      // Exact stepping of a constant input from an equilibrium moves by rounding only.
+      const Trajectory tr = interpret_trajectory(m, *sys, run_settings(m));
+      ASSERT_TRUE(tr.status.ok);
+      double drift = 0;
+      for (const Eigen::VectorXd& x : tr.x) drift = std::max(drift, (x - ref.x0).cwiseAbs().maxCoeff());
+      EXPECT_LT(drift, 1e-9 * ref.x0.cwiseAbs().maxCoeff()) << name << " " << sys->kind;
+    }
+  }
+}
+
+// speed_unit = "rpm": every speed output is the rad/s one times 60 / 2 pi, labelled rpm; forces and
+// states are unchanged.
+TEST(Specialization, SpeedsInRpm) {
+  const std::string text = scene_text("paper_one_stage");
+  const SpecializedScene si = scene_model(text);
+  const SpecializedScene rpm = scene_model(with_line(text, "compare_rigid = true", "compare_rigid = true\nspeed_unit = \"rpm\""));
+  for (const bool elastic : {true, false}) {
+    const SpecializedSystem& a = elastic ? si.main : *si.rigid;
+    const SpecializedSystem& b = elastic ? rpm.main : *rpm.rigid;
+    const Trajectory ta = interpret_trajectory(si, a, run_settings(si));
+    const Trajectory tb = interpret_trajectory(rpm, b, run_settings(rpm));
+    ASSERT_TRUE(ta.status.ok && tb.status.ok);
+    ASSERT_EQ(a.outputs, b.outputs);
+    for (std::size_t j = 0; j < a.outputs.size(); ++j) {
+      const bool speed = a.output_variables[j].kind == VariableKind::velocity;
+      EXPECT_EQ(b.output_units[j], speed ? "rpm" : a.output_units[j]);
+      const double factor = speed ? 60 / (2 * std::numbers::pi) : 1.0;
+      for (std::size_t k = 0; k < ta.t.size(); ++k) {
+        const auto i = static_cast<Eigen::Index>(j);
+        // One more rounding (the factor's and the product's): a few ulps.
+        EXPECT_NEAR(tb.y[k](i), factor * ta.y[k](i), 1e-14 * std::abs(factor * ta.y[k](i)) + 1e-300) << a.outputs[j];
+      }
+    }
   }
 }
 
