@@ -216,24 +216,14 @@ int main(int argc, char** argv) {
         if (modes_output) refuse_same_file(*campbell_file, *modes_output, "the report (-o)");
       }
       if (!campbell_file) {
-        const pogear::VibrationModes m = pogear::modes_of_file(modes_file, modes_engaged);
-        std::string text;
-        if (modes_format == "json") text = pogear::modes_json(m);
-        else if (modes_format == "latex") text = pogear::modes_latex(m);
-        else if (modes_format == "markdown") text = pogear::modes_markdown(m);
-        else text = pogear::modes_text(m);
-        emit(text, modes_output);
+        emit(pogear::modes_report(pogear::modes_of_file(modes_file, modes_engaged), modes_format), modes_output);
         return 0;
       }
       if (campbell_request.input.empty())
         throw pogear::InputError(where, "--campbell needs the input body whose speed is the axis, e.g. --input s");
       if (modes->count("--hold")) campbell_request.hold = campbell_held;
       const pogear::ModesWithCampbell mc = pogear::campbell_of_file(modes_file, modes_engaged, campbell_request);
-      std::string text;
-      if (modes_format == "json") text = pogear::modes_json(mc.modes, pogear::campbell_json_member(mc.campbell));
-      else if (modes_format == "latex") text = pogear::modes_latex(mc.modes, pogear::campbell_latex(mc.campbell));
-      else if (modes_format == "markdown") text = pogear::modes_markdown(mc.modes) + pogear::campbell_markdown(mc.campbell);
-      else text = pogear::modes_text(mc.modes) + pogear::campbell_text(mc.campbell);
+      const std::string text = pogear::modes_report(mc.modes, modes_format, &mc.campbell);
       const std::optional<std::string> gnuplot = pogear::gnuplot_program();
       if (!gnuplot)
         throw std::runtime_error("gnuplot is not installed, so the Campbell diagram cannot be drawn; install "

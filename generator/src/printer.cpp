@@ -355,6 +355,70 @@ std::string cpp_double(double v) {
   return s;
 }
 
+namespace {
+
+std::string joined(const std::vector<std::string>& v, const std::string& separator) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? separator : "") + v[i];
+  return s;
+}
+
+}  // namespace
+
+std::string text_matrix(const std::string& label, const std::vector<std::vector<std::string>>& m) {
+  std::vector<std::size_t> width;
+  for (const auto& row : m)
+    for (std::size_t j = 0; j < row.size(); ++j) {
+      if (width.size() <= j) width.push_back(0);
+      width[j] = std::max(width[j], row[j].size());
+    }
+  std::string s = label + " =\n";
+  for (const auto& row : m) {
+    s += "  [";
+    for (std::size_t j = 0; j < row.size(); ++j) s += fmt::format(" {:<{}}", row[j], width[j]);
+    s += " ]\n";
+  }
+  return s;
+}
+
+std::string latex_matrix(const std::vector<std::vector<std::string>>& m) {
+  std::string s = "\\begin{bmatrix}\n";
+  for (const auto& row : m) s += "  " + joined(row, " & ") + " \\\\\n";
+  return s + "\\end{bmatrix}";
+}
+
+std::string latex_vector(const std::vector<std::string>& v) {
+  return "\\begin{bmatrix} " + joined(v, " \\\\ ") + " \\end{bmatrix}";
+}
+
+std::string latex_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
+  auto line = [](const std::vector<std::string>& r) {
+    std::string s;
+    for (std::size_t i = 0; i < r.size(); ++i) s += (i ? " & " : "") + latex_text(r[i]);
+    return s + " \\\\\n";
+  };
+  std::string s = "\\begin{tabular}{" + std::string(header.size(), 'l') + "}\n" + line(header) + "\\hline\n";
+  for (const auto& r : rows) s += line(r);
+  return s + "\\end{tabular}\n\n";
+}
+
+std::string markdown_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
+  auto line = [](const std::vector<std::string>& r) {
+    std::string s = "|";
+    for (const auto& cell : r) {
+      s += ' ';
+      for (char c : cell) s += c == '|' ? std::string("\\|") : std::string(1, c);
+      s += " |";
+    }
+    return s + "\n";
+  };
+  std::string s = line(header) + "|";
+  for (std::size_t i = 0; i < header.size(); ++i) s += "---|";
+  s += "\n";
+  for (const auto& r : rows) s += line(r);
+  return s + "\n";
+}
+
 std::string six_digits(double v) { return fmt::format("{:.6g}", v == 0.0 ? 0.0 : v); }
 
 }  // namespace pogear

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 #include <string_view>
 
 #include <ginac/ginac.h>
@@ -27,6 +28,15 @@ std::string latex_text(std::string_view text);
 
 // Shortest decimal that reads back as the same double, always with a '.' or an exponent.
 std::string cpp_double(double v);
+
+// Matrices of printed entries: "label =" and bracketed rows for terminals; amsmath's bmatrix.
+std::string text_matrix(const std::string& label, const std::vector<std::vector<std::string>>& m);
+std::string latex_matrix(const std::vector<std::vector<std::string>>& m);
+std::string latex_vector(const std::vector<std::string>& v);
+
+// Tables of plain text cells (names, values as written), each cell escaped for its format.
+std::string latex_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
+std::string markdown_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
 
 // A measured or computed number for a report line: 6 significant digits (the eigenproblems and
 // ratios behind them hold ~8), and -0 written as 0.

@@ -10,6 +10,7 @@
 #include "block_triangular_solve.hpp"
 #include "exact_algebra.hpp"
 #include "json_text.hpp"
+#include "parameter_table.hpp"
 #include "printer.hpp"
 #include "tooth_counts.hpp"
 
@@ -144,22 +145,6 @@ std::string join(const std::vector<std::string>& v, const std::string& sep) {
   return s;
 }
 
-std::string text_matrix(const std::string& label, const std::vector<std::vector<std::string>>& m) {
-  std::vector<std::size_t> width;
-  for (const auto& row : m)
-    for (std::size_t j = 0; j < row.size(); ++j) {
-      if (width.size() <= j) width.push_back(0);
-      width[j] = std::max(width[j], row[j].size());
-    }
-  std::string s = label + " =\n";
-  for (const auto& row : m) {
-    s += "  [";
-    for (std::size_t j = 0; j < row.size(); ++j) s += fmt::format(" {:<{}}", row[j], width[j]);
-    s += " ]\n";
-  }
-  return s;
-}
-
 std::string force_bodies(const Derivation& d) {
   std::vector<std::string> S;
   for (int b : d.rigid.force_bodies) S.push_back(d.topology.bodies[b].name);
@@ -170,16 +155,6 @@ std::string title_of(const Derivation& d) {
   return d.topology.title.empty() ? d.topology.name : d.topology.name + ": " + d.topology.title;
 }
 
-std::string latex_matrix(const std::vector<std::vector<std::string>>& m) {
-  std::string s = "\\begin{bmatrix}\n";
-  for (const auto& row : m) s += "  " + join(row, " & ") + " \\\\\n";
-  return s + "\\end{bmatrix}";
-}
-
-std::string latex_vector(const std::vector<std::string>& v) {
-  return "\\begin{bmatrix} " + join(v, " \\\\ ") + " \\end{bmatrix}";
-}
-
 // LaTeX and Markdown share the mathematics; only the wrapping differs.
 struct MathDisplay {
   std::string math_open, math_close, heading_open, heading_close;
@@ -187,54 +162,11 @@ struct MathDisplay {
   std::string display(const std::string& math) const { return math_open + math + math_close; }
   std::string heading(const std::string& text) const { return heading_open + text + heading_close; }
   std::string paragraph(const std::string& text) const { return text + "\n\n"; }
-  // Plain text cells (names, values as written), escaped for the format.
+  // A table of plain text cells (names, values as written).
   std::string table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) const {
-    auto cell = [&](const std::string& x) {
-      if (latex) return latex_text(x);
-      std::string out;
-      for (char c : x) out += c == '|' ? std::string("\\|") : std::string(1, c);
-      return out;
-    };
-    auto line = [&](const std::vector<std::string>& r) {
-      std::vector<std::string> c;
-      for (const auto& x : r) c.push_back(cell(x));
-      return latex ? join(c, " & ") + " \\\\\n" : "| " + join(c, " | ") + " |\n";
-    };
-    std::string s = latex ? "\\begin{tabular}{" + std::string(header.size(), 'l') + "}\n" + line(header) + "\\hline\n"
-                          : line(header) + "|" + [&] {
-                              std::string d;
-                              for (std::size_t i = 0; i < header.size(); ++i) d += "---|";
-                              return d;
-                            }() + "\n";
-    for (const auto& r : rows) s += line(r);
-    return s + (latex ? "\\end{tabular}\n\n" : "\n");
+    return latex ? latex_table(header, rows) : markdown_table(header, rows);
   }
 };
-
-// Every parameter: as written in the model file (or given by teeth), in SI, and where it comes from;
-// then the radii the geometry gives.
-std::vector<std::vector<std::string>> parameter_rows(const Derivation& d) {
-  std::vector<std::vector<std::string>> rows;
-  auto pitch_radius = [&](const std::string& name) {
-    for (const Body& b : d.topology.bodies)
-      for (const Wheel& w : b.wheels)
-        if (w.teeth > 0 && w.radius_parameter == name) return true;
-    return false;
-  };
-  for (const Parameter& p : d.topology.parameters) {
-    const std::string unit = p.value.has_unit ? " " + describe(p.value.dimension) : "";
-    const std::string line = fmt::format("line {}", p.where.line);
-    rows.push_back({p.name, p.text, fmt::format("{:.6g}{}", p.value.si, unit),
-                    pitch_radius(p.name) ? "its teeth, " + line : line});
-  }
-  for (const DerivedRadius& r : d.radius.derived) {
-    std::string mesh;
-    for (const auto& g : d.radius.relations)
-      if (g.parameter == r.parameter) mesh = d.topology.meshes[g.mesh].name;
-    rows.push_back({r.parameter, "(geometry)", fmt::format("{:.6g} m", r.value), "mesh " + mesh});
-  }
-  return rows;
-}
 
 std::string math_body(const Derivation& d, const MathDisplay& w) {
   const Printed p = print_all(d, Notation::latex);
@@ -333,7 +265,7 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
     s += w.display(f + "\\end{aligned}");
   }
   s += w.heading("Parameters");
-  s += w.table({"parameter", "as given", "value (SI)", "defined at"}, parameter_rows(d));
+  s += w.table({"parameter", "as given", "value (SI)", "defined at"}, parameter_table(d));
   return s;
 }
 

@@ -19,128 +19,13 @@
 #include "pogear/signal_table.hpp"
 #include "model_parameters.hpp"
 #include "model_variables.hpp"
+#include "scene_reader.hpp"
 #include "toml_reader.hpp"
 
 namespace pogear {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Reader : TomlReader {
-  const Topology* model = nullptr;
-
-  std::vector<std::string> strings(const toml::node& n, std::string_view what) const {
-    if (!n.is_array()) fail(n, fmt::format("{} must be a list of strings, e.g. [\"a\", \"b\"]", what));
-    std::vector<std::string> out;
-    for (const toml::node& e : *n.as_array()) out.push_back(string(e, what));
-    return out;
-  }
-
-  // A quantity with a unit of the given dimension; bare numbers are SI, except for speeds and torques.
-  double quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
-    std::map<std::string, Quantity> known;
-    for (const auto& p : model->parameters) known[p.name] = p.value;
-    Quantity q;
-    if (n.is_integer() || n.is_floating_point()) {
-      q.si = *n.value<double>();
-    } else if (n.is_string()) {
-      q = evaluate_quantity(*n.value<std::string>(), known, loc(n), 1);
-    } else {
-      fail(n, fmt::format("{} must be a number (SI) or a string with a unit", what));
-    }
-    if (q.has_unit && !(q.dimension == dim))
-      fail(n, q.dimension == Dimension{}
-                  ? fmt::format("{} has no unit (rad, deg, rev and pi are plain numbers); it needs {}", what,
-                                describe(dim))
-                  : fmt::format("{} has unit {}; it needs {}", what, describe(q.dimension), describe(dim)));
-    if (!std::isfinite(q.si)) fail(n, fmt::format("{} is not finite", what));
-    // A speed or a torque without a unit is ambiguous (rad/s or rpm? N m or kN m?): it needs one.
-    if (!q.has_unit && (dim == angular_velocity_dimension() || dim == torque_dimension())) {
-      const std::string value = n.is_string() ? *n.value<std::string>() : fmt::format("{}", q.si);
-      fail(n, dim == torque_dimension()
-                  ? fmt::format("{} has no unit ({}); a torque needs one, e.g. \"{}*N*m\"", what, value, value)
-                  : fmt::format("{} has no unit ({}); a speed needs one, e.g. \"{}*rpm\" or \"{}*rad/s\"", what,
-                                value, value, value));
-    }
-    return q.si;
-  }
-};
-
-// A table signal from its CSV file; `at` is the `table =` value, where complaints about the whole
-// file point (a complaint about one line points into the table).
-rt::Signal read_table_signal(const Reader& r, const toml::node& at, const std::string& table_file,
-                             const std::string& layout = "the table needs two columns: time [s], torque [N m]") {
-  rt::TableError error;
-  const auto table = rt::load_table_csv(table_file, error);
-  if (!table) {
-    // A row's complaint points into the table; one about the whole file (missing, empty, too
-    // large) points at this `table =`.
-    if (error.line > 0)
-      throw InputError(SourceLocation{table_file, static_cast<int>(error.line), 0}, error.message + "; " + layout);
-    std::string advice;
-    if (error.kind == rt::TableErrorKind::cannot_open) advice = "; give its path relative to the scene file";
-    else if (error.kind == rt::TableErrorKind::no_data_rows) advice = "; " + layout;
-    throw InputError(r.loc(at), fmt::format("table '{}': {}{}", table_file, error.message, advice));
-  }
-  return rt::Table{table->t, table->v};
-}
-
-// An input torque, or (`engagement`) a dimensionless engagement command, whose sine form is refused:
-// the exact method is exact for piecewise linear commands, and events are located on them.
-rt::Signal read_signal(const Reader& r, const toml::node& n, const fs::path& scene_dir, bool engagement = false) {
-  const Dimension torque = engagement ? Dimension{} : torque_dimension();
-  if (!n.is_table()) return rt::Constant{r.quantity(n, torque, engagement ? "an engagement command" : "an input torque")};
-  const toml::table& t = *n.as_table();
-  auto get = [&](std::string_view key) { return t.get(key); };
-  if (const toml::node* v = get("constant")) {
-    r.only_keys(t, {"constant"}, "a constant signal");
-    return rt::Constant{r.quantity(*v, torque, "constant")};
-  }
-  if (const toml::node* v = get("step")) {
-    r.only_keys(t, {"step", "at", "before"}, "a step signal");
-    rt::Step s;
-    s.after = r.quantity(*v, torque, "step");
-    if (!get("at")) r.fail(n, "a step needs at = \"<time>\", e.g. at = \"0.5*s\"");
-    s.time = r.quantity(*get("at"), time_dimension(), "at");
-    if (get("before")) s.before = r.quantity(*get("before"), torque, "before");
-    return s;
-  }
-  if (const toml::node* v = get("ramp")) {
-    r.only_keys(t, {"ramp", "start", "initial"}, "a ramp signal");
-    rt::Ramp s;
-    Dimension slope = torque;
-    slope.exponent[2] -= 1;
-    s.slope = r.quantity(*v, slope, engagement ? "ramp (a slope, e.g. \"2/s\")" : "ramp (a slope, e.g. \"50*Nm/s\")");
-    if (get("start")) s.start_time = r.quantity(*get("start"), time_dimension(), "start");
-    if (get("initial")) s.initial = r.quantity(*get("initial"), torque, "initial");
-    return s;
-  }
-  if (const toml::node* v = get("sine"); v && engagement)
-    r.fail(*v, "an engagement command is constant, a step, a ramp or a table (piecewise linear, so that events are "
-               "located exactly); give the sine as a table");
-  if (const toml::node* v = get("sine")) {
-    r.only_keys(t, {"sine", "frequency", "phase", "offset"}, "a sine signal");
-    rt::Sine s;
-    s.amplitude = r.quantity(*v, torque, "sine (its amplitude)");
-    if (!get("frequency")) r.fail(n, "a sine needs frequency = \"<f>*Hz\"");
-    Dimension hz;
-    hz.exponent[2] = -1;
-    s.frequency_hz = r.quantity(*get("frequency"), hz, "frequency");
-    if (get("phase")) s.phase_rad = r.quantity(*get("phase"), Dimension{}, "phase");
-    if (get("offset")) s.offset = r.quantity(*get("offset"), torque, "offset");
-    return s;
-  }
-  if (const toml::node* v = get("table")) {
-    r.only_keys(t, {"table"}, "a table signal");
-    const std::string file = r.string(*v, "table");
-    const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : scene_dir / file;
-    return engagement ? read_table_signal(r, *v, path.lexically_normal().string(),
-                                          "the table needs two columns: time [s], engagement command [0 to 1]")
-                      : read_table_signal(r, *v, path.lexically_normal().string());
-  }
-  r.fail(n, "a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., "
-            "frequency = ... } or { table = \"file.csv\" }");
-}
 
 // Tunable parameters become variables of the generated C++, beside the states, inputs and the
 // functions' own arguments; these names would not compile there.
@@ -149,7 +34,7 @@ bool clashes_with_generated_code(const std::string& name, const Topology& t) {
   return is_cpp_reserved(name) || arguments.count(name) || find_variable(t, name).has_value();
 }
 
-Effects read_effects(const Reader& r, const toml::node& n) {
+Effects read_effects(const SceneReader& r, const toml::node& n) {
   Effects e;
   for (const std::string& name : r.strings(n, "effects")) {
     if (name == "mesh_compliance") e.mesh_compliance = true;
@@ -168,7 +53,7 @@ Effects read_effects(const Reader& r, const toml::node& n) {
 
 // The scene's [parameters] replace the model's texts, and every parameter is evaluated again (a
 // parameter defined through an overridden one follows it).
-void apply_overrides(const Reader& r, const toml::node& n, Topology& t) {
+void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
   if (!n.is_table()) r.fail(n, "[parameters] must be a table");
   for (const auto& [key, value] : *n.as_table()) {
     const std::string name(key.str());
@@ -216,7 +101,7 @@ Solver parse_solver(const std::string& name, const SourceLocation& where) {
 }
 
 Scene parse_scene_text(const std::string& text, const std::string& path) {
-  Reader r{{path}};
+  SceneReader r{{path}};
   const toml::table root = parse_toml_document(
       text, path, max_model_file_bytes,
       fmt::format("the scene file is larger than {} bytes; a model or scene file is a few kilobytes",

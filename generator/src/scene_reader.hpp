@@ -1,0 +1,34 @@
+// What the scene reader's parts share: a TomlReader whose quantities may name the model's
+// parameters, and the signals of inputs and engagement commands.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "pogear/signals.hpp"
+#include "quantity.hpp"
+#include "toml_reader.hpp"
+#include "topology.hpp"
+
+namespace pogear {
+
+struct SceneReader : TomlReader {
+  const Topology* model = nullptr;
+
+  std::vector<std::string> strings(const toml::node& n, std::string_view what) const;
+
+  // A quantity with a unit of the given dimension, its parameters the model's; bare numbers are SI,
+  // except for speeds and torques, which need a unit.
+  double quantity(const toml::node& n, const Dimension& dim, std::string_view what) const;
+};
+
+// An input torque, or (`engagement`) a dimensionless engagement command; a table's file is found
+// relative to `scene_dir`.
+rt::Signal read_signal(const SceneReader& r, const toml::node& n, const std::filesystem::path& scene_dir,
+                       bool engagement = false);
+
+}  // namespace pogear
