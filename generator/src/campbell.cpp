@@ -71,14 +71,14 @@ int mesh_frame(const Topology& t, const Mesh& m) {
 
 }  // namespace
 
-std::vector<std::pair<double, std::string>> mesh_line_groups(const CampbellDiagram& c) {
-  std::vector<std::pair<double, std::string>> groups;
+std::vector<std::pair<double, std::vector<std::string>>> mesh_line_groups(const CampbellDiagram& c) {
+  std::vector<std::pair<double, std::vector<std::string>>> groups;
   for (const MeshLine& m : c.meshes) {
     auto same = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
       return std::abs(g.first - m.hz_per_rpm) <= 1e-12 * std::max(g.first, m.hz_per_rpm);
     });
-    if (same == groups.end()) groups.emplace_back(m.hz_per_rpm, m.mesh);
-    else same->second += ", " + m.mesh;
+    if (same == groups.end()) groups.emplace_back(m.hz_per_rpm, std::vector<std::string>{m.mesh});
+    else same->second.push_back(m.mesh);
   }
   return groups;
 }
@@ -170,7 +170,7 @@ std::string campbell_text(const CampbellDiagram& c) {
   s += "crossings (input speed at which a harmonic meets a natural frequency):\n";
   s += "  input [rpm]  frequency [Hz]  harmonic  meshes\n";
   for (const Crossing& x : c.crossings)
-    s += fmt::format("  {:>11}  {:>14}  {:>8}  {}\n", six_digits(x.input_rpm), six_digits(x.natural_hz), x.harmonic, x.mesh);
+    s += fmt::format("  {:>11}  {:>14}  {:>8}  {}\n", six_digits(x.input_rpm), six_digits(x.natural_hz), x.harmonic, join(x.meshes));
   return s;
 }
 
@@ -183,7 +183,7 @@ std::string campbell_markdown(const CampbellDiagram& c) {
   if (!c.without_teeth.empty()) s += "\nWithout tooth counts (not drawn): " + join(c.without_teeth) + ".\n";
   s += "\n| input [rpm] | frequency [Hz] | mesh | harmonic |\n|---|---|---|---|\n";
   for (const Crossing& x : c.crossings)
-    s += fmt::format("| {} | {} | {} | {} |\n", six_digits(x.input_rpm), six_digits(x.natural_hz), x.mesh, x.harmonic);
+    s += fmt::format("| {} | {} | {} | {} |\n", six_digits(x.input_rpm), six_digits(x.natural_hz), join(x.meshes), x.harmonic);
   return s;
 }
 
@@ -198,7 +198,7 @@ std::string campbell_latex(const CampbellDiagram& c) {
     s += fmt::format("{} & {} & {} & {} & {} \\\\\n", tex(m.mesh), six_digits(m.hz_per_rpm), m.teeth, tex(m.wheel), tex(m.frame));
   s += "\\end{tabular}\n\n\\begin{tabular}{rrlr}\ninput [rpm] & frequency [Hz] & mesh & harmonic \\\\ \\hline\n";
   for (const Crossing& x : c.crossings)
-    s += fmt::format("{} & {} & {} & {} \\\\\n", six_digits(x.input_rpm), six_digits(x.natural_hz), tex(x.mesh), x.harmonic);
+    s += fmt::format("{} & {} & {} & {} \\\\\n", six_digits(x.input_rpm), six_digits(x.natural_hz), tex(join(x.meshes)), x.harmonic);
   return s + "\\end{tabular}\n";
 }
 
@@ -223,8 +223,8 @@ std::string campbell_json_member(const CampbellDiagram& c) {
   s += "],\n  \"without_teeth\": " + strings(c.without_teeth) + ",\n  \"crossings\": [";
   for (std::size_t i = 0; i < c.crossings.size(); ++i) {
     const Crossing& x = c.crossings[i];
-    s += fmt::format("{}{{\"mesh\": {}, \"harmonic\": {}, \"frequency_hz\": {}, \"input_rpm\": {}}}", i ? ", " : "",
-                     json_string(x.mesh), x.harmonic, json_number(x.natural_hz), json_number(x.input_rpm));
+    s += fmt::format("{}{{\"meshes\": {}, \"harmonic\": {}, \"frequency_hz\": {}, \"input_rpm\": {}}}", i ? ", " : "",
+                     strings(x.meshes), x.harmonic, json_number(x.natural_hz), json_number(x.input_rpm));
   }
   return s + "]}";
 }
@@ -261,7 +261,7 @@ std::string campbell_script(const CampbellDiagram& c) {
       // One colour per line of meshes, one dash pattern per harmonic.
       s += fmt::format("x*{} with lines lw 2 dt {} lt {} title '{} {}, {}x' noenhanced", h * groups[k].first,
                        std::min(h, 5), k + 1,
-                       groups[k].second.find(',') == std::string::npos ? "mesh" : "meshes", groups[k].second, h);
+                       groups[k].second.size() == 1 ? "mesh" : "meshes", join(groups[k].second), h);
     }
   if (!points.empty()) {
     next();

@@ -26,7 +26,7 @@ struct MeshLine {
 
 // A harmonic of a mesh frequency meeting a natural frequency within the speed range.
 struct Crossing {
-  std::string mesh;  // the meshes of one line, e.g. "ssps, pspl"
+  std::vector<std::string> meshes;  // the meshes of one line (equal frequencies), e.g. ssps, pspl
   int harmonic = 1;
   double natural_hz = 0;
   double input_rpm = 0;
@@ -60,8 +60,8 @@ CampbellDiagram campbell_diagram(const Derivation& d, const GiNaC::exmap& values
                                  double max_rpm, int harmonics);
 
 // Meshes of one frequency per input speed (to 1e-12; the meshes of one planetary train pass teeth
-// alike) as one line: (Hz per rpm, "ssps, pspl, ..."), in the order of their first mesh.
-std::vector<std::pair<double, std::string>> mesh_line_groups(const CampbellDiagram& c);
+// alike) as one line: (Hz per rpm, its meshes), in the order of their first mesh.
+std::vector<std::pair<double, std::vector<std::string>>> mesh_line_groups(const CampbellDiagram& c);
 
 // The mesh lines and the crossings, as a section of each report format.
 std::string campbell_text(const CampbellDiagram& c);

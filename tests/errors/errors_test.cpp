@@ -876,6 +876,10 @@ TEST_F(Initial, SteadyStartWithoutEquilibrium) {
   expect_scene_error({{R"(, "bearing_friction")", ""}, {"omega_c = \"0*rpm\"", "start = \"steady\""}},
     R"~(scene.toml:12:9: error: start = "steady": the gear has no equilibrium (a rigid motion meets no bearing friction, so a constant torque accelerates it for ever); add bearing_friction to the effects, or start from given speeds)~");
 }
+TEST_F(Initial, StartWithTunables) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\ntunable = [\"J_c\"]"}, {"omega_c = \"0*rpm\"", "start = \"rigid\""}},
+    R"~(scene.toml:13:9: error: start = "rigid" is computed at the scene's parameter values, which tunable parameters change at run time; set them in [parameters], or start from given speeds)~");
+}
 TEST_F(Initial, RigidStartWithAForce) {
   expect_scene_error({{"omega_c = \"0*rpm\"", "F_ps = \"10*N\"\nstart = \"rigid\""}},
     R"~(scene.toml:13:9: error: start = "rigid" takes the mesh forces from the rigid model; remove F_ps from [initial])~");

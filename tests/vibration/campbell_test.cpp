@@ -61,7 +61,7 @@ TEST(Campbell, RavigneauxLineAndMeshFrequenciesFollowTheWillisEquations) {
   for (std::size_t i = 0; i < c.crossings.size(); ++i) {
     const Crossing& x = c.crossings[i];
     EXPECT_NEAR(x.harmonic * expected * x.input_rpm / x.natural_hz, 1, 1e-12);
-    EXPECT_EQ(x.mesh, "ssps, pspl, plsl, plr");
+    EXPECT_EQ(x.meshes, (std::vector<std::string>{"ssps", "pspl", "plsl", "plr"}));
     if (i > 0) {
       EXPECT_LE(c.crossings[i - 1].input_rpm, x.input_rpm);
     }
@@ -109,8 +109,10 @@ TEST(Campbell, CommandDrawsTheDiagramAndReportsTheCrossings) {
   const VibrationModes modes = vibration_modes(d, d.values, "none");
   const CampbellDiagram direct = campbell_diagram(d, d.values, modes, {}, body(d, "ss"), {body(d, "sl")}, 0, 3);
   ASSERT_EQ(campbell["crossings"].size(), direct.crossings.size());
-  for (std::size_t i = 0; i < direct.crossings.size(); ++i)
+  for (std::size_t i = 0; i < direct.crossings.size(); ++i) {
     EXPECT_EQ(campbell["crossings"][i]["input_rpm"].num, direct.crossings[i].input_rpm);
+    EXPECT_EQ(campbell["crossings"][i]["meshes"].size(), 4u);
+  }
 }
 
 }  // namespace
