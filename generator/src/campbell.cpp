@@ -16,12 +16,6 @@
 namespace pogear {
 namespace {
 
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
-  return s;
-}
-
 // Every body's speed per unit input speed: the one motion with R omega = 0, the engaged elements'
 // slips 0, the held bodies at rest, and omega_input = 1.
 Eigen::VectorXd operating_line(const Derivation& d, const GiNaC::exmap& values, const std::vector<int>& engaged,
@@ -39,7 +33,7 @@ Eigen::VectorXd operating_line(const Derivation& d, const GiNaC::exmap& values, 
   const unsigned freedom = n - C.rank();
   std::vector<std::string> names;
   for (int h : held) names.push_back(t.bodies[h].name);
-  const std::string line = fmt::format("with {}{}", names.empty() ? "no body held" : join(names) + " held",
+  const std::string line = fmt::format("with {}{}", names.empty() ? "no body held" : joined(names) + " held",
                                        engaged.empty() ? "" : " and the engaged elements stuck");
   if (freedom != 1)
     throw std::domain_error(fmt::format(
@@ -148,8 +142,8 @@ namespace {
 
 std::string line_description(const CampbellDiagram& c) {
   std::string s = fmt::format("input {}", c.input);
-  if (!c.held.empty()) s += ", held " + join(c.held);
-  if (!c.engaged.empty()) s += ", engaged " + join(c.engaged);
+  if (!c.held.empty()) s += ", held " + joined(c.held);
+  if (!c.engaged.empty()) s += ", engaged " + joined(c.engaged);
   return s;
 }
 
@@ -162,7 +156,7 @@ std::string campbell_text(const CampbellDiagram& c) {
   for (const MeshLine& m : c.meshes)
     s += fmt::format("  {:<8} {} Hz per rpm  ({} teeth of {}, frame {})\n", m.mesh, six_digits(m.hz_per_rpm), m.teeth, m.wheel,
                      m.frame);
-  if (!c.without_teeth.empty()) s += "  without tooth counts (not drawn): " + join(c.without_teeth) + "\n";
+  if (!c.without_teeth.empty()) s += "  without tooth counts (not drawn): " + joined(c.without_teeth) + "\n";
   if (c.crossings.empty()) {
     s += "no harmonic meets a natural frequency below " + six_digits(c.max_rpm) + " rpm\n";
     return s;
@@ -170,7 +164,7 @@ std::string campbell_text(const CampbellDiagram& c) {
   s += "crossings (input speed at which a harmonic meets a natural frequency):\n";
   s += "  input [rpm]  frequency [Hz]  harmonic  meshes\n";
   for (const Crossing& x : c.crossings)
-    s += fmt::format("  {:>11}  {:>14}  {:>8}  {}\n", six_digits(x.input_rpm), six_digits(x.natural_hz), x.harmonic, join(x.meshes));
+    s += fmt::format("  {:>11}  {:>14}  {:>8}  {}\n", six_digits(x.input_rpm), six_digits(x.natural_hz), x.harmonic, joined(x.meshes));
   return s;
 }
 
@@ -180,10 +174,10 @@ std::string campbell_markdown(const CampbellDiagram& c) {
   s += "| mesh | Hz per rpm | teeth | wheel | frame |\n|---|---|---|---|---|\n";
   for (const MeshLine& m : c.meshes)
     s += fmt::format("| {} | {} | {} | {} | {} |\n", m.mesh, six_digits(m.hz_per_rpm), m.teeth, m.wheel, m.frame);
-  if (!c.without_teeth.empty()) s += "\nWithout tooth counts (not drawn): " + join(c.without_teeth) + ".\n";
+  if (!c.without_teeth.empty()) s += "\nWithout tooth counts (not drawn): " + joined(c.without_teeth) + ".\n";
   s += "\n| input [rpm] | frequency [Hz] | mesh | harmonic |\n|---|---|---|---|\n";
   for (const Crossing& x : c.crossings)
-    s += fmt::format("| {} | {} | {} | {} |\n", six_digits(x.input_rpm), six_digits(x.natural_hz), join(x.meshes), x.harmonic);
+    s += fmt::format("| {} | {} | {} | {} |\n", six_digits(x.input_rpm), six_digits(x.natural_hz), joined(x.meshes), x.harmonic);
   return s;
 }
 
@@ -191,14 +185,14 @@ std::string campbell_latex(const CampbellDiagram& c) {
   auto tex = [](const std::string& x) { return latex_text(x); };
   std::string s = "\\section*{Campbell diagram}\n";
   s += fmt::format("Input {}{}{}; 0 to {} rpm, harmonics 1 to {}.\n\n", tex(c.input),
-                   c.held.empty() ? "" : ", held " + tex(join(c.held)),
-                   c.engaged.empty() ? "" : ", engaged " + tex(join(c.engaged)), six_digits(c.max_rpm), c.harmonics);
+                   c.held.empty() ? "" : ", held " + tex(joined(c.held)),
+                   c.engaged.empty() ? "" : ", engaged " + tex(joined(c.engaged)), six_digits(c.max_rpm), c.harmonics);
   s += "\\begin{tabular}{lrrll}\nmesh & Hz per rpm & teeth & wheel & frame \\\\ \\hline\n";
   for (const MeshLine& m : c.meshes)
     s += fmt::format("{} & {} & {} & {} & {} \\\\\n", tex(m.mesh), six_digits(m.hz_per_rpm), m.teeth, tex(m.wheel), tex(m.frame));
   s += "\\end{tabular}\n\n\\begin{tabular}{rrlr}\ninput [rpm] & frequency [Hz] & mesh & harmonic \\\\ \\hline\n";
   for (const Crossing& x : c.crossings)
-    s += fmt::format("{} & {} & {} & {} \\\\\n", six_digits(x.input_rpm), six_digits(x.natural_hz), tex(join(x.meshes)), x.harmonic);
+    s += fmt::format("{} & {} & {} & {} \\\\\n", six_digits(x.input_rpm), six_digits(x.natural_hz), tex(joined(x.meshes)), x.harmonic);
   return s + "\\end{tabular}\n";
 }
 
@@ -261,7 +255,7 @@ std::string campbell_script(const CampbellDiagram& c) {
       // One colour per line of meshes, one dash pattern per harmonic.
       s += fmt::format("x*{} with lines lw 2 dt {} lt {} title '{} {}, {}x' noenhanced", h * groups[k].first,
                        std::min(h, 5), k + 1,
-                       groups[k].second.size() == 1 ? "mesh" : "meshes", join(groups[k].second), h);
+                       groups[k].second.size() == 1 ? "mesh" : "meshes", joined(groups[k].second), h);
     }
   if (!points.empty()) {
     next();

@@ -355,15 +355,9 @@ std::string cpp_double(double v) {
   return s;
 }
 
-namespace {
-
-std::string joined(const std::vector<std::string>& v, const std::string& separator) {
-  std::string s;
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? separator : "") + v[i];
-  return s;
+std::string joined(const std::vector<std::string>& v, std::string_view separator) {
+  return fmt::format("{}", fmt::join(v, separator));
 }
-
-}  // namespace
 
 std::string text_matrix(const std::string& label, const std::vector<std::vector<std::string>>& m) {
   std::vector<std::size_t> width;

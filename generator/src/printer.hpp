@@ -29,6 +29,9 @@ std::string latex_text(std::string_view text);
 // Shortest decimal that reads back as the same double, always with a '.' or an exponent.
 std::string cpp_double(double v);
 
+// The items with `separator` between them: "c, r".
+std::string joined(const std::vector<std::string>& v, std::string_view separator = ", ");
+
 // Matrices of printed entries: "label =" and bracketed rows for terminals; amsmath's bmatrix.
 std::string text_matrix(const std::string& label, const std::vector<std::vector<std::string>>& m);
 std::string latex_matrix(const std::vector<std::vector<std::string>>& m);

@@ -91,23 +91,21 @@ Printed print_all(const Derivation& d, Notation n) {
     p.geometry.push_back(print_expression(parameter_symbol(d.symbols, g.parameter) == g.rhs, n));
     p.geometry_mesh.push_back(d.topology.meshes[g.mesh].name);
   }
+  // Names in running text (symbols above are in mathematics).
+  auto text = [&](const std::string& x) { return n == Notation::latex ? latex_text(x) : x; };
   for (const AngledMesh& a : d.radius.angled) {
     const Mesh& m = d.topology.meshes[a.mesh];
     const Body& first = d.topology.bodies[m.first.body];
-    auto name = [&](const std::string& x) { return n == Notation::latex ? latex_text(x) : x; };
-    p.angled.push_back(fmt::format("{} and {} of carrier {}: axes {:.2f} deg apart (mesh {})", name(first.name),
-                                   name(d.topology.bodies[m.second.body].name), name(first.carrier),
-                                   a.angle * 180 / std::numbers::pi, name(m.name)));
+    p.angled.push_back(fmt::format("{} and {} of carrier {}: axes {:.2f} deg apart (mesh {})", text(first.name),
+                                   text(d.topology.bodies[m.second.body].name), text(first.carrier),
+                                   a.angle * 180 / std::numbers::pi, text(m.name)));
   }
   for (const Body& b : d.topology.bodies) {
     if (b.count == 1) continue;
     std::vector<std::string> meshes;
     for (const Mesh& m : d.topology.meshes)
-      if (&d.topology.bodies[m.first.body] == &b || &d.topology.bodies[m.second.body] == &b) meshes.push_back(m.name);
-    auto text = [&](const std::string& x) { return n == Notation::latex ? latex_text(x) : x; };
-    std::string list;
-    for (const auto& m : meshes) list += (list.empty() ? "" : ", ") + text(m);
-    p.lumped.push_back(fmt::format("{} stands for {} planets (meshes {})", text(b.name), b.count, list));
+      if (&d.topology.bodies[m.first.body] == &b || &d.topology.bodies[m.second.body] == &b) meshes.push_back(text(m.name));
+    p.lumped.push_back(fmt::format("{} stands for {} planets (meshes {})", text(b.name), b.count, joined(meshes)));
   }
   p.R = print_matrix(d.elastic.R, n);
   const RigidForms rigid = rigid_forms(d);
@@ -139,16 +137,10 @@ Printed print_all(const Derivation& d, Notation n) {
   return p;
 }
 
-std::string join(const std::vector<std::string>& v, const std::string& sep) {
-  std::string s;
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
-  return s;
-}
-
 std::string force_bodies(const Derivation& d) {
   std::vector<std::string> S;
   for (int b : d.rigid.force_bodies) S.push_back(d.topology.bodies[b].name);
-  return join(S, ", ");
+  return joined(S, ", ");
 }
 
 std::string title_of(const Derivation& d) {
@@ -195,7 +187,7 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
   }
   if (!p.lumped.empty())
     s += w.paragraph("Lumped planets, each body standing for identical planets that share the load equally: " +
-                     join(p.lumped, "; ") + ". The model multiplies their inertia and friction, and their meshes' "
+                     joined(p.lumped, "; ") + ". The model multiplies their inertia and friction, and their meshes' "
                      "stiffness and damping, by the count; the mesh forces below are one planet's.");
   s += w.heading("Diagnostics");
   s += w.paragraph("Of the elastic model with every effect, at the model's values:");
@@ -215,7 +207,7 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
                  "-\\mathbf{R}^{\\mathsf{T}} \\\\ \\mathbf{R} & 0 \\end{bmatrix}, \\quad "
                  "\\mathbf{B} = \\begin{bmatrix} \\mathbf{I} \\\\ 0 \\end{bmatrix}");
   if (!p.engaged.empty()) {
-    s += w.heading("Engaged: " + latex_text(join(p.engaged, ", ")));
+    s += w.heading("Engaged: " + latex_text(joined(p.engaged, ", ")));
     s += w.paragraph("Each engaged brake or clutch is stuck: its row $\\mathbf{e}_k$ ($\\mathbf{e}_k \\boldsymbol{\\omega}$ "
                      "is its slip) joins the constraints, $\\mathbf{C} = [\\mathbf{R}; \\mathbf{E}_S]$, and the rigid "
                      "model below is that of this mode; its torques $T$ are recovered with the mesh forces.");
@@ -225,7 +217,7 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
   s += w.paragraph(fmt::format("Rank of $\\mathbf{{{}}}$: {}; kept velocities $\\mathbf{{x}}_1 = ({})$, "
                                "$\\boldsymbol{{\\omega}} = \\mathbf{{Q}}_1 \\mathbf{{x}}_1$, "
                                "$\\mathbf{{L}}_1 \\dot{{\\mathbf{{x}}}}_1 = \\mathbf{{A}}_1 \\mathbf{{x}}_1 + \\mathbf{{B}}_1 \\boldsymbol{{\\tau}}$.",
-                               p.engaged.empty() ? "R" : "C", d.rigid.rank, join(p.kept, ", ")));
+                               p.engaged.empty() ? "R" : "C", d.rigid.rank, joined(p.kept, ", ")));
   if (p.teeth)
     s += w.paragraph("In tooth counts: each pitch radius is $r = m Z / 2$, each length the geometry fixes follows "
                      "its relation, and the module $m$ cancels between meshing wheels.");
@@ -272,25 +264,25 @@ std::string math_body(const Derivation& d, const MathDisplay& w) {
 std::string json_strings(const std::vector<std::string>& v) {
   std::vector<std::string> q;
   for (const auto& x : v) q.push_back(json_string(x));
-  return "[" + join(q, ", ") + "]";
+  return "[" + joined(q, ", ") + "]";
 }
 
 std::string json_string_matrix(const std::vector<std::vector<std::string>>& m, const std::string& indent) {
   std::vector<std::string> rows;
   for (const auto& r : m) rows.push_back(json_strings(r));
-  return "[\n" + indent + "  " + join(rows, ",\n" + indent + "  ") + "\n" + indent + "]";
+  return "[\n" + indent + "  " + joined(rows, ",\n" + indent + "  ") + "\n" + indent + "]";
 }
 
 std::string json_numbers(const Eigen::VectorXd& v) {
   std::vector<std::string> s;
   for (Eigen::Index i = 0; i < v.size(); ++i) s.push_back(json_number(v(i)));
-  return "[" + join(s, ", ") + "]";
+  return "[" + joined(s, ", ") + "]";
 }
 
 std::string json_number_matrix(const Eigen::MatrixXd& m) {
   std::vector<std::string> rows;
   for (Eigen::Index i = 0; i < m.rows(); ++i) rows.push_back(json_numbers(m.row(i).transpose()));
-  return "[" + join(rows, ", ") + "]";
+  return "[" + joined(rows, ", ") + "]";
 }
 
 }  // namespace
@@ -298,8 +290,8 @@ std::string json_number_matrix(const Eigen::MatrixXd& m) {
 std::string report_text(const Derivation& d) {
   const Printed p = print_all(d, Notation::text);
   std::string s = "model " + title_of(d) + "\n\n";
-  s += "omega = (" + join(p.velocities, ", ") + ")\n";
-  s += "F     = (" + join(p.forces, ", ") + ")\n\n";
+  s += "omega = (" + joined(p.velocities, ", ") + ")\n";
+  s += "F     = (" + joined(p.forces, ", ") + ")\n\n";
   s += text_matrix("R", p.R) + "\n";
   if (!p.geometry.empty()) {
     s += "geometry relations:\n";
@@ -307,7 +299,7 @@ std::string report_text(const Derivation& d) {
       s += fmt::format("  {:<36} (mesh {})\n", p.geometry[i], p.geometry_mesh[i]);
     std::vector<std::string> derived;
     for (const DerivedRadius& r : d.radius.derived) derived.push_back(r.parameter);
-    if (!derived.empty()) s += "  computed from them: " + join(derived, ", ") + "\n";
+    if (!derived.empty()) s += "  computed from them: " + joined(derived, ", ") + "\n";
     s += "\n";
   }
   if (!p.angled.empty()) {
@@ -323,12 +315,12 @@ std::string report_text(const Derivation& d) {
   }
   s += "diagnostics (elastic model, every effect, at the model's values):\n" + diagnostics_text(d.diagnostics, "  ") + "\n";
   if (!p.engaged.empty()) {
-    s += "engaged: " + join(p.engaged, ", ") + ", stuck: their rows E_S (E_S omega is each one's slip) join R, and\n"
+    s += "engaged: " + joined(p.engaged, ", ") + ", stuck: their rows E_S (E_S omega is each one's slip) join R, and\n"
          "the rigid model below is that of this mode, C = [R; E_S]; their torques are recovered with the mesh forces\n";
     s += text_matrix("E_S", p.E) + "\n";
   }
   s += fmt::format("rank {} = {}, degrees of freedom = {}, kept x1 = ({})\n\n", p.engaged.empty() ? "R" : "C", d.rigid.rank,
-                   d.elastic.velocities.size() - d.rigid.rank, join(p.kept, ", "));
+                   d.elastic.velocities.size() - d.rigid.rank, joined(p.kept, ", "));
   if (p.teeth)
     s += "in tooth counts: each pitch radius is r = m*Z/2, each length the geometry fixes follows its relation,\n"
          "and the module m cancels between meshing wheels\n";
@@ -350,10 +342,10 @@ std::string report_text(const Derivation& d) {
     for (int b : d.rigid.force_bodies) S.push_back(d.topology.bodies[b].name);
     if (p.engaged.empty())
       s += "mesh forces, eq. (8): F = (R R^T)^-1 R g, g = tau - J Q1 dx1/dt - B_J Q1 x1, which on the rigid\n"
-           "model equals (R_S^T)^-1 g_S for S = (" + join(S, ", ") + "); domega = d omega/dt:\n";
+           "model equals (R_S^T)^-1 g_S for S = (" + joined(S, ", ") + "); domega = d omega/dt:\n";
     else
       s += "mesh forces and engaged torques, eq. (8) with C: [F; T] = (C C^T)^-1 C g, g = tau - J Q1 dx1/dt - B_J Q1 x1,\n"
-           "which on the rigid model equals (C_S^T)^-1 g_S for S = (" + join(S, ", ") + "); domega = d omega/dt:\n";
+           "which on the rigid model equals (C_S^T)^-1 g_S for S = (" + joined(S, ", ") + "); domega = d omega/dt:\n";
     for (std::size_t i = 0; i < p.reactions.size(); ++i) s += fmt::format("  {} = {}\n", p.reactions[i], p.force_recovery[i]);
   }
   return s;
@@ -395,11 +387,11 @@ std::string report_json(const Derivation& d) {
   for (const AngledMesh& a : d.radius.angled)
     angled.push_back(fmt::format("{{\"mesh\": {}, \"angle_deg\": {}}}", json_string(d.topology.meshes[a.mesh].name),
                                  json_number(a.angle * 180 / std::numbers::pi)));
-  j += "  \"angled_pinions\": [" + join(angled, ", ") + "],\n";
+  j += "  \"angled_pinions\": [" + joined(angled, ", ") + "],\n";
   std::vector<std::string> lumped;
   for (const Body& b : d.topology.bodies)
     if (b.count > 1) lumped.push_back(fmt::format("{{\"body\": {}, \"count\": {}}}", json_string(b.name), b.count));
-  j += "  \"lumped_planets\": [" + join(lumped, ", ") + "],\n";
+  j += "  \"lumped_planets\": [" + joined(lumped, ", ") + "],\n";
   j += "  \"R\": " + json_string_matrix(p.R, "  ") + ",\n";
   j += "  \"Q1\": " + json_string_matrix(p.Q1, "  ") + ",\n";
   j += "  \"L1\": " + json_string_matrix(p.L1, "  ") + ",\n";
@@ -408,7 +400,7 @@ std::string report_json(const Derivation& d) {
   if (!p.closed_form.empty()) {
     std::vector<std::string> cf;
     for (const auto& [name, value] : p.closed_form) cf.push_back(json_string(name) + ": " + json_string(value));
-    j += "  \"closed_form\": {" + join(cf, ", ") + "},\n";
+    j += "  \"closed_form\": {" + joined(cf, ", ") + "},\n";
   }
   j += "  \"engaged\": " + json_strings(p.engaged) + ",\n";
   j += "  \"E\": " + (p.E.empty() ? std::string("[]") : json_string_matrix(p.E, "  ")) + ",\n";

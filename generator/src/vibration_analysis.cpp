@@ -11,6 +11,7 @@
 
 #include "engagement.hpp"
 #include "parameter_folding.hpp"
+#include "printer.hpp"
 #include "quantity.hpp"
 #include "scene.hpp"
 #include "toml_reader.hpp"
@@ -106,9 +107,9 @@ ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<
     auto body = [&](const std::string& name, const std::string& option) {
       const int b = find_body(t, name);
       if (b < 0) {
-        std::string list;
-        for (const Body& x : t.bodies) list += (list.empty() ? "" : ", ") + x.name;
-        throw InputError(where, fmt::format("{} '{}' is not a body of the model; the bodies are {}", option, name, list));
+        std::vector<std::string> names;
+        for (const Body& x : t.bodies) names.push_back(x.name);
+        throw InputError(where, fmt::format("{} '{}' is not a body of the model; the bodies are {}", option, name, joined(names)));
       }
       return b;
     };
