@@ -57,12 +57,12 @@ CppText signal_code(const rt::Signal& signal) {
   return std::visit(Code{}, signal);
 }
 
-CppText signals_function(const SpecializedScene& model, const SpecializedSystem& sys, const CppText& name) {
+CppText signals_function(const SpecializedSystem& sys, const CppText& name) {
   CppText s = code("// Input signals of {}, in the order of its inputs.\n", name);
   s += code("std::vector<pogear::rt::Signal> {}_signals() {{\n  return {{", name);
-  for (std::size_t i = 0; i < sys.input_signal.size(); ++i)
+  for (std::size_t i = 0; i < sys.input_signals.size(); ++i)
     s += (i ? code(",\n          ") : CppText{}) + code("/* {} */ ", comment_text(sys.inputs[i])) +
-         signal_code(model.scene.inputs[sys.input_signal[i]].signal);
+         signal_code(sys.input_signals[i]);
   s += code("}};\n}}\n");
   return s;
 }
@@ -171,6 +171,17 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   h += code("// Effects: {}. Inputs: {}.\n", effects_list(sc.effects), inputs.empty() ? code("none") : join(inputs, code(", ")));
   h += code("// Equations (Zanasi & Tebaldi, Planetary Gear Modeling Using the Power-Oriented Graphs Technique):\n");
   h += code("//   {}\n", comment_text(model.main.equations));
+  for (const LoadSpec& l : sc.loads)
+    h += code("//   load on {}: TL = -({} + {} omega + {} omega |omega|) [N m, N m s, N m s^2]\n",
+              comment_text(d.topology.bodies[static_cast<std::size_t>(l.body)].name), number_code(l.constant),
+              number_code(l.linear), number_code(l.quadratic));
+  for (std::size_t c = 0; c < sc.controllers.size(); ++c) {
+    const ControllerSpec& k = sc.controllers[c];
+    h += code("//   controller {}: Tc = {} e + {} theta on {}, e = ref - omega_{}, theta' = e [N m s, N m]\n",
+              comment_text(k.name), number_code(k.kp), number_code(k.ki),
+              comment_text(d.topology.bodies[static_cast<std::size_t>(k.body)].name),
+              comment_text(d.topology.bodies[static_cast<std::size_t>(k.measured)].name));
+  }
   if (model.rigid) h += code("//   {} (for comparison)\n", comment_text(model.rigid->equations));
   h += code("// Units are SI: rad/s, N, N m. Parameters are literals (see namespace parameters) unless listed in Params.\n");
   h += code("#pragma once\n\n#include <array>\n#include <string_view>\n\n#include <Eigen/Core>\n");
@@ -207,8 +218,8 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   m += code("namespace {{\n\n");
   m += code("// The solvers compiled into this simulator (`pogear generate --solvers`): each costs compile time.\n");
   m += code("using Solvers = pogear::rt::Solvers<{}>;\n\n", join(solver_codes, code(", ")));
-  m += signals_function(model, model.main, main_struct);
-  if (model.rigid) m += code("\n") + signals_function(model, *model.rigid, code("Rigid"));
+  m += signals_function(model.main, main_struct);
+  if (model.rigid) m += code("\n") + signals_function(*model.rigid, code("Rigid"));
   if (hybrid) m += code("\n") + friction_function(model);
   m += code("\n}}  // namespace\n\n");
   m += code("int main(int argc, char** argv) {{\n");
@@ -252,6 +263,10 @@ GeneratedSources generate_sources(const SpecializedScene& model, std::vector<rt:
   for (rt::Solver s : rt::all_solvers)
     if ((solvers.empty() && s == model.scene.solver) || std::find(solvers.begin(), solvers.end(), s) != solvers.end())
       compiled.push_back(s);
+  if (model.main.nonlinear && std::find(compiled.begin(), compiled.end(), rt::Solver::exact) != compiled.end())
+    throw InputError(SourceLocation{model.scene.file, 0, 0},
+                     "a quadratic load makes this scene nonlinear, which exact stepping does not integrate; leave "
+                     "exact out of --solvers");
   try {
     return generate(model, compiled);
   } catch (const std::logic_error& e) {
@@ -260,6 +275,31 @@ GeneratedSources generate_sources(const SpecializedScene& model, std::vector<rt:
     throw InputError(SourceLocation{model.scene.file, 0, 0},
                      fmt::format("cannot generate the simulator: {}; report this scene as a pogear bug", e.what()));
   }
+}
+
+// What the scene's loads and controllers make of the equations, for the summary.
+std::string loads_and_controllers_note(const SpecializedScene& model) {
+  const Scene& sc = model.scene;
+  const Topology& t = model.derivation.topology;
+  std::string s;
+  for (const LoadSpec& l : sc.loads) {
+    std::vector<std::string> parts;
+    if (l.constant != 0) parts.push_back("constant (an input)");
+    if (l.linear != 0) parts.push_back("linear in speed (a damping: linear)");
+    if (l.quadratic != 0) parts.push_back("quadratic in speed (nonlinear)");
+    s += fmt::format("load on {}: {}\n", t.bodies[static_cast<std::size_t>(l.body)].name,
+                     parts.empty() ? std::string("zero") : joined(parts));
+  }
+  for (const ControllerSpec& c : sc.controllers)
+    s += fmt::format("controller {}: PI torque on {} for the speed of {}, its integral theta_{} a state (linear)\n",
+                     c.name, t.bodies[static_cast<std::size_t>(c.body)].name,
+                     t.bodies[static_cast<std::size_t>(c.measured)].name, c.name);
+  if (model.main.nonlinear)
+    s += fmt::format("nonlinear (quadratic loads): integrated by {}{}; exact stepping needs a linear scene\n",
+                     rt::solver_name(sc.solver),
+                     sc.solver == rt::Solver::rk4 ? fmt::format(", fixed step {} s", sc.step)
+                                                  : fmt::format(", adaptive steps at tolerance {}", sc.tolerance));
+  return s;
 }
 
 std::string operation_summary(const SpecializedScene& model) {
@@ -271,6 +311,7 @@ std::string operation_summary(const SpecializedScene& model) {
   };
   one(model.main);
   s += initial_deflection_note(model);
+  s += loads_and_controllers_note(model);
   if (model.rigid) one(*model.rigid);
   if (!model.friction.empty()) {
     std::string names;

@@ -129,7 +129,9 @@ CppText outputs_function(const SpecializedSystem& sys, const Topology& t, bool f
 }
 
 CppText matrices_function(const SpecializedSystem& sys, bool fixed) {
-  CppText s = code("  // The linear form dx/dt = M x + N u, for exact stepping and as the implicit method's Jacobian.\n");
+  CppText s = sys.nonlinear ? code("  // The linear part M x + N u of dx/dt (the quadratic loads' torques left out): the implicit method's\n"
+                                   "  // Jacobian, exact at rest.\n")
+                            : code("  // The linear form dx/dt = M x + N u, for exact stepping and as the implicit method's Jacobian.\n");
   s += code("  static void matrices([[maybe_unused]] const Params& p, StateMatrix& M, InputMatrix& N) {{\n");
   if (sys.implicit) {
     s += code("    StateMatrix L, A;\n    InputMatrix B;\n    implicit_form(p, L, A, B);\n");
@@ -214,8 +216,12 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
     s += matrix_entries(f.L, code("L")) + matrix_entries(f.A, code("A")) + matrix_entries(f.B, code("B"));
     s += code("  }}\n\n");
   }
-  s += rhs_function(sys, fixed) + outputs_function(sys, t, fixed) + matrices_function(sys, fixed) +
-       output_matrices_function(sys, d, fixed);
+  s += rhs_function(sys, fixed) + outputs_function(sys, t, fixed) + matrices_function(sys, fixed);
+  if (sys.nonlinear)  // nothing to collect into C and D
+    s += code("  // Nonlinear (a quadratic load): exact stepping, which needs dx/dt = M x + N u, is refused.\n"
+              "  static constexpr bool nonlinear = true;\n\n");
+  else
+    s += output_matrices_function(sys, d, fixed);
 
   if (!sys.friction_elements.empty()) {
     s += code("  // Brakes and clutches: the last {} inputs are their torques (-T on an element's first body, +T on\n"
@@ -228,6 +234,8 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
     s += code("  }}\n\n");
   }
   // energy_matrix: what pogear/run_system.hpp checks a run against (see SpecializedSystem::L).
+  if (sys.L.rows() == 0)
+    return s + code("  // No energy bound: a speed controller feeds in power that no bound of the inputs limits.\n}};\n");
   s += code("  // The stored energy E = x^T L x / 2. The power balance bounds it by the initial energy and the\n"
             "  // inputs' work; a run that outgrows the bound has diverged (the runner checks each sample).\n");
   s += code("  static void energy_matrix([[maybe_unused]] const Params& p, StateMatrix& L) {{\n");

@@ -2,6 +2,7 @@
 // simulate_system expect of a generated system.
 #include "interpreted_run.hpp"
 
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -31,9 +32,15 @@ struct InterpretedSystem {
   std::vector<std::string> output_names, output_units;
   Eigen::SparseMatrix<double> C, D, E;
 
+  // A quadratic load's torque -c s |s| at the state x.
+  static double load_torque(const QuadraticLoad& q, const State& x) {
+    const double s = q.speed_row.dot(x);
+    return -q.coefficient * s * std::abs(s);
+  }
   void rhs(const Params&, const State& x, const Input& u, State& dx) const {
     dx.noalias() = ns.M * x;
     if (u.size()) dx.noalias() += ns.N * u;
+    for (const QuadraticLoad& q : ns.quadratic) dx += load_torque(q, x) * q.state_column;
   }
   void outputs(const Params&, const State& x, const Input& u, Output& y) const {
     State dx(x.size());
@@ -41,12 +48,14 @@ struct InterpretedSystem {
     y.noalias() = C * x;
     y.noalias() += E * dx;
     if (u.size()) y.noalias() += D * u;
+    for (const QuadraticLoad& q : ns.quadratic) y += load_torque(q, x) * q.output_column;
   }
   void matrices(const Params&, StateMatrix& M, InputMatrix& N) const {
     M = ns.M;
     N = ns.N;
   }
-  void energy_matrix(const Params&, StateMatrix& L) const { L = ns.L; }
+  void energy_matrix(const Params&, StateMatrix& L) const { L = ns.L; }  // empty: no bound (controllers)
+  bool nonlinear = !ns.quadratic.empty();
   void slip_matrix(const Params&, Eigen::MatrixXd& S) const { S = ns.S; }
 };
 
@@ -56,18 +65,12 @@ std::vector<rt::FrictionElementData> friction_data(const SpecializedScene& model
   return out;
 }
 
-std::vector<rt::Signal> signals_of(const SpecializedScene& model, const SpecializedSystem& sys) {
-  std::vector<rt::Signal> signals;
-  for (int i : sys.input_signal) signals.push_back(model.scene.inputs[i].signal);
-  return signals;
-}
-
 int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run,
                         const std::string& suffix) {
   InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
   if (!sys.friction_elements.empty())
-    return rt::run_hybrid_system(is, {}, signals_of(model, sys), friction_data(model), is.ns.x0, run, suffix);
-  return rt::run_system(is, {}, signals_of(model, sys), is.ns.x0, run, suffix);
+    return rt::run_hybrid_system(is, {}, sys.input_signals, friction_data(model), is.ns.x0, run, suffix);
+  return rt::run_system(is, {}, sys.input_signals, is.ns.x0, run, suffix);
 }
 
 }  // namespace
@@ -80,13 +83,17 @@ int run_interpreted(const SpecializedScene& model, const rt::SceneRun& run) {
 
 Trajectory interpret_trajectory(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run) {
   const InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
-  const std::vector<rt::Signal> signals = signals_of(model, sys);
+  const std::vector<rt::Signal> signals = sys.input_signals;
   Eigen::VectorXd u(static_cast<Eigen::Index>(signals.size())), y(sys.outputs.size());
   auto f = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
     rt::input_values(signals, t, u);
     is.rhs({}, x, u, dx);
   };
   Trajectory tr;
+  if (is.nonlinear && run.solver == rt::Solver::exact) {
+    tr.status = {false, "the scene is nonlinear (a quadratic load), which exact stepping does not integrate", 0.0};
+    return tr;
+  }
   auto obs = [&](double t, const Eigen::VectorXd& x) {
     rt::input_values(signals, t, u);
     is.outputs({}, x, u, y);

@@ -192,8 +192,10 @@ int main(int argc, char** argv) {
     } else if (*generate) {
       const pogear::SpecializedScene model = pogear::specialize(pogear::parse_scene(scene_file));
       std::vector<pogear::rt::Solver> solvers;
-      if (generate_solvers == "all") solvers.assign(pogear::rt::all_solvers.begin(), pogear::rt::all_solvers.end());
-      else if (!generate_solvers.empty())
+      if (generate_solvers == "all") {  // those that integrate the scene: not exact stepping when it is nonlinear
+        for (const pogear::rt::Solver s : pogear::rt::all_solvers)
+          if (!(model.main.nonlinear && s == pogear::rt::Solver::exact)) solvers.push_back(s);
+      } else if (!generate_solvers.empty())
         for (const std::string& name : split_list(generate_solvers)) solvers.push_back(*pogear::rt::parse_solver(name));
       const pogear::GeneratedSources sources = pogear::generate_sources(model, solvers);
       if (list_outputs) {

@@ -20,6 +20,11 @@ enum class VariableKind {
   mesh_velocity,      // v_<mesh> = R omega, a temporary of the generated rhs [m/s]
   transmitted_force,  // w_<mesh> = F + b v, the force a damped mesh passes on [N]
   friction_torque,    // Tf_<element> [N m]: a brake's or clutch's torque, -T on its first body, +T on its second
+  load_torque,        // TL_<body> [N m]: a scene's load on the body (its constant part, an input)
+  controller_torque,  // Tc_<controller> [N m]: a speed controller's torque on its body
+  controller_integral,  // theta_<controller> [rad]: the integral of its speed error, a state
+  controller_error,   // e_<controller> = d theta/dt [rad/s]: set-point less measured speed
+  set_point,          // ref_<controller> [rad/s]: its set-point, an input
 };
 
 // A variable of body or mesh `index`, as the kind says.
@@ -29,7 +34,10 @@ struct Variable {
   friend auto operator<=>(const Variable&, const Variable&) = default;
 };
 
-bool of_body(VariableKind kind);  // velocity, acceleration, torque; friction_torque is of a friction element, the others of a mesh
+// velocity, acceleration, torque and load_torque are of a body; friction_torque of a friction element;
+// controller_* and set_point of a controller; the others of a mesh.
+bool of_body(VariableKind kind);
+bool of_controller(VariableKind kind);
 // How many variables of this kind the model has (its bodies, meshes or friction elements).
 std::size_t variable_count(const Topology& t, VariableKind kind);
 std::string variable_name(const Topology& t, Variable v);

@@ -191,8 +191,10 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
   const auto elastic = thinned_csv_rows((fs::path(dir) / (name + ".csv")).string(), model.scene.horizon);
   std::vector<std::vector<double>> rigid;
   if (model.rigid) rigid = thinned_csv_rows((fs::path(dir) / (name + ".rigid.csv")).string(), model.scene.horizon);
-  for (const std::string kind : {"velocities", "forces"}) {
-    const VariableKind shown = kind == "velocities" ? VariableKind::velocity : VariableKind::force;
+  for (const std::string kind : {"velocities", "forces", "controllers"}) {
+    const VariableKind shown = kind == "velocities" ? VariableKind::velocity
+                               : kind == "forces"   ? VariableKind::force
+                                                    : VariableKind::controller_torque;
     std::vector<int> columns;  // 1-based gnuplot columns; column 1 is t
     for (std::size_t i = 0; i < model.main.outputs.size(); ++i)
       if (model.main.output_variables[i].kind == shown) columns.push_back(static_cast<int>(i) + 2);
@@ -205,11 +207,13 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
     script += gnuplot_datablock("elastic", elastic);
     if (model.rigid) script += gnuplot_datablock("rigid", rigid);
     script += "set grid\nset key outside right top\n";
-    script += fmt::format("set title '{}: {}{}' noenhanced\n", name, kind == "velocities" ? "angular velocities" : "mesh forces",
+    script += fmt::format("set title '{}: {}{}' noenhanced\n", name,
+                          kind == "velocities" ? "angular velocities" : kind == "forces" ? "mesh forces" : "controller torques",
                           model.rigid ? " (rigid model dashed, in the same colour)" : "");
     script += "set xlabel 't [s]'\n";
     script += fmt::format("set ylabel '{}'\n", kind == "velocities" ? (model.scene.speeds_in_rpm ? "n [rpm]" : "{/Symbol w} [rad/s]")
-                                                                   : "F [N]");
+                                                : kind == "forces"   ? "F [N]"
+                                                                     : "T [N m]");
     script += "plot ";
     // One colour per quantity; its rigid curve dashed in that colour, one legend entry saying so.
     for (std::size_t k = 0; k < columns.size(); ++k)

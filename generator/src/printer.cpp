@@ -90,6 +90,8 @@ class Printer {
       s = print(e.op(0)) + op + print(e.op(1));
     } else if (GiNaC::is_a<GiNaC::add>(e)) {
       s = sum(e);
+    } else if (GiNaC::is_a<GiNaC::function>(e)) {
+      s = function(e);  // a term of one factor would print that factor again
     } else {
       s = term(canonical(split_term(e)));
     }
@@ -135,6 +137,7 @@ class Printer {
     std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
     std::string args;
     for (std::size_t i = 0; i < e.nops(); ++i) args += (i ? ", " : "") + print(e.op(i));
+    if (n_ == Notation::cpp && name == "abs") return "std::abs(" + args + ")";  // a quadratic load's omega |omega|
     if (n_ != Notation::latex) return name + "(" + args + ")";
     // The closed-form eigenvalues of a cubic (vibration_modes.cpp) use cos and acos.
     if (name == "cos" || name == "sin") name = "\\" + name;

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 #include "engagement.hpp"
 #include "exact_algebra.hpp"
 #include "parameter_folding.hpp"
@@ -11,7 +13,17 @@
 
 namespace pogear {
 
-NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& sys) {
+namespace {
+
+// The gear's system with the loads' and controllers' torques as inputs (after the system's own):
+// the matrices of dx/dt = M x + N u, y = C x + D u + E dx/dt over the gear's states.
+struct OpenLoop {
+  Eigen::MatrixXd M, N, L, C, D, E, S;
+  Eigen::MatrixXd speeds;  // omega = speeds x, one row per body
+};
+
+OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, const std::vector<Variable>& inputs,
+                   std::size_t nx) {
   const Derivation& d = model.derivation;
   const GiNaC::exmap values = parameter_folding(model.scene, d, false);
   const ElasticModel& e = d.elastic;
@@ -19,15 +31,16 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
   // numbers the specialized expressions give, by another formula.
   auto exact = [&](const GiNaC::matrix& m) { return exact_matrix(m, values); };
   auto doubles = [](const GiNaC::matrix& m) { return evaluate_matrix(m, {}); };
-  NumericSystem out;
-  // The torque of each input on each body (tau_: a unit column; friction torques: -e_k^T).
-  const GiNaC::matrix G_in = input_torques(d.topology, sys.input_variables);
+  OpenLoop out;
+  // The torque of each input on each body (tau_, loads, controllers: a unit column; friction
+  // torques: -e_k^T; set-points: none).
+  const GiNaC::matrix G_in = input_torques(d.topology, model.scene.controllers, inputs);
   auto input_columns = [&](const GiNaC::matrix& B) { return exact_product(B, G_in); };
-  const std::size_t nx = sys.states.size(), ny = sys.outputs.size(), nu = sys.inputs.size();
+  const std::size_t ny = sys.outputs.size(), nu = inputs.size(), n = d.topology.bodies.size();
   out.C = Eigen::MatrixXd::Zero(ny, nx);
   out.D = Eigen::MatrixXd::Zero(ny, nu);
   out.E = Eigen::MatrixXd::Zero(ny, nx);
-  out.x0 = Eigen::Map<const Eigen::VectorXd>(sys.x0.data(), nx);
+  out.speeds = Eigen::MatrixXd::Zero(n, nx);
   auto state_index = [&](Variable v) {
     return static_cast<Eigen::Index>(std::find(sys.state_variables.begin(), sys.state_variables.end(), v) -
                                      sys.state_variables.begin());
@@ -39,11 +52,14 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
       for (std::size_t i = 0; i < nx; ++i)
         if (sys.state_variables[i].kind == VariableKind::velocity)
           out.S(r, i) = to_double(as_number(E_rows(r, sys.state_variables[i].index)));
+    for (std::size_t b = 0; b < n; ++b) out.speeds(b, state_index({VariableKind::velocity, static_cast<int>(b)})) = 1;
     const GiNaC::matrix L = exact(e.L);
     out.L = doubles(L);
     out.M = doubles(exact_solve(L, exact(e.A)));
     out.N = doubles(exact_solve(L, input_columns(exact(e.B))));
-    for (std::size_t i = 0; i < ny; ++i) out.C(i, state_index(sys.output_variables[i])) = 1;
+    for (std::size_t i = 0; i < ny; ++i)
+      if (sys.output_variables[i].kind != VariableKind::controller_torque)
+        out.C(i, state_index(sys.output_variables[i])) = 1;
   } else {
     // L1, A1 and Q1 from Q1's entries, not by substituting into the closed forms (the same numbers).
     const RigidValues v = exact_rigid_values(d.rigid, e, values);
@@ -56,7 +72,7 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
     // meshes the stiffness-weighted split F = K R (R^T K R)^+ g, which equals
     // K R (R^T K R + Q1 Q1^T)^-1 g because g is orthogonal to ker R = span Q1. The inverse is
     // applied to the columns needed, [B_J Q1, J Q1, the inputs' unit vectors], not formed.
-    const unsigned n = Q1.rows(), k = Q1.cols();
+    const unsigned k = Q1.cols();
     GiNaC::matrix G(n, 2 * k + nu);
     for (unsigned b = 0; b < n; ++b)
       for (unsigned j = 0; j < k; ++j) {
@@ -74,13 +90,14 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
       PG = exact_product(exact_product(K, R), exact_solve(S, G));
     }
     const Eigen::MatrixXd PGn = doubles(PG), Q1n = doubles(Q1);
+    out.speeds = Q1n;
     if (E_rows.rows() > 0) out.S = doubles(exact_product(E_rows, Q1));
     const Eigen::MatrixXd C_F = -PGn.leftCols(k), E_F = -PGn.middleCols(k, k);
     for (std::size_t i = 0; i < ny; ++i) {
       const Variable y = sys.output_variables[i];
       if (y.kind == VariableKind::velocity) {
         out.C.row(i) = Q1n.row(y.index);
-      } else {
+      } else if (y.kind == VariableKind::force) {
         const Eigen::Index f = y.index;
         out.C.row(i) = C_F.row(f);
         out.E.row(i) = E_F.row(f);
@@ -88,19 +105,91 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
       }
     }
   }
+  return out;
+}
+
+}  // namespace
+
+NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& sys) {
+  const Scene& sc = model.scene;
+  const Topology& t = model.derivation.topology;
+  const auto nx = static_cast<Eigen::Index>(sys.states.size()), nu = static_cast<Eigen::Index>(sys.inputs.size());
+  const auto nc = static_cast<Eigen::Index>(sc.controllers.size()), nb = nx - nc;  // the gear's states, then the integrals
+  // The loads' and controllers' torques as inputs after the system's: w = Kx x + Kv u (+ the
+  // quadratic loads) closes the loop.
+  std::vector<Variable> inputs = sys.input_variables;
+  for (Eigen::Index c = 0; c < nc; ++c) inputs.push_back({VariableKind::controller_torque, static_cast<int>(c)});
+  std::vector<const LoadSpec*> state_loads;
+  for (const LoadSpec& l : sc.loads)
+    if (l.linear != 0 || l.quadratic != 0) {
+      inputs.push_back({VariableKind::load_torque, l.body});
+      state_loads.push_back(&l);
+    }
+  const OpenLoop o = open_loop(model, sys, inputs, static_cast<std::size_t>(nb));
+  const auto nw = static_cast<Eigen::Index>(inputs.size()) - nu;
+  const Eigen::Index ny = o.C.rows();
+  Eigen::MatrixXd Kx = Eigen::MatrixXd::Zero(nw, nx), Kv = Eigen::MatrixXd::Zero(nw, nu);
+  NumericSystem out;
+  out.M = Eigen::MatrixXd::Zero(nx, nx);
+  out.N = Eigen::MatrixXd::Zero(nx, nu);
+  out.M.topLeftCorner(nb, nb) = o.M;
+  out.N.topRows(nb) = o.N.leftCols(nu);
+  for (Eigen::Index c = 0; c < nc; ++c) {
+    const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
+    const auto ref = static_cast<Eigen::Index>(
+        std::find(sys.input_variables.begin(), sys.input_variables.end(), Variable{VariableKind::set_point, static_cast<int>(c)}) -
+        sys.input_variables.begin());
+    // theta' = ref - omega_measured; Tc = kp (ref - omega_measured) + ki theta
+    out.M.row(nb + c).head(nb) = -o.speeds.row(k.measured);
+    out.N(nb + c, ref) = 1;
+    Kx.row(c).head(nb) = -k.kp * o.speeds.row(k.measured);
+    Kx(c, nb + c) = k.ki;
+    Kv(c, ref) = k.kp;
+  }
+  for (std::size_t l = 0; l < state_loads.size(); ++l)
+    Kx.row(nc + static_cast<Eigen::Index>(l)).head(nb) = -state_loads[l]->linear * o.speeds.row(state_loads[l]->body);
+  Eigen::MatrixXd Nw = Eigen::MatrixXd::Zero(nx, nw);
+  Nw.topRows(nb) = o.N.rightCols(nw);
+  const Eigen::MatrixXd Dw = o.D.rightCols(nw);
+  out.M += Nw * Kx;
+  out.N += Nw * Kv;
+  out.C = Eigen::MatrixXd::Zero(ny, nx);
+  out.C.leftCols(nb) = o.C;
+  out.C += Dw * Kx;
+  out.D = o.D.leftCols(nu) + Dw * Kv;
+  out.E = Eigen::MatrixXd::Zero(ny, nx);
+  out.E.leftCols(nb) = o.E;
+  for (std::size_t l = 0; l < state_loads.size(); ++l) {
+    if (state_loads[l]->quadratic == 0) continue;
+    QuadraticLoad q{Nw.col(nc + static_cast<Eigen::Index>(l)), Dw.col(nc + static_cast<Eigen::Index>(l)),
+                    Eigen::VectorXd::Zero(nx), state_loads[l]->quadratic};
+    q.speed_row.head(nb) = o.speeds.row(state_loads[l]->body).transpose();
+    out.quadratic.push_back(std::move(q));
+  }
+  for (Eigen::Index i = 0; i < ny; ++i)
+    if (const Variable y = sys.output_variables[static_cast<std::size_t>(i)]; y.kind == VariableKind::controller_torque) {
+      out.C.row(i) = Kx.row(y.index);
+      out.D.row(i) = Kv.row(y.index);
+    }
+  if (nc == 0) out.L = o.L;
+  out.S = Eigen::MatrixXd::Zero(o.S.rows(), nx);
+  out.S.leftCols(nb) = o.S;
+  out.x0 = Eigen::Map<const Eigen::VectorXd>(sys.x0.data(), nx);
   // A lumped planet's meshes: the model's force is its planets' sum, the output one planet's. Speeds
   // in rpm when the scene asks.
-  for (std::size_t i = 0; i < ny; ++i) {
-    const Variable y = sys.output_variables[i];
+  for (Eigen::Index i = 0; i < ny; ++i) {
+    const Variable y = sys.output_variables[static_cast<std::size_t>(i)];
     if (y.kind == VariableKind::force) {
-      const double count = mesh_count(d.topology, d.topology.meshes[y.index]);
+      const double count = mesh_count(t, t.meshes[static_cast<std::size_t>(y.index)]);
       out.C.row(i) /= count;
       out.D.row(i) /= count;
       out.E.row(i) /= count;
-    } else if (model.scene.speeds_in_rpm) {
+      for (QuadraticLoad& q : out.quadratic) q.output_column(i) /= count;
+    } else if (y.kind == VariableKind::velocity && sc.speeds_in_rpm) {
       out.C.row(i) *= rpm_per_rad_per_s;
       out.D.row(i) *= rpm_per_rad_per_s;
       out.E.row(i) *= rpm_per_rad_per_s;
+      for (QuadraticLoad& q : out.quadratic) q.output_column(i) *= rpm_per_rad_per_s;
     }
   }
   return out;
@@ -124,6 +213,11 @@ Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedS
   // At the derivation's values (the scene's overrides), not the folded ones: a rigid scene folds
   // the stiffnesses away, yet the frequency below which it holds is that of its gear.
   add_natural_frequency(out, d, d.values);
+  if (sys.nonlinear) {
+    out.suggested_solver = out.adaptive_solver;
+    out.reason = fmt::format("the scene is nonlinear (a quadratic load), which exact stepping does not integrate; its "
+                             "linear part is {}", out.adaptive_solver == "implicit" ? "stiff" : "not stiff");
+  }
   return out;
 }
 

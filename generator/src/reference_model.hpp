@@ -2,6 +2,8 @@
 // L, A, B instead of the specialized expressions, for --interpreted runs and the tests.
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Dense>
 
 #include "diagnostics.hpp"
@@ -13,9 +15,17 @@ struct SpecializedSystem;  // specialization.hpp
 
 // Numeric (M, N) of the same system built from the derivation's L, A, B instead of the
 // specialized expressions: an independent computation for --interpreted and the tests.
+// A quadratic load's torque q = -c s |s| on the speed s = speed_row x, entering as dx/dt += state_column q
+// and y += output_column q.
+struct QuadraticLoad {
+  Eigen::VectorXd state_column, output_column, speed_row;
+  double coefficient = 0;
+};
+
 struct NumericSystem {
-  Eigen::MatrixXd M, N;        // dx/dt = M x + N u
-  Eigen::MatrixXd L;           // energy E = x^T L x / 2
+  Eigen::MatrixXd M, N;        // dx/dt = M x + N u (+ the quadratic loads)
+  std::vector<QuadraticLoad> quadratic;
+  Eigen::MatrixXd L;           // energy E = x^T L x / 2; empty with controllers
   Eigen::MatrixXd C, D, E;     // y = C x + D u + E dx/dt
   Eigen::MatrixXd S;           // slips of the engaged brakes and clutches, s = S x
   Eigen::VectorXd x0;

@@ -19,6 +19,7 @@
 #include "pogear/signal_table.hpp"
 #include "model_parameters.hpp"
 #include "model_variables.hpp"
+#include "loads_and_controllers.hpp"
 #include "scene_reader.hpp"
 #include "toml_reader.hpp"
 
@@ -78,7 +79,31 @@ void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
   check_parameter_roles(t);
 }
 
+// What loads and controllers cannot be combined with (yet), each refused at the line that asks for it.
+void check_loads_and_controllers(Scene& s, bool engaged) {
+  if (s.loads.empty() && s.controllers.empty()) return;
+  const SourceLocation& where = s.loads.empty() ? s.controllers_where : s.loads_where;
+  if (!s.tunable.empty())
+    throw InputError(s.tunable_where, "a scene with [loads] or [controllers] has no tunable parameters yet; set the "
+                                      "values in [parameters] and generate one simulator per value");
+  if (s.start != Start::given)
+    throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [loads] or "
+                                    "[controllers]; give the initial speeds in [initial]");
+  if (!nonlinear(s)) return;
+  if (engaged)
+    throw InputError(where, "a quadratic load makes the scene nonlinear, and brakes and clutches are simulated on "
+                            "linear scenes only; drop the quadratic part of the load or the [engagement]");
+  if (s.solver_given && s.solver == Solver::exact)
+    throw InputError(s.solver_where, "a quadratic load makes the scene nonlinear, which exact stepping does not "
+                                     "integrate; use solver = \"dopri5\" or \"implicit\", or a linear load");
+  if (!s.solver_given) s.solver = Solver::dopri5;
+}
+
 }  // namespace
+
+bool nonlinear(const Scene& scene) {
+  return std::any_of(scene.loads.begin(), scene.loads.end(), [](const LoadSpec& l) { return l.quadratic != 0; });
+}
 
 bool identically_zero(const rt::Signal& signal) {
   struct Zero {
@@ -107,7 +132,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       fmt::format("the scene file is larger than {} bytes; a model or scene file is a few kilobytes",
                   max_model_file_bytes));
   r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
-                     "parameters", "simulation", "engagement", "speed_unit"},
+                     "parameters", "simulation", "engagement", "speed_unit", "loads", "controllers"},
               "the scene file");
   Scene s;
   s.file = path;
@@ -155,6 +180,15 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   if (const toml::node* n = root.get("parameters")) apply_overrides(r, *n, s.model);
 
   if (const toml::node* n = root.get("effects")) s.effects = read_effects(r, *n);
+  // Before the tunables, whose names must not be the controllers' variables.
+  if (const toml::node* n = root.get("loads")) {
+    s.loads = read_loads(r, *n);
+    s.loads_where = r.loc(*n);
+  }
+  if (const toml::node* n = root.get("controllers")) {
+    s.controllers = read_controllers(r, *n, scene_dir, s.model);
+    s.controllers_where = r.loc(*n);
+  }
   if (const toml::node* n = root.get("keep")) {
     s.keep = r.strings(*n, "keep");
     s.keep_where = r.loc(*n);
@@ -220,7 +254,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         throw InputError(toml_location(path, key.source()),
                          fmt::format("'{}' is not a brake or clutch of the model; its elements are {}", name, names));
       }
-      s.engagement.push_back(EngagementSpec{k, read_signal(r, value, scene_dir, true), r.loc(value)});
+      s.engagement.push_back(EngagementSpec{k, read_signal(r, value, scene_dir, SignalQuantity::engagement), r.loc(value)});
     }
     std::sort(s.engagement.begin(), s.engagement.end(),
               [](const EngagementSpec& a, const EngagementSpec& b) { return a.element < b.element; });
@@ -262,8 +296,8 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   if (const toml::node* n = root.get("outputs")) {
     s.outputs_where = r.loc(*n);
     for (const auto& o : r.strings(*n, "outputs")) {
-      const auto v = find_variable(topology, o, {VariableKind::velocity, VariableKind::force});
-      if (!v) r.fail(*n, fmt::format("output '{}' is neither omega_<body> nor F_<mesh>", o));
+      const auto v = find_variable(topology, o, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+      if (!v) r.fail(*n, fmt::format("output '{}' is neither omega_<body>, F_<mesh> nor Tc_<controller>", o));
       if (std::find(s.outputs.begin(), s.outputs.end(), *v) != s.outputs.end())
         r.fail(*n, fmt::format("output '{}' is listed twice", o));
       if (v->kind == VariableKind::force && !s.effects.mesh_forces)
@@ -301,6 +335,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     if (const toml::node* v = t.get("solver")) {
       s.solver_where = r.loc(*v);
       s.solver = parse_solver(r.string(*v, "solver"), s.solver_where);
+      s.solver_given = true;
     }
     if (!(s.horizon > 0)) r.fail(*t.get("horizon"), "horizon must be positive; give the simulated time, e.g. horizon = \"2*s\"");
     if (!(s.sample > 0) || s.sample > s.horizon)
@@ -314,6 +349,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   }
   const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(),
                                    [](const EngagementSpec& e) { return !identically_zero(e.command); });
+  check_loads_and_controllers(s, engaged);
   if (engaged && s.solver == Solver::rk4)
     throw InputError(s.solver_where, fmt::format("the scene engages brakes or clutches, which rk4 does not simulate (its "
                                                  "fixed steps cannot locate their events); use solver = \"exact\", "

@@ -34,6 +34,25 @@ struct EngagementSpec {
   SourceLocation where;
 };
 
+// A load on a body (scene-format.md, "Loads"): the torque -(constant + linear omega + quadratic
+// omega |omega|) in SI units. The constant part is a constant input, the linear one a damping that
+// keeps the scene linear, the quadratic one makes it nonlinear.
+struct LoadSpec {
+  int body = -1;
+  double constant = 0, linear = 0, quadratic = 0;
+  SourceLocation where;
+};
+
+// A PI speed controller (scene-format.md, "Controllers"): the torque kp e + ki theta on `body`, with
+// e = set_point(t) - omega_<measured> and theta its integral (a state of the scene).
+struct ControllerSpec {
+  std::string name;
+  int body = -1, measured = -1;
+  rt::Signal set_point;
+  double kp = 0, ki = 0;
+  SourceLocation where;
+};
+
 // Whether the signal is zero at every time: such an input is no input.
 bool identically_zero(const rt::Signal& signal);
 
@@ -61,6 +80,10 @@ struct Scene {
   // Commands of the brakes and clutches the scene engages, in the model's order; an element not
   // listed, or whose command is zero at every time, is open throughout and leaves no term.
   std::vector<EngagementSpec> engagement;
+  std::vector<LoadSpec> loads;  // in body order, at most one per body
+  // In the order of Topology::controllers, which names them for their variables.
+  std::vector<ControllerSpec> controllers;
+  bool solver_given = false;  // a quadratic load makes dopri5 the default
   std::map<Variable, double> initial;  // velocities [rad/s] and forces [N]
   Start start = Start::given;
   SourceLocation start_where;
@@ -72,12 +95,15 @@ struct Scene {
   double tolerance = 1e-8;  // adaptive methods, relative
   double step = 1e-4;       // fixed-step methods
   long max_steps = 10000000;  // adaptive methods: a stiff scene stops with an error, not a hang
+  SourceLocation loads_where, controllers_where;
   SourceLocation solver_where, outputs_where, keep_where, tunable_where, sample_where, initial_where;
 };
 
 // Reads a scene and its model, applies the scene's parameter overrides to the model, and checks
 // the scene against the result (bodies, meshes, parameter names, units).
 Scene parse_scene(const std::string& path);
+// Whether a load of the scene is quadratic in speed: its equations are then nonlinear.
+bool nonlinear(const Scene& scene);
 Scene parse_scene_text(const std::string& text, const std::string& path);
 
 // The solver `name` (rt::parse_solver), or an InputError at `where`.

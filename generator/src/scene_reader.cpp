@@ -51,7 +51,7 @@ namespace {
 // A table signal from its CSV file; `at` is the `table =` value, where complaints about the whole
 // file point (a complaint about one line points into the table).
 rt::Signal read_table_signal(const SceneReader& r, const toml::node& at, const std::string& table_file,
-                             const std::string& layout = "the table needs two columns: time [s], torque [N m]") {
+                             const std::string& layout) {
   rt::TableError error;
   const auto table = rt::load_table_csv(table_file, error);
   if (!table) {
@@ -69,11 +69,15 @@ rt::Signal read_table_signal(const SceneReader& r, const toml::node& at, const s
 
 }  // namespace
 
-// An input torque, or (`engagement`) a dimensionless engagement command, whose sine form is refused:
-// the exact method is exact for piecewise linear commands, and events are located on them.
-rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path& scene_dir, bool engagement) {
-  const Dimension torque = engagement ? Dimension{} : torque_dimension();
-  if (!n.is_table()) return rt::Constant{r.quantity(n, torque, engagement ? "an engagement command" : "an input torque")};
+// An input torque, an engagement command or a speed set-point. An engagement command's sine form is
+// refused: the exact method is exact for piecewise linear commands, and events are located on them.
+rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path& scene_dir, SignalQuantity what) {
+  const bool engagement = what == SignalQuantity::engagement;
+  const Dimension torque = engagement ? Dimension{}
+                           : what == SignalQuantity::speed ? angular_velocity_dimension()
+                                                           : torque_dimension();
+  const char* name = engagement ? "an engagement command" : what == SignalQuantity::speed ? "a set-point" : "an input torque";
+  if (!n.is_table()) return rt::Constant{r.quantity(n, torque, name)};
   const toml::table& t = *n.as_table();
   auto get = [&](std::string_view key) { return t.get(key); };
   if (const toml::node* v = get("constant")) {
@@ -94,7 +98,9 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
     rt::Ramp s;
     Dimension slope = torque;
     slope.exponent[2] -= 1;
-    s.slope = r.quantity(*v, slope, engagement ? "ramp (a slope, e.g. \"2/s\")" : "ramp (a slope, e.g. \"50*Nm/s\")");
+    s.slope = r.quantity(*v, slope, engagement ? "ramp (a slope, e.g. \"2/s\")"
+                                    : what == SignalQuantity::speed ? "ramp (a slope, e.g. \"500*rpm/s\")"
+                                                                    : "ramp (a slope, e.g. \"50*Nm/s\")");
     if (get("start")) s.start_time = r.quantity(*get("start"), time_dimension(), "start");
     if (get("initial")) s.initial = r.quantity(*get("initial"), torque, "initial");
     return s;
@@ -118,9 +124,10 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
     r.only_keys(t, {"table"}, "a table signal");
     const std::string file = r.string(*v, "table");
     const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : scene_dir / file;
-    return engagement ? read_table_signal(r, *v, path.lexically_normal().string(),
-                                          "the table needs two columns: time [s], engagement command [0 to 1]")
-                      : read_table_signal(r, *v, path.lexically_normal().string());
+    return read_table_signal(r, *v, path.lexically_normal().string(),
+                             engagement ? "the table needs two columns: time [s], engagement command [0 to 1]"
+                             : what == SignalQuantity::speed ? "the table needs two columns: time [s], speed [rad/s]"
+                                                             : "the table needs two columns: time [s], torque [N m]");
   }
   r.fail(n, "a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., "
             "frequency = ... } or { table = \"file.csv\" }");

@@ -26,9 +26,12 @@ struct SceneReader : TomlReader {
   double quantity(const toml::node& n, const Dimension& dim, std::string_view what) const;
 };
 
-// An input torque, or (`engagement`) a dimensionless engagement command; a table's file is found
-// relative to `scene_dir`.
+// What a signal of the scene is: an input torque, a dimensionless engagement command (piecewise
+// linear), or a controller's speed set-point.
+enum class SignalQuantity { torque, engagement, speed };
+
+// A signal; a table's file is found relative to `scene_dir`.
 rt::Signal read_signal(const SceneReader& r, const toml::node& n, const std::filesystem::path& scene_dir,
-                       bool engagement = false);
+                       SignalQuantity what = SignalQuantity::torque);
 
 }  // namespace pogear

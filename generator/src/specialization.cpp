@@ -30,6 +30,7 @@ std::vector<Variable> requested_outputs(const Scene& sc, const Topology& t) {
   for (std::size_t b = 0; b < t.bodies.size(); ++b) out.push_back({VariableKind::velocity, static_cast<int>(b)});
   if (sc.effects.mesh_forces)
     for (std::size_t i = 0; i < t.meshes.size(); ++i) out.push_back({VariableKind::force, static_cast<int>(i)});
+  for (std::size_t c = 0; c < sc.controllers.size(); ++c) out.push_back({VariableKind::controller_torque, static_cast<int>(c)});
   return out;
 }
 
@@ -39,14 +40,25 @@ void add_state(const Topology& t, Variable v, SpecializedSystem& sys) {
   sys.state_units.emplace_back(unit_of(v.kind));
 }
 
+void add_input(const Topology& t, Variable v, SpecializedSystem& sys) {
+  sys.input_variables.push_back(v);
+  sys.inputs.push_back(variable_name(t, v));
+}
+
 void inputs_of(const Scene& sc, const Topology& t, SpecializedSystem& sys) {
-  for (std::size_t i = 0; i < sc.inputs.size(); ++i) {
-    if (identically_zero(sc.inputs[i].signal)) continue;  // a zero input is not an input
-    const Variable tau{VariableKind::torque, sc.inputs[i].body};
-    sys.input_variables.push_back(tau);
-    sys.inputs.push_back(variable_name(t, tau));
-    sys.input_signal.push_back(static_cast<int>(i));
+  for (const InputSpec& in : sc.inputs) {
+    if (identically_zero(in.signal)) continue;  // a zero input is not an input
+    add_input(t, {VariableKind::torque, in.body}, sys);
+    sys.input_signals.push_back(in.signal);
   }
+}
+
+// The torques of the loads and controllers, while the equations are built: inputs, which
+// close_loops then writes as functions of the state.
+void loop_inputs_of(const Scene& sc, const Topology& t, SpecializedSystem& sys) {
+  for (const LoadSpec& l : sc.loads) add_input(t, {VariableKind::load_torque, l.body}, sys);
+  for (std::size_t c = 0; c < sc.controllers.size(); ++c)
+    add_input(t, {VariableKind::controller_torque, static_cast<int>(c)}, sys);
 }
 
 // Engaged brakes and clutches: their torques are inputs after the scene's (an element whose command
@@ -61,12 +73,88 @@ void friction_inputs_of(const Scene& sc, const Topology& t, SpecializedSystem& s
   }
 }
 
-// The torque on a body from every input: its own tau_ and the engaged elements' -e_k^T Tf_k.
-ex body_torque(const SymbolTable& s, const SpecializedSystem& sys, const GiNaC::matrix& torques, std::size_t body) {
+// The torque on a body from every input: its own tau_, its load and controller, and the engaged
+// elements' -e_k^T Tf_k.
+ex body_torque(const SymbolTable& s, const std::vector<Variable>& inputs, const GiNaC::matrix& torques,
+               std::size_t body) {
   ex sum = 0;
-  for (std::size_t j = 0; j < sys.input_variables.size(); ++j)
-    if (!torques(body, j).is_zero()) sum += torques(body, j) * variable_symbol(s, sys.input_variables[j]);
+  for (std::size_t j = 0; j < inputs.size(); ++j)
+    if (!torques(body, j).is_zero()) sum += torques(body, j) * variable_symbol(s, inputs[j]);
   return sum;
+}
+
+// Loads and controllers close the loop: their torques, inputs while the gear's equations were built,
+// become functions of the state. A controller adds its integral theta' = ref - omega_measured and
+// reads its set-point ref as an input; a load keeps its constant part as the input TL_<body>
+// (a constant signal) and its quadratic part as a temporary TQ_<body>, added after the linear form.
+// Returns the substitution the outputs take too.
+struct ClosedLoops {
+  GiNaC::exmap torques;  // TL_ and Tc_ -> their laws
+  std::vector<Assignment> quadratic;  // TQ_<body> = -c omega |omega|
+};
+
+ClosedLoops close_loops(const Scene& sc, const Derivation& d, bool elastic, const GiNaC::exmap& fold,
+                        SpecializedSystem& sys) {
+  const SymbolTable& s = d.symbols;
+  const Topology& t = d.topology;
+  ClosedLoops out;
+  if (sc.loads.empty() && sc.controllers.empty()) return out;
+  std::vector<ex> x1;  // the rigid system's kept velocities
+  for (const Variable v : sys.state_variables) x1.push_back(variable_symbol(s, v));
+  auto speed = [&](int body) -> ex {
+    const Variable omega{VariableKind::velocity, body};
+    if (elastic) return variable_symbol(s, omega);
+    ex sum = 0;
+    for (std::size_t j = 0; j < x1.size(); ++j) sum += d.rigid.Q1(static_cast<unsigned>(body), static_cast<unsigned>(j)) * x1[j];
+    return sum.subs(fold, GiNaC::subs_options::no_pattern).expand();
+  };
+  // The inputs again, in their final order: the scene's torques, the loads' constant parts, the
+  // set-points, the friction torques (last, as the hybrid runs expect).
+  std::vector<Variable> torques, frictions;
+  for (const Variable v : sys.input_variables) {
+    if (v.kind == VariableKind::torque) torques.push_back(v);
+    if (v.kind == VariableKind::friction_torque) frictions.push_back(v);
+  }
+  sys.input_variables = torques;
+  sys.inputs.clear();
+  for (const Variable v : torques) sys.inputs.push_back(variable_name(t, v));
+  for (const LoadSpec& l : sc.loads) {
+    const Variable constant{VariableKind::load_torque, l.body};
+    ex law = -exact_number(l.linear) * speed(l.body);
+    if (l.constant != 0) {
+      add_input(t, constant, sys);
+      sys.input_signals.push_back(rt::Constant{-l.constant});
+      law += variable_symbol(s, constant);
+    }
+    if (l.quadratic != 0) {
+      const std::string name = "TQ_" + t.bodies[static_cast<std::size_t>(l.body)].name;
+      if (const Parameter* p = find_parameter(t, name))
+        throw InputError(p->where, fmt::format("the model has a parameter named '{}', which pogear's generated code "
+                                               "uses for a quadratic load; rename the parameter", name));
+      const GiNaC::realsymbol q(name);
+      const ex omega = speed(l.body);
+      out.quadratic.push_back({name, (-exact_number(l.quadratic) * omega * GiNaC::abs(omega)).expand(), q});
+      law += q;
+      sys.nonlinear = true;
+    }
+    out.torques[variable_symbol(s, constant)] = law;
+  }
+  for (std::size_t c = 0; c < sc.controllers.size(); ++c) {
+    const ControllerSpec& k = sc.controllers[c];
+    const int i = static_cast<int>(c);
+    const Variable ref{VariableKind::set_point, i}, theta{VariableKind::controller_integral, i};
+    add_input(t, ref, sys);
+    sys.input_signals.push_back(k.set_point);
+    add_state(t, theta, sys);
+    const ex error = variable_symbol(s, ref) - speed(k.measured);
+    sys.rhs.push_back(error);
+    out.torques[variable_symbol(s, {VariableKind::controller_torque, i})] =
+        (exact_number(k.kp) * error + exact_number(k.ki) * variable_symbol(s, theta)).expand();
+  }
+  for (const Variable v : frictions) add_input(t, v, sys);
+  for (std::size_t i = 0; i < sys.rhs.size(); ++i)
+    sys.rhs[i] = sys.rhs[i].subs(out.torques, GiNaC::subs_options::no_pattern).expand();
+  return out;
 }
 
 // What `--param` accepts for a tunable, and the sign its roles in the model ask for.
@@ -151,8 +239,10 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
   sys.kind = elastic ? SystemKind::elastic : SystemKind::rigid;
   for (const auto& name : sc.tunable) sys.params.push_back(tunable_parameter(t, name, parameter_value(t, name)));
   inputs_of(sc, t, sys);
+  loop_inputs_of(sc, t, sys);
   friction_inputs_of(sc, t, sys);
-  const GiNaC::matrix torques_of_inputs = input_torques(t, sys.input_variables);
+  const std::vector<Variable> open_inputs = sys.input_variables;  // before close_loops
+  const GiNaC::matrix torques_of_inputs = input_torques(t, sc.controllers, open_inputs);
 
   // Readers of the generated code would take a temporary for the parameter of the same name.
   auto temporary = [&](Variable v) {
@@ -184,7 +274,7 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
       }
     }
     for (std::size_t k = 0; k < n; ++k) {
-      ex torque = body_torque(s, sys, torques_of_inputs, k) -
+      ex torque = body_torque(s, open_inputs, torques_of_inputs, k) -
                   d.elastic.B_J(k, k) * variable_symbol(s, {VariableKind::velocity, static_cast<int>(k)});
       for (std::size_t i = 0; i < m; ++i) torque -= d.elastic.R(i, k) * w[i];
       sys.rhs.push_back(folded(torque / d.elastic.J(k, k)));
@@ -254,6 +344,8 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
       sys.implicit = std::move(f);
     }
   }
+  const std::size_t gear_states = sys.states.size();  // before the controllers' integrals
+  const ClosedLoops loops = close_loops(sc, d, elastic, fold, sys);
   // The rigid model starts from the state the named speeds determine (initial_state.hpp); with
   // compare_rigid the elastic model starts from that same state, unnamed bodies included.
   std::vector<double> rigid_x0;
@@ -264,13 +356,19 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
             Eigen::Map<const Eigen::VectorXd>(rigid_x0.data(), static_cast<Eigen::Index>(rigid_x0.size()));
   for (std::size_t i = 0; i < sys.state_variables.size(); ++i) {
     const Variable v = sys.state_variables[i];
-    if (const auto it = sc.initial.find(v); it != sc.initial.end())  // exactly as given, a lumped force per planet
+    if (i >= gear_states) sys.x0.push_back(0.0);  // a controller's integral
+    else if (const auto it = sc.initial.find(v); it != sc.initial.end())  // exactly as given, a lumped force per planet
       sys.x0.push_back(v.kind == VariableKind::force ? it->second * mesh_count(t, t.meshes[v.index]) : it->second);
     else if (!elastic) sys.x0.push_back(rigid_x0[i]);
     else if (v.kind == VariableKind::velocity && omega.size()) sys.x0.push_back(omega(v.index));
     else sys.x0.push_back(0.0);
   }
   if (!sys.implicit) linear_form(s, sys);
+  // After the linear form, which reads a temporary it does not know as a constant, and leaves it out.
+  sys.rhs_temporaries.insert(sys.rhs_temporaries.end(), loops.quadratic.begin(), loops.quadratic.end());
+  GiNaC::exmap loop_outputs = loops.torques;  // the outputs have no temporaries: TQ_ written out
+  for (const Assignment& q : loops.quadratic)
+    for (auto& [symbol, law] : loop_outputs) law = law.subs(GiNaC::exmap{{q.symbol, q.value}}, GiNaC::subs_options::no_pattern);
 
   // Outputs: only those asked for.
   bool need_derivatives = false;
@@ -278,11 +376,13 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
     sys.output_variables.push_back(out);
     sys.outputs.push_back(variable_name(t, out));
     sys.output_units.emplace_back(unit_of(out.kind));
-    if (elastic || contains(sys.state_variables, out)) {
+    if (out.kind == VariableKind::controller_torque) {
+      sys.output_values.push_back(loop_outputs.at(variable_symbol(s, out)));
+    } else if (elastic || contains(sys.state_variables, out)) {
       sys.output_values.push_back(variable_symbol(s, out));
     } else if (out.kind == VariableKind::velocity) {
       ex w = 0;
-      for (std::size_t j = 0; j < sys.states.size(); ++j)
+      for (std::size_t j = 0; j < gear_states; ++j)
         w += d.rigid.Q1(out.index, j) * variable_symbol(s, sys.state_variables[j]);
       sys.output_values.push_back(folded(w));
     } else {
@@ -290,8 +390,9 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
       GiNaC::exmap body_torques;
       for (std::size_t b = 0; b < n; ++b)
         body_torques[variable_symbol(s, {VariableKind::torque, static_cast<int>(b)})] =
-            body_torque(s, sys, torques_of_inputs, b);
-      sys.output_values.push_back(folded(d.rigid.force_recovery.at(out.index).subs(body_torques)));
+            body_torque(s, open_inputs, torques_of_inputs, b);
+      sys.output_values.push_back(folded(
+          d.rigid.force_recovery.at(out.index).subs(body_torques).subs(loop_outputs, GiNaC::subs_options::no_pattern)));
       need_derivatives = true;
     }
     // The model's force of a lumped planet's mesh is its planets' sum; users read one planet's.
@@ -309,7 +410,8 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
     sys.output_ops.multiplications += sys.rhs_ops.multiplications;
     sys.output_ops.additions += sys.rhs_ops.additions;
   }
-  sys.L = energy_matrix(d, fold, elastic);
+  if (sc.controllers.empty()) sys.L = energy_matrix(d, fold, elastic);
+  else sys.L = GiNaC::matrix(0, 0);
 
   // Slips s_k = e_k omega in the system's states: omega itself (elastic), omega = Q1 x1 (rigid).
   const GiNaC::matrix E = engagement_rows(t, sys.friction_elements);
@@ -320,6 +422,7 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
       for (std::size_t b = 0; b < n; ++b) {
         if (E(r, b).is_zero()) continue;
         const Variable v = sys.state_variables[j];
+        if (j >= gear_states) continue;  // a controller's integral
         if (elastic) sum += v == Variable{VariableKind::velocity, static_cast<int>(b)} ? E(r, b) : ex(0);
         else sum += E(r, b) * d.rigid.Q1(b, j);
       }
@@ -328,11 +431,17 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
   return sys;
 }
 
-GiNaC::matrix input_torques(const Topology& t, const std::vector<Variable>& inputs) {
+GiNaC::matrix input_torques(const Topology& t, const std::vector<ControllerSpec>& controllers,
+                            const std::vector<Variable>& inputs) {
   GiNaC::matrix G(t.bodies.size(), inputs.size());
   for (std::size_t j = 0; j < inputs.size(); ++j) {
-    if (inputs[j].kind == VariableKind::torque) {
+    const VariableKind kind = inputs[j].kind;
+    if (kind == VariableKind::torque || kind == VariableKind::load_torque) {
       G(inputs[j].index, j) = 1;
+    } else if (kind == VariableKind::controller_torque) {
+      G(controllers.at(static_cast<std::size_t>(inputs[j].index)).body, j) = 1;
+    } else if (kind == VariableKind::set_point) {
+      continue;  // a speed, which acts through its controller
     } else {
       const GiNaC::matrix e = engagement_rows(t, {inputs[j].index});
       for (std::size_t b = 0; b < t.bodies.size(); ++b) G(b, j) = -e(0, b);

@@ -52,10 +52,12 @@ struct SpecializedSystem {
   // Names (as the generated code and the CSV files write them) and what each one is.
   std::vector<std::string> states, state_units;
   std::vector<Variable> state_variables;
-  std::vector<double> x0;
+  std::vector<double> x0;  // the controllers' integrals theta_ start at zero
   std::vector<std::string> inputs;    // tau_<body> of the nonzero signals
   std::vector<Variable> input_variables;
-  std::vector<int> input_signal;      // index into Scene::inputs
+  // The signal of each input but the friction torques: the scene's torques, the constant parts of
+  // its loads (TL_<body>), the controllers' set-points (ref_<controller>).
+  std::vector<rt::Signal> input_signals;
   // Brakes and clutches the scene engages (indices into Topology::friction_elements): their torques
   // Tf_<element> are the last inputs, after the scene's, and their slips are s = slip x.
   std::vector<int> friction_elements;
@@ -73,7 +75,12 @@ struct SpecializedSystem {
   std::optional<ImplicitForm> implicit;
   bool output_derivatives = false;  // the outputs read dx/dt as d<state>, computed by rhs
   OperationCount rhs_ops, output_ops;
-  GiNaC::matrix L;  // energy E = x^T L x / 2 (symmetric positive definite), for the runner's divergence check
+  // Energy E = x^T L x / 2 (symmetric positive definite), for the runner's divergence check; empty
+  // with controllers, which feed power in that no bound of the inputs limits.
+  GiNaC::matrix L;
+  // A quadratic load makes the equations nonlinear: rhs then holds its torques -c omega |omega|
+  // (temporaries TQ_<body>), which M and N leave out, and exact stepping is refused.
+  bool nonlinear = false;
 };
 
 // A brake or clutch of a scene at the scene's values: capacity [N m], static ratio, and command.
@@ -100,8 +107,9 @@ SpecializedScene specialize(const Scene& scene);
 SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, bool elastic);
 
 // The torque each input applies to each body (bodies x inputs, exact): a unit column for tau_<body>,
-// -e_k^T for a friction torque Tf_<k> (-T on the element's first body, +T on its second, arrows
-// taken into account).
-GiNaC::matrix input_torques(const Topology& t, const std::vector<Variable>& inputs);
+// a load's TL_<body> and a controller's Tc_ (on its body), -e_k^T for a friction torque Tf_<k> (-T
+// on the element's first body, +T on its second, arrows taken into account), none for a set-point.
+GiNaC::matrix input_torques(const Topology& t, const std::vector<ControllerSpec>& controllers,
+                            const std::vector<Variable>& inputs);
 
 }  // namespace pogear

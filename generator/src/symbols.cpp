@@ -30,7 +30,10 @@ SymbolTable make_symbol_table(const Topology& t) {
   }
   for (const VariableKind kind : {VariableKind::torque, VariableKind::acceleration, VariableKind::velocity,
                                   VariableKind::force, VariableKind::force_rate, VariableKind::mesh_velocity,
-                                  VariableKind::transmitted_force, VariableKind::friction_torque}) {
+                                  VariableKind::transmitted_force, VariableKind::friction_torque,
+                                  VariableKind::load_torque, VariableKind::controller_torque,
+                                  VariableKind::controller_integral, VariableKind::controller_error,
+                                  VariableKind::set_point}) {
     const std::size_t count = variable_count(t, kind);
     for (std::size_t i = 0; i < count; ++i) {
       const Variable v{kind, static_cast<int>(i)};

@@ -104,6 +104,9 @@ struct Topology {
   std::vector<Parameter> parameters;
   std::vector<std::string> default_keep;
   SourceLocation keep_where;
+  // The speed controllers of the scene that simulates this model (none for a model alone): the
+  // names of their variables theta_, e_, ref_ and Tc_ (model_variables.hpp).
+  std::vector<std::string> controllers;
 };
 
 // Limits that keep hostile input bounded.

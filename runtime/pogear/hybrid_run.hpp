@@ -85,7 +85,8 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
     sys.energy_matrix(p, L);
     std::vector<Signal> bounds = signals;
     for (const auto& e : elements) bounds.push_back(Constant{e.static_ratio * e.capacity});
-    energy_bound.emplace(Eigen::MatrixXd(L), hs.N, bounds, Eigen::VectorXd(x0), run.horizon);
+    if (L.size() > 0)  // an empty L: no bound (a speed controller feeds in power)
+      energy_bound.emplace(Eigen::MatrixXd(L), hs.N, bounds, Eigen::VectorXd(x0), run.horizon);
   }
 
   typename System::Input w(nu + ne);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <string>
@@ -161,13 +162,22 @@ int run_system(const System& sys, const typename System::Params& p, const std::v
   SystemRunLog log(run, suffix, std::vector<std::string>(std::begin(sys.output_names), std::end(sys.output_names)),
                    std::vector<std::string>(std::begin(sys.output_units), std::end(sys.output_units)));
   if (run.solver == Solver::rk4 && !log.rk4_step_stable(M)) return 3;
+  // A nonlinear system (a quadratic load) has no M and N that exact stepping could discretize.
+  if constexpr (requires { bool(sys.nonlinear); }) {
+    if (sys.nonlinear && run.solver == Solver::exact) {
+      std::fprintf(stderr, "%s%s: error: the scene is nonlinear (a quadratic load), which exact stepping does not "
+                           "integrate; use --solver dopri5 or implicit\n", run.name.c_str(), suffix.c_str());
+      return 3;
+    }
+  }
 
   // Systems without energy_matrix (written by hand against this interface) are not checked.
   std::optional<EnergyBound<typename System::StateMatrix, typename System::InputMatrix>> energy_bound;
   if constexpr (requires(typename System::StateMatrix& L) { sys.energy_matrix(p, L); }) {
     typename System::StateMatrix L(nx, nx);
     sys.energy_matrix(p, L);
-    energy_bound.emplace(std::move(L), N, signals, x0, run.horizon);
+    if (L.size() > 0)  // an empty L: no bound (a speed controller feeds in power)
+      energy_bound.emplace(std::move(L), N, signals, x0, run.horizon);
   }
 
   RunStatus st;

@@ -28,7 +28,7 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const NumericSyste
   hs.M = ns.M;
   hs.N = ns.N;
   hs.S = ns.S;
-  for (int i : sys.input_signal) hs.inputs.push_back(model.scene.inputs[static_cast<std::size_t>(i)].signal);
+  hs.inputs = sys.input_signals;
   for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
   return hs;
 }

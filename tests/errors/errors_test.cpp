@@ -646,7 +646,7 @@ TEST_F(SceneFiles, TomlSyntax) {
 
 TEST_F(SceneFiles, UnknownKey) {
   expect_scene_error({{"compare_rigid = true", "compare_rigid = true\nduration = 2"}},
-      R"~(scene.toml:7:1: error: unknown key 'duration' in the scene file; the keys are name, model, effects, keep, compare_rigid, tunable, outputs, inputs, initial, parameters, simulation, engagement, speed_unit)~");
+      R"~(scene.toml:7:1: error: unknown key 'duration' in the scene file; the keys are name, model, effects, keep, compare_rigid, tunable, outputs, inputs, initial, parameters, simulation, engagement, speed_unit, loads, controllers)~");
 }
 
 TEST_F(SceneFiles, ModelError) {
@@ -900,7 +900,7 @@ TEST_F(Outputs, NotAList) {
 }
 TEST_F(Outputs, Unknown) {
   expect_scene_error({{"compare_rigid = true", "compare_rigid = true\noutputs = [\"omega_x\"]"}},
-      R"~(scene.toml:7:11: error: output 'omega_x' is neither omega_<body> nor F_<mesh>)~");
+      R"~(scene.toml:7:11: error: output 'omega_x' is neither omega_<body>, F_<mesh> nor Tc_<controller>)~");
 }
 TEST_F(Outputs, ForceWithoutMeshForces) {
   expect_scene_error({{R"(, "mesh_forces"])", "]"}, {"compare_rigid = true", "compare_rigid = true\noutputs = [\"F_ps\"]"}},
@@ -1063,6 +1063,134 @@ TEST_F(EngagementCommands, TunableCapacity) {
   expect_error("B1 = \"1\"\n",
                R"~(scene.toml:7:11: error: 'T_B1' is the torque capacity of B1, which a simulation takes at the scene's value; it cannot be tunable: set it in [parameters] instead)~",
                {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"T_B1\"]"}});
+}
+
+// Scenes with loads and speed controllers: scene.toml with a [loads] or [controllers] table after
+// its last line (gear.toml's bodies are c, p, s, r, g).
+class LoadsAndControllers : public ErrorTest {
+ protected:
+  void expect_error(const std::string& tables, const std::string& expected, const Edits& scene_edits = {},
+                    const std::string& model = base_model()) {
+    expect_documented(scene_error(edited(base_scene(), scene_edits) + "\n" + tables, model), expected);
+  }
+};
+
+TEST_F(LoadsAndControllers, LoadsNotATable) {
+  expect_error("", R"~(scene.toml:7:9: error: [loads] must be a table of <body> = { constant = ..., linear = ..., quadratic = ... })~",
+               {{"compare_rigid = true", "compare_rigid = true\nloads = 3"}});
+}
+
+TEST_F(LoadsAndControllers, LoadOnUnknownBody) {
+  expect_error("[loads]\nx = { constant = \"1*N*m\" }\n",
+               R"~(scene.toml:22:5: error: the load's body 'x' is not a body of the model; its bodies are c, p, s, r, g)~");
+}
+
+TEST_F(LoadsAndControllers, LoadNotATable) {
+  expect_error("[loads]\nr = \"5*N*m\"\n",
+               R"~(scene.toml:22:5: error: a load is a table { constant = "<torque>", linear = "<N*m*s/rad>", quadratic = "<N*m*s^2/rad^2>" }, each part optional)~");
+}
+
+TEST_F(LoadsAndControllers, NegativeLoad) {
+  expect_error("[loads]\nr = { linear = \"-0.5*N*m*s\" }\n",
+               R"~(scene.toml:22:16: error: linear is negative; a load takes power from the gear (a torque that drives it is an input in [inputs]))~");
+}
+
+TEST_F(LoadsAndControllers, LoadWithoutUnit) {
+  expect_error("[loads]\nr = { constant = \"5\" }\n",
+               R"~(scene.toml:22:18: error: constant has no unit (5); a torque needs one, e.g. "5*N*m")~");
+}
+
+TEST_F(LoadsAndControllers, ControllersNotATable) {
+  expect_error("", R"~(scene.toml:7:15: error: [controllers] must be a table of <name> = { body = ..., set_point = ..., kp = ..., ki = ... })~",
+               {{"compare_rigid = true", "compare_rigid = true\ncontrollers = \"mg1\""}});
+}
+
+TEST_F(LoadsAndControllers, ControllerNotATable) {
+  expect_error("[controllers]\nmg1 = \"s\"\n",
+               R"~(scene.toml:22:7: error: a controller is a table { body = "<body>", speed_of = "<body>", set_point = <speed signal>, kp = "<N*m*s/rad>", ki = "<N*m/rad>" })~");
+}
+
+TEST_F(LoadsAndControllers, BadControllerName) {
+  expect_error("[controllers]\n\"my controller\" = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\" }\n",
+               R"~(scene.toml:22:19: error: controller name 'my controller' must be letters, digits and '_', from a letter, at most 64 characters (it names the controller's variables in the generated code))~");
+}
+
+TEST_F(LoadsAndControllers, ControllerNameTakenByAParameter) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\" }\n",
+               R"~(scene.toml:22:7: error: the model has a parameter named 'ref_mg1', which the generated code uses for controller 'mg1'; rename the controller)~",
+               {}, edited(base_model(), {{R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nref_mg1 = \"1*rad/s\""}}));
+}
+
+TEST_F(LoadsAndControllers, ControllerWithoutBody) {
+  expect_error("[controllers]\nmg1 = { set_point = \"100*rpm\", kp = \"1*N*m*s\" }\n",
+               R"~(scene.toml:22:7: error: the controller names no body; add body = "<body>", the body whose torque it sets)~");
+}
+
+TEST_F(LoadsAndControllers, ControllerOnUnknownBody) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", speed_of = \"e\", set_point = \"100*rpm\", kp = \"1*N*m*s\" }\n",
+               R"~(scene.toml:22:32: error: speed_of 'e' is not a body of the model; its bodies are c, p, s, r, g)~");
+}
+
+TEST_F(LoadsAndControllers, ControllerWithoutSetPoint) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", kp = \"1*N*m*s\" }\n",
+               R"~(scene.toml:22:7: error: the controller has no set_point; add set_point = "<speed>", e.g. "1500*rpm")~");
+}
+
+TEST_F(LoadsAndControllers, SetPointNotASpeed) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*N*m\", kp = \"1*N*m*s\" }\n",
+               R"~(scene.toml:22:33: error: a set-point has unit kg*m^2/s^2; it needs 1/s)~");
+}
+
+TEST_F(LoadsAndControllers, ControllerGains) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"-1*N*m*s\" }\n",
+               R"~(scene.toml:22:7: error: a controller's gains kp and ki are non-negative and not both zero; give kp = "<N*m*s/rad>" and ki = "<N*m/rad>")~");
+}
+
+TEST_F(LoadsAndControllers, TorqueLimitsNotYet) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\", torque_max = \"50*N*m\" }\n",
+               R"~(scene.toml:22:73: error: torque limits of a controller are not simulated yet; drop torque_min and torque_max, or limit the set-point instead)~");
+}
+
+TEST_F(LoadsAndControllers, ParameterNamedLikeAQuadraticLoad) {
+  expect_error("[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n",
+               R"~(gear.toml:37:8: error: the model has a parameter named 'TQ_r', which pogear's generated code uses for a quadratic load; rename the parameter)~",
+               {{R"(solver = "exact")", R"(solver = "dopri5")"}},
+               edited(base_model(), {{"[parameters]\n", "[parameters]\nTQ_r = 2\n"}}));
+}
+
+TEST_F(LoadsAndControllers, NotWithTunables) {
+  expect_error("[loads]\nr = { linear = \"0.5*N*m*s\" }\n",
+               R"~(scene.toml:7:11: error: a scene with [loads] or [controllers] has no tunable parameters yet; set the values in [parameters] and generate one simulator per value)~",
+               {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"J_c\"]"}});
+}
+
+TEST_F(LoadsAndControllers, NotWithRigidStart) {
+  expect_error("[loads]\nr = { linear = \"0.5*N*m*s\" }\n",
+               R"~(scene.toml:12:9: error: start = "rigid" and "steady" are not available with [loads] or [controllers]; give the initial speeds in [initial])~",
+               {{"omega_c = \"0*rpm\"", "start = \"rigid\""}});
+}
+
+TEST_F(LoadsAndControllers, QuadraticLoadWithExactSolver) {
+  expect_error("[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n",
+               R"~(scene.toml:17:10: error: a quadratic load makes the scene nonlinear, which exact stepping does not integrate; use solver = "dopri5" or "implicit", or a linear load)~");
+}
+
+TEST_F(LoadsAndControllers, QuadraticLoadWithBrakes) {
+  const std::string model = edited(base_model(), {{"[parameters]", "[[brake]]\nname = \"B1\"\nbody = \"r\"\n\n[parameters]"},
+                                                  {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nT_B1 = \"50*N*m\""}});
+  expect_error("[engagement]\nB1 = \"1\"\n\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n",
+               R"~(scene.toml:24:1: error: a quadratic load makes the scene nonlinear, and brakes and clutches are simulated on linear scenes only; drop the quadratic part of the load or the [engagement])~",
+               {{R"(solver = "exact")", R"(solver = "dopri5")"}}, model);
+}
+
+TEST_F(LoadsAndControllers, SimulateWithExactSolver) {
+  write_text("gear.toml", base_model());
+  write_text("scene.toml", edited(base_scene(), {{R"(solver = "exact")", R"(solver = "dopri5")"}}) +
+                               "\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n");
+  expect_pogear_error("simulate scene.toml --solver exact --interpreted -o out", 2,
+                      R"~(scene.toml: error: a quadratic load makes the scene nonlinear, which exact stepping does not integrate; use --solver dopri5 or implicit)~");
+  expect_pogear_error("generate scene.toml --solvers exact,dopri5 -o out", 2,
+                      R"~(scene.toml: error: a quadratic load makes this scene nonlinear, which exact stepping does not integrate; leave exact out of --solvers)~");
 }
 
 }  // namespace

@@ -59,6 +59,29 @@ struct Systems {
   NumericSystem reference;
 };
 
+// The quadratic loads' torques -c s |s| at x, one per load, and their sizes for the scales.
+Eigen::VectorXd quadratic_torques(const NumericSystem& r, const Eigen::VectorXd& x) {
+  Eigen::VectorXd q(static_cast<Eigen::Index>(r.quadratic.size()));
+  for (std::size_t i = 0; i < r.quadratic.size(); ++i) {
+    const double s = r.quadratic[i].speed_row.dot(x);
+    q(static_cast<Eigen::Index>(i)) = -r.quadratic[i].coefficient * s * std::abs(s);
+  }
+  return q;
+}
+
+// The reference's dx/dt = M x + N u + sum g q, and the scale of its terms.
+Eigen::VectorXd reference_rhs(const NumericSystem& r, const Eigen::VectorXd& x, const Eigen::VectorXd& u,
+                              Eigen::VectorXd* scale = nullptr) {
+  const Eigen::VectorXd q = quadratic_torques(r, x);
+  Eigen::VectorXd dx = r.M * x + r.N * u;
+  if (scale) *scale = r.M.cwiseAbs() * x.cwiseAbs() + r.N.cwiseAbs() * u.cwiseAbs();
+  for (std::size_t i = 0; i < r.quadratic.size(); ++i) {
+    dx += q(static_cast<Eigen::Index>(i)) * r.quadratic[i].state_column;
+    if (scale) *scale += std::abs(q(static_cast<Eigen::Index>(i))) * r.quadratic[i].state_column.cwiseAbs();
+  }
+  return dx;
+}
+
 class GeneratedSystems : public ::testing::TestWithParam<SceneUnderTest> {
  protected:
   void SetUp() override {
@@ -99,8 +122,8 @@ TEST_P(GeneratedSystems, RhsMatchesTheReferenceAtRandomStatesAndInputs) {
   for (const Systems& s : systems_) {
     const NumericSystem& r = s.reference;
     at_random_points(s, [&](const Eigen::VectorXd& x, const Eigen::VectorXd& u) {
-      const Eigen::VectorXd dx = r.M * x + r.N * u;
-      const Eigen::VectorXd scale = r.M.cwiseAbs() * x.cwiseAbs() + r.N.cwiseAbs() * u.cwiseAbs();
+      Eigen::VectorXd scale;
+      const Eigen::VectorXd dx = reference_rhs(r, x, u, &scale);
       EXPECT_LT(largest_scaled_gap(s.generated.rhs(x, u), dx, scale), kTolerance)
           << s.specialized.kind << " at x = " << x.transpose() << ", u = " << u.transpose() << ":\n"
           << s.generated.rhs(x, u).transpose() << "\nvs the reference\n" << dx.transpose();
@@ -108,15 +131,20 @@ TEST_P(GeneratedSystems, RhsMatchesTheReferenceAtRandomStatesAndInputs) {
   }
 }
 
-// y = C x + D u + E dx/dt, dx/dt from the reference's M and N.
+// y = C x + D u + E dx/dt (+ the quadratic loads' terms), dx/dt from the reference.
 TEST_P(GeneratedSystems, OutputsMatchTheReferenceAtRandomStatesAndInputs) {
   for (const Systems& s : systems_) {
     const NumericSystem& r = s.reference;
     at_random_points(s, [&](const Eigen::VectorXd& x, const Eigen::VectorXd& u) {
-      const Eigen::VectorXd dx = r.M * x + r.N * u;
-      const Eigen::VectorXd y = r.C * x + r.D * u + r.E * dx;
-      const Eigen::VectorXd dx_scale = r.M.cwiseAbs() * x.cwiseAbs() + r.N.cwiseAbs() * u.cwiseAbs();
-      const Eigen::VectorXd scale = r.C.cwiseAbs() * x.cwiseAbs() + r.D.cwiseAbs() * u.cwiseAbs() + r.E.cwiseAbs() * dx_scale;
+      Eigen::VectorXd dx_scale;
+      const Eigen::VectorXd dx = reference_rhs(r, x, u, &dx_scale);
+      const Eigen::VectorXd q = quadratic_torques(r, x);
+      Eigen::VectorXd y = r.C * x + r.D * u + r.E * dx;
+      Eigen::VectorXd scale = r.C.cwiseAbs() * x.cwiseAbs() + r.D.cwiseAbs() * u.cwiseAbs() + r.E.cwiseAbs() * dx_scale;
+      for (std::size_t i = 0; i < r.quadratic.size(); ++i) {
+        y += q(static_cast<Eigen::Index>(i)) * r.quadratic[i].output_column;
+        scale += std::abs(q(static_cast<Eigen::Index>(i))) * r.quadratic[i].output_column.cwiseAbs();
+      }
       EXPECT_LT(largest_scaled_gap(s.generated.output_values(x, u), y, scale), kTolerance)
           << s.specialized.kind << " at x = " << x.transpose() << ", u = " << u.transpose() << ":\n"
           << s.generated.output_values(x, u).transpose() << "\nvs the reference\n" << y.transpose();

@@ -90,10 +90,8 @@ TEST(PowerBalance, HoldsAlongElasticAndRigidTrajectories) {
     text = with_line(text, "horizon = ", "horizon = \"0.2*s\" #");
     const SpecializedScene m = scene_model(text);
     const Derivation& d = m.derivation;
-    const GiNaC::exmap v = d.values;
-    const Eigen::MatrixXd J = evaluate_matrix(d.elastic.J, v), BJ = evaluate_matrix(d.elastic.B_J, v),
-                          K = evaluate_matrix(d.elastic.K, v), BK = evaluate_matrix(d.elastic.B_K, v),
-                          R = evaluate_matrix(d.elastic.R, v), Q1 = evaluate_matrix(d.rigid.Q1, v);
+    const GearMatrices g = gear_matrices(d);
+    const Eigen::MatrixXd &J = g.J, &BJ = g.BJ, &K = g.K, &BK = g.BK, &R = g.R, &Q1 = g.Q1;
     const Eigen::Index n = J.rows(), k = K.rows();
     const double torque = 100.0;  // both scenes drive body 0 with 100 N m
     for (const SpecializedSystem* sys : {&m.main, &*m.rigid}) {

@@ -48,15 +48,27 @@ inline std::string with_parameters(const std::string& text, const std::string& l
   return text + "\n[parameters]\n" + lines + "\n";
 }
 
+// The gear's matrices at the derivation's values, for power balances: stored energy
+// omega^T J omega / 2 + F^T K^-1 F / 2, losses omega^T B_J omega + (R omega)^T B_K (R omega).
+struct GearMatrices {
+  Eigen::MatrixXd J, BJ, K, BK, R, Q1;
+};
+inline GearMatrices gear_matrices(const Derivation& d) {
+  const GiNaC::exmap& v = d.values;
+  return {evaluate_matrix(d.elastic.J, v), evaluate_matrix(d.elastic.B_J, v), evaluate_matrix(d.elastic.K, v),
+          evaluate_matrix(d.elastic.B_K, v), evaluate_matrix(d.elastic.R, v), evaluate_matrix(d.rigid.Q1, v)};
+}
+
 inline rt::SceneRun run_settings(const SpecializedScene& m, rt::Solver solver = rt::Solver::exact) {
   rt::SceneRun r = scene_run(m.scene);
   r.solver = solver;
   return r;
 }
 
-// An interpreted run of `sys` as CSV rows (t, then the outputs), to compare with a simulator's CSV.
+// An interpreted run of `sys` with the scene's solver as CSV rows (t, then the outputs), to compare
+// with a simulator's CSV.
 inline std::vector<std::vector<double>> interpreted_rows(const SpecializedScene& model, const SpecializedSystem& sys) {
-  const Trajectory tr = interpret_trajectory(model, sys, run_settings(model));
+  const Trajectory tr = interpret_trajectory(model, sys, run_settings(model, model.scene.solver));
   EXPECT_TRUE(tr.status.ok) << tr.status.message;
   std::vector<std::vector<double>> rows;
   for (std::size_t i = 0; i < tr.t.size(); ++i) {
