@@ -29,6 +29,12 @@ void evaluate_parameters(std::vector<Parameter>& parameters) {
   for (auto& p : parameters) p.value = done[p.name];
 }
 
+std::map<std::string, Quantity> parameter_quantities(const Topology& t) {
+  std::map<std::string, Quantity> known;
+  for (const auto& p : t.parameters) known[p.name] = p.value;
+  return known;
+}
+
 const Parameter* find_parameter(const Topology& t, const std::string& name) {
   for (const auto& p : t.parameters)
     if (p.name == name) return &p;

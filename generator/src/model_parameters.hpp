@@ -2,6 +2,7 @@
 // overrides applied by the scene reader, and only read after that. Lookups never add entries.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ void check_parameter_roles(const Topology& t);
 // at its value otherwise.
 double static_friction_ratio(const Topology& t, const FrictionElement& e);
 const Parameter* find_parameter(const Topology& t, const std::string& name);
+// The parameters' values by name: what an expression of a scene or a command-line option may name.
+std::map<std::string, Quantity> parameter_quantities(const Topology& t);
 double parameter_value(const Topology& t, const std::string& name);  // SI; throws if absent
 
 }  // namespace pogear

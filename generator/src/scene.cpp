@@ -274,11 +274,18 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         else r.fail(value, fmt::format("start \"{}\" is not known; write \"given\" (the default), \"rigid\" or \"steady\"", start));
         continue;
       }
-      const auto v = find_variable(topology, name, {VariableKind::velocity, VariableKind::force});
+      const auto v = find_variable(topology, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
       if (!v)
         throw InputError(toml_location(path, key.source()),
-                         fmt::format("'{}' is neither omega_<body> nor F_<mesh> of the model", name));
-      if (v->kind == VariableKind::velocity) {
+                         fmt::format("'{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene", name));
+      if (v->kind == VariableKind::controller_torque) {
+        // The controller starts at this torque through its integral's initial value.
+        const ControllerSpec& c = s.controllers[static_cast<std::size_t>(v->index)];
+        if (c.ki == 0)
+          r.fail(value, fmt::format("controller '{}' has no integral (ki = 0) to start at a given torque; its torque at "
+                                    "t = 0 is kp times the speed error: drop {}", c.name, name));
+        s.initial[*v] = r.quantity(value, torque_dimension(), name);
+      } else if (v->kind == VariableKind::velocity) {
         // Hz is 1/s, which as a speed would be read as rad/s: 2 pi short of the revolutions it usually means.
         if (value.is_string() && value.value<std::string>()->find("Hz") != std::string::npos)
           r.fail(value, fmt::format("{} is in Hz, which for a speed could mean rev/s or rad/s; give it in rpm or rad/s, "

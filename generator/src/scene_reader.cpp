@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "model_parameters.hpp"
 #include "pogear/signal_table.hpp"
 
 namespace pogear {
@@ -19,8 +20,7 @@ std::vector<std::string> SceneReader::strings(const toml::node& n, std::string_v
 }
 
 double SceneReader::quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
-  std::map<std::string, Quantity> known;
-  for (const auto& p : model->parameters) known[p.name] = p.value;
+  const std::map<std::string, Quantity> known = parameter_quantities(*model);
   Quantity q;
   if (n.is_integer() || n.is_floating_point()) {
     q.si = *n.value<double>();

@@ -363,6 +363,22 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
     else if (v.kind == VariableKind::velocity && omega.size()) sys.x0.push_back(omega(v.index));
     else sys.x0.push_back(0.0);
   }
+  // A controller started at a given torque Tc0: its integral from kp (ref(0) - omega(0)) + ki theta(0) = Tc0.
+  for (std::size_t c = 0; c < sc.controllers.size(); ++c) {
+    const auto given = sc.initial.find(Variable{VariableKind::controller_torque, static_cast<int>(c)});
+    if (given == sc.initial.end()) continue;
+    const ControllerSpec& k = sc.controllers[c];
+    double omega = 0;
+    for (std::size_t j = 0; j < gear_states; ++j) {
+      if (elastic) {
+        if (sys.state_variables[j] == Variable{VariableKind::velocity, k.measured}) omega = sys.x0[j];
+      } else {
+        omega += to_double(as_number(exact_value(d.rigid.Q1(static_cast<unsigned>(k.measured), static_cast<unsigned>(j)),
+                                                 parameter_folding(sc, d, false)))) * sys.x0[j];
+      }
+    }
+    sys.x0[gear_states + c] = (given->second - k.kp * (rt::value(k.set_point, 0.0) - omega)) / k.ki;
+  }
   if (!sys.implicit) linear_form(s, sys);
   // After the linear form, which reads a temporary it does not know as a constant, and leaves it out.
   sys.rhs_temporaries.insert(sys.rhs_temporaries.end(), loops.quadratic.begin(), loops.quadratic.end());

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "engagement.hpp"
+#include "model_parameters.hpp"
 #include "parameter_folding.hpp"
 #include "printer.hpp"
 #include "quantity.hpp"
@@ -64,11 +65,12 @@ ModesInput modes_input(const std::string& path, const std::optional<std::string>
   return {std::move(d), std::move(values), which, std::move(e)};
 }
 
-// An input speed from the command line in rpm: a quantity with a unit of angular velocity, above 0.
-double input_speed_rpm(const std::string& text, const SourceLocation& where) {
+// An input speed from the command line in rpm: a quantity with a unit of angular velocity, above 0
+// (it may name the model's parameters, as a scene's quantities do).
+double input_speed_rpm(const std::string& text, const Topology& t, const SourceLocation& where) {
   Quantity q;
   try {
-    q = evaluate_quantity(text, {}, where, 0);
+    q = evaluate_quantity(text, parameter_quantities(t), where, 0);
   } catch (const InputError& e) {
     throw InputError(where, fmt::format("--to '{}': {}", text, e.message()));
   }
@@ -130,7 +132,7 @@ ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<
     }
     if (request.harmonics < 1 || request.harmonics > max_harmonics)
       throw InputError(where, fmt::format("--harmonics {} is not from 1 to {}", request.harmonics, max_harmonics));
-    const double max_rpm = request.to ? input_speed_rpm(*request.to, where) : 0.0;
+    const double max_rpm = request.to ? input_speed_rpm(*request.to, t, where) : 0.0;
     ModesWithCampbell out;
     out.modes = vibration_modes(in.d, in.values, in.damping, in.engaged);
     out.campbell = campbell_diagram(in.d, in.values, out.modes, in.engaged, input, held, max_rpm, request.harmonics);
@@ -142,10 +144,10 @@ ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<
 
 namespace {
 
-double frequency(const std::string& text, const std::string& option, const SourceLocation& where) {
+double frequency(const std::string& text, const std::string& option, const Topology& t, const SourceLocation& where) {
   Quantity q;
   try {
-    q = evaluate_quantity(text, {}, where, 0);
+    q = evaluate_quantity(text, parameter_quantities(t), where, 0);
   } catch (const InputError& e) {
     throw InputError(where, fmt::format("{} '{}': {}", option, text, e.message()));
   }
@@ -174,8 +176,8 @@ SceneResponse response_of(const ResponseRequest& request) {
     throw InputError(where, "--output names no variable; give one or more, comma-separated, e.g. omega_" +
                                 scene.model.bodies.front().name);
   FrequencyGrid grid;
-  grid.from_hz = frequency(request.from, "--from", where);
-  grid.to_hz = frequency(request.to, "--to", where);
+  grid.from_hz = frequency(request.from, "--from", scene.model, where);
+  grid.to_hz = frequency(request.to, "--to", scene.model, where);
   grid.points = request.points;
   if (!(grid.from_hz < grid.to_hz))
     throw InputError(where, fmt::format("the frequency range --from {} --to {} is empty; give --from below --to",

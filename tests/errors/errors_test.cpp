@@ -847,7 +847,7 @@ TEST_F(Initial, NotATable) {
                      R"~(scene.toml:7:11: error: [initial] must be a table of omega_<body> and F_<mesh> values)~");
 }
 TEST_F(Initial, UnknownName) { expect_scene_error({{"omega_c = \"0*rpm\"", "omega_x = \"0*rpm\""}},
-    R"~(scene.toml:12:1: error: 'omega_x' is neither omega_<body> nor F_<mesh> of the model)~"); }
+    R"~(scene.toml:12:1: error: 'omega_x' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene)~"); }
 TEST_F(Initial, ForceOfARigidScene) {
   expect_scene_error({{R"("mesh_compliance", "mesh_damping", )", ""}, {"compare_rigid = true\n", ""},
                       {"omega_c = \"0*rpm\"", "F_ps = \"10*N\""}},
@@ -1156,6 +1156,12 @@ TEST_F(LoadsAndControllers, ParameterNamedLikeAQuadraticLoad) {
                R"~(gear.toml:37:8: error: the model has a parameter named 'TQ_r', which pogear's generated code uses for a quadratic load; rename the parameter)~",
                {{R"(solver = "exact")", R"(solver = "dopri5")"}},
                edited(base_model(), {{"[parameters]\n", "[parameters]\nTQ_r = 2\n"}}));
+}
+
+TEST_F(LoadsAndControllers, StartTorqueWithoutIntegral) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\" }\n",
+               R"~(scene.toml:12:10: error: controller 'mg1' has no integral (ki = 0) to start at a given torque; its torque at t = 0 is kp times the speed error: drop Tc_mg1)~",
+               {{"omega_c = \"0*rpm\"", "Tc_mg1 = \"-5*N*m\""}});
 }
 
 TEST_F(LoadsAndControllers, NotWithTunables) {

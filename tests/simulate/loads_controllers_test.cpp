@@ -71,6 +71,27 @@ TEST(SpeedController, PIErrorDecaysWithTheClosedLoopPoles) {
   EXPECT_LT(worst, 1e-11 * ref);  // exact stepping: rounding only
 }
 
+TEST(SpeedController, StartsAtTheGivenTorqueWithoutABump) {
+  // A load of 2 N m held by the controller at 100 rad/s: started at the speed and at the torque that
+  // balance the load, the integral takes the load from t = 0 and nothing moves; started at zero
+  // torque, the speed dips.
+  const std::string tables = "[loads]\na = { constant = \"2*N*m\" }\n[controllers]\n"
+                             "speed = { body = \"a\", set_point = \"100*rad/s\", kp = \"0.5*N*m*s/rad\", ki = \"0.5*N*m/rad\" }\n";
+  const SpecializedScene bumpless = scene_model(pair_scene(tables, "omega_a = \"100*rad/s\"\nTc_speed = \"2*N*m\""));
+  const SpecializedScene from_zero = scene_model(pair_scene(tables, "omega_a = \"100*rad/s\""));
+  EXPECT_EQ(bumpless.main.x0[1], 4.0);  // theta(0) = (2 - 0.5 * 0) / 0.5
+  const Trajectory held = interpret_trajectory(bumpless, bumpless.main, run_settings(bumpless));
+  const Trajectory dipped = interpret_trajectory(from_zero, from_zero.main, run_settings(from_zero));
+  ASSERT_TRUE(held.status.ok && dipped.status.ok);
+  double held_gap = 0, dip = 0;
+  for (std::size_t i = 0; i < held.t.size(); ++i) {
+    held_gap = std::max(held_gap, std::abs(column(held, bumpless.main, "omega_a")[i] - 100));
+    dip = std::max(dip, std::abs(column(dipped, from_zero.main, "omega_a")[i] - 100));
+  }
+  EXPECT_LT(held_gap, 1e-12 * 100);  // an equilibrium, stepped exactly: rounding only
+  EXPECT_GT(dip, 0.5);               // 2 N m on 0.068 kg m^2 before the controller answers
+}
+
 TEST(SpeedController, MeasuresTheBodyItIsGiven) {
   // Driving a and measuring b, which an external mesh turns the other way (omega_b = -ratio
   // omega_a): J omega_a' = kp (ref - omega_b) = kp (ref + ratio omega_a) feeds back positively, and
