@@ -5,6 +5,7 @@
 #include "codegen.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -78,6 +79,27 @@ CppText friction_function(const SpecializedScene& model) {
     s += (i ? code(",\n          ") : CppText{}) +
          code("{{{}, {}, {}, {}, {}}}", string_literal(f.name), number_code(f.capacity), number_code(f.static_ratio),
               signal_code(f.command), f.one_way ? code("true") : code("false"));
+  }
+  s += code("}};\n}}\n");
+  return s;
+}
+
+// A torque limit as generated code writes it (an absent limit is infinite).
+CppText limit_code(double v) {
+  if (std::isfinite(v)) return number_code(v);
+  return v > 0 ? code("std::numeric_limits<double>::infinity()") : code("-std::numeric_limits<double>::infinity()");
+}
+
+// The controllers with torque limits as the runtime takes them: name and limits [N m] (their laws
+// come from the system's torque_limit_laws).
+CppText torque_limits_function(const SpecializedScene& model, const SpecializedSystem& sys, const CppText& name) {
+  CppText s = code("// Controllers with torque limits of {}, in the order of its last inputs: name, torque_min and\n"
+                   "// torque_max [N m].\n", name);
+  s += code("std::vector<pogear::rt::TorqueLimitData> {}_torque_limits() {{\n  return {{", name);
+  for (std::size_t i = 0; i < sys.limited_controllers.size(); ++i) {
+    const ControllerSpec& k = model.scene.controllers[static_cast<std::size_t>(sys.limited_controllers[i])];
+    s += (i ? code(",\n          ") : CppText{}) +
+         code("{{{}, {}, {}, {{}}, {{}}}}", string_literal(k.name), limit_code(k.torque_min), limit_code(k.torque_max));
   }
   s += code("}};\n}}\n");
   return s;
@@ -209,9 +231,11 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
             model.rigid ? code(" and DIR/{}.rigid.csv", name) : CppText{},
             model.friction.empty() ? CppText{} : code(", with its brakes' and clutches' events in .events.csv files"));
   for (const std::string& line : rt::usage_lines("PROGRAM", 100, solvers)) m += code("// {}\n", comment_text(line));
-  const bool hybrid = !model.friction.empty();
-  m += code("#include \"{}\"\n\n{}#include <pogear/parameters.hpp>\n#include <pogear/run_system.hpp>\n#include <pogear/signals.hpp>\n\n",
-            header_name, hybrid ? code("#include <pogear/hybrid_run.hpp>\n") : CppText{});
+  const bool limits = !model.main.limited_controllers.empty();
+  const bool hybrid = !model.friction.empty() || limits;
+  m += code("#include \"{}\"\n\n{}{}#include <pogear/parameters.hpp>\n#include <pogear/run_system.hpp>\n#include <pogear/signals.hpp>\n\n",
+            header_name, limits ? code("#include <limits>\n\n") : CppText{},
+            hybrid ? code("#include <pogear/hybrid_run.hpp>\n") : CppText{});
   m += code("namespace scene = pogear_generated::{};\n\n", name);
   std::vector<CppText> solver_codes;
   for (rt::Solver s : solvers) solver_codes.push_back(code("pogear::rt::Solver::{}", identifier(std::string(rt::solver_name(s)))));
@@ -221,6 +245,10 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   m += signals_function(model.main, main_struct);
   if (model.rigid) m += code("\n") + signals_function(*model.rigid, code("Rigid"));
   if (hybrid) m += code("\n") + friction_function(model);
+  if (limits) {
+    m += code("\n") + torque_limits_function(model, model.main, main_struct);
+    if (model.rigid) m += code("\n") + torque_limits_function(model, *model.rigid, code("Rigid"));
+  }
   m += code("\n}}  // namespace\n\n");
   m += code("int main(int argc, char** argv) {{\n");
   m += code("  pogear::rt::SceneRun run;\n");
@@ -234,8 +262,9 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
             parameter_fields(model.main, code("params")));
   m += code("  const scene::{} system;\n", main_struct);
   if (hybrid)
-    m += code("  int status = pogear::rt::run_hybrid_system(system, params, {}_signals(), friction_elements(), "
-              "scene::{}::initial_state(), run, \"\");\n", main_struct, main_struct);
+    m += code("  int status = pogear::rt::run_hybrid_system(system, params, {}_signals(), friction_elements(), {}"
+              "scene::{}::initial_state(), run, \"\");\n", main_struct,
+              limits ? code("{}_torque_limits(), ", main_struct) : CppText{}, main_struct);
   else
     m += code("  int status = pogear::rt::run_system<Solvers>(system, params, {}_signals(), scene::{}::initial_state(), run, \"\");\n",
               main_struct, main_struct);
@@ -245,7 +274,8 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
       m += code("  rigid_params.{} = params.{};\n", identifier(p.name), identifier(p.name));
     if (hybrid)
       m += code("  if (status == 0)\n    status = pogear::rt::run_hybrid_system(scene::Rigid{{}}, rigid_params, Rigid_signals(), "
-                "friction_elements(), scene::Rigid::initial_state(), run, \".rigid\");\n");
+                "friction_elements(), {}scene::Rigid::initial_state(), run, \".rigid\");\n",
+                limits ? code("Rigid_torque_limits(), ") : CppText{});
     else
       m += code("  if (status == 0)\n    status = pogear::rt::run_system<Solvers>(scene::Rigid{{}}, rigid_params, Rigid_signals(), "
                 "scene::Rigid::initial_state(), run, \".rigid\");\n");
@@ -291,9 +321,13 @@ std::string loads_and_controllers_note(const SpecializedScene& model) {
                      parts.empty() ? std::string("zero") : joined(parts));
   }
   for (const ControllerSpec& c : sc.controllers)
-    s += fmt::format("controller {}: PI torque on {} for the speed of {}, its integral theta_{} a state (linear)\n",
+    s += fmt::format("controller {}: PI torque on {} for the speed of {}, its integral theta_{} a state{}\n",
                      c.name, t.bodies[static_cast<std::size_t>(c.body)].name,
-                     t.bodies[static_cast<std::size_t>(c.measured)].name, c.name);
+                     t.bodies[static_cast<std::size_t>(c.measured)].name, c.name,
+                     c.limited() ? fmt::format("; torque from {} to {} N m, events at the limits, where its integral "
+                                               "tracks the limit (time constant {} s)", c.torque_min, c.torque_max,
+                                               c.tracking_time)
+                                 : std::string(" (linear)"));
   if (model.main.nonlinear)
     s += fmt::format("nonlinear (quadratic loads): integrated by {}{}; exact stepping needs a linear scene\n",
                      rt::solver_name(sc.solver),

@@ -223,9 +223,20 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
   else
     s += output_matrices_function(sys, d, fixed);
 
-  if (!sys.friction_elements.empty()) {
-    s += code("  // Brakes and clutches: the last {} inputs are their torques (-T on an element's first body, +T on\n"
-              "  // its second); their slips are s = S x. pogear/hybrid.hpp runs the modes of stick and slip.\n",
+  if (!sys.limited_controllers.empty()) {
+    s += code("  // Controllers with torque limits: the last {} inputs are their torques, whose laws T = X x + W u\n"
+              "  // hold while they are within their limits (pogear/hybrid.hpp runs the events at the limits).\n",
+              index_code(sys.limited_controllers.size()));
+    s += code("  static void torque_limit_laws([[maybe_unused]] const Params& p, Eigen::MatrixXd& X, Eigen::MatrixXd& W) {{\n");
+    s += code("    X.setZero({}, nx);\n    W.setZero({}, nu);\n", index_code(sys.limited_controllers.size()),
+              index_code(sys.limited_controllers.size()));
+    s += matrix_entries(sys.limit_law_x, code("X")) + matrix_entries(sys.limit_law_u, code("W"));
+    s += code("  }}\n\n");
+  }
+  if (!sys.friction_elements.empty() || !sys.limited_controllers.empty()) {
+    s += code("  // Brakes and clutches: the {} inputs before any controller's are their torques (-T on an element's\n"
+              "  // first body, +T on its second); their slips are s = S x. pogear/hybrid.hpp runs the modes of\n"
+              "  // stick and slip.\n",
               index_code(sys.friction_elements.size()));
     s += code("  static void slip_matrix([[maybe_unused]] const Params& p, Eigen::MatrixXd& S) {{\n");
     s += aliases(sys, symbols_in(entries({&sys.slip})), code("x"));

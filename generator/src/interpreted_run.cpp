@@ -2,6 +2,7 @@
 // simulate_system expect of a generated system.
 #include "interpreted_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -57,6 +58,10 @@ struct InterpretedSystem {
   void energy_matrix(const Params&, StateMatrix& L) const { L = ns.L; }  // empty: no bound (controllers)
   bool nonlinear = !ns.quadratic.empty();
   void slip_matrix(const Params&, Eigen::MatrixXd& S) const { S = ns.S; }
+  void torque_limit_laws(const Params&, Eigen::MatrixXd& X, Eigen::MatrixXd& W) const {
+    X = ns.limit_x;
+    W = ns.limit_u;
+  }
 };
 
 std::vector<rt::FrictionElementData> friction_data(const SpecializedScene& model) {
@@ -65,11 +70,22 @@ std::vector<rt::FrictionElementData> friction_data(const SpecializedScene& model
   return out;
 }
 
+// The controllers with torque limits of `sys`, as the runtime takes them (their laws from the system).
+std::vector<rt::TorqueLimitData> torque_limits(const SpecializedScene& model, const SpecializedSystem& sys) {
+  std::vector<rt::TorqueLimitData> out;
+  for (const int c : sys.limited_controllers) {
+    const ControllerSpec& k = model.scene.controllers[static_cast<std::size_t>(c)];
+    out.push_back({k.name, k.torque_min, k.torque_max, {}, {}});
+  }
+  return out;
+}
+
 int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run,
                         const std::string& suffix) {
   InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
-  if (!sys.friction_elements.empty())
-    return rt::run_hybrid_system(is, {}, sys.input_signals, friction_data(model), is.ns.x0, run, suffix);
+  if (!sys.friction_elements.empty() || !sys.limited_controllers.empty())
+    return rt::run_hybrid_system(is, {}, sys.input_signals, friction_data(model), torque_limits(model, sys), is.ns.x0,
+                                 run, suffix);
   return rt::run_system(is, {}, sys.input_signals, is.ns.x0, run, suffix);
 }
 

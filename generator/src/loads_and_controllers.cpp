@@ -63,13 +63,18 @@ std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::n
                                              const std::filesystem::path& scene_dir, Topology& model) {
   if (!n.is_table())
     r.fail(n, "[controllers] must be a table of <name> = { body = ..., set_point = ..., kp = ..., ki = ... }");
+  // With the model's brakes and clutches (at most 12), the modes of a run are bits of 32.
+  constexpr std::size_t max_controllers = 16;
+  if (n.as_table()->size() > max_controllers)
+    r.fail(n, fmt::format("{} controllers; a scene has at most {}", n.as_table()->size(), max_controllers));
   std::vector<ControllerSpec> out;
   for (const auto& [key, value] : *n.as_table()) {
     if (!value.is_table())
       r.fail(value, "a controller is a table { body = \"<body>\", speed_of = \"<body>\", set_point = <speed signal>, "
                     "kp = \"<N*m*s/rad>\", ki = \"<N*m/rad>\" }");
     const toml::table& t = *value.as_table();
-    r.only_keys(t, {"body", "speed_of", "set_point", "kp", "ki", "torque_min", "torque_max"}, "a controller");
+    r.only_keys(t, {"body", "speed_of", "set_point", "kp", "ki", "torque_min", "torque_max", "tracking_time"},
+                "a controller");
     ControllerSpec c;
     c.name = std::string(key.str());
     c.where = r.loc(value);
@@ -98,10 +103,23 @@ std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::n
     if (c.kp < 0 || c.ki < 0 || (c.kp == 0 && c.ki == 0))
       r.fail(value, "a controller's gains kp and ki are non-negative and not both zero; give kp = \"<N*m*s/rad>\" "
                     "and ki = \"<N*m/rad>\"");
-    for (const char* limit : {"torque_min", "torque_max"})
-      if (const toml::node* v = t.get(limit))
-        r.fail(*v, "torque limits of a controller are not simulated yet; drop torque_min and torque_max, or limit "
-                   "the set-point instead");
+    if (const toml::node* v = t.get("torque_min")) c.torque_min = r.quantity(*v, torque_dimension(), "torque_min");
+    if (const toml::node* v = t.get("torque_max")) c.torque_max = r.quantity(*v, torque_dimension(), "torque_max");
+    if (!(c.torque_min < c.torque_max))
+      r.fail(*t.get("torque_max"), fmt::format("torque_max ({} N m) is not above torque_min ({} N m); give the limits "
+                                               "of the torque the controller can apply", c.torque_max, c.torque_min));
+    if (const toml::node* v = t.get("tracking_time")) {
+      if (!c.limited() || c.ki == 0)
+        r.fail(*v, "tracking_time is the time constant with which the integral follows a torque limit; it needs "
+                   "torque_min or torque_max, and ki");
+      c.tracking_time = r.quantity(*v, time_dimension(), "tracking_time");
+      if (!(c.tracking_time > 0)) r.fail(*v, "tracking_time must be positive, e.g. \"0.1*s\"");
+    } else if (c.limited() && c.ki > 0) {
+      if (c.kp == 0)
+        r.fail(value, "a controller with torque limits and no kp needs tracking_time, the time constant with which "
+                      "its integral follows a limit (kp / ki, the default, is zero)");
+      c.tracking_time = c.kp / c.ki;  // the integral time: Astrom and Hagglund's choice for PI control
+    }
     model.controllers.push_back(c.name);
     out.push_back(std::move(c));
   }

@@ -116,9 +116,15 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
   const auto nx = static_cast<Eigen::Index>(sys.states.size()), nu = static_cast<Eigen::Index>(sys.inputs.size());
   const auto nc = static_cast<Eigen::Index>(sc.controllers.size()), nb = nx - nc;  // the gear's states, then the integrals
   // The loads' and controllers' torques as inputs after the system's: w = Kx x + Kv u (+ the
-  // quadratic loads) closes the loop.
+  // quadratic loads) closes the loop. A controller with torque limits has its torque among the
+  // system's inputs already, closed by the hybrid runs through its law.
   std::vector<Variable> inputs = sys.input_variables;
-  for (Eigen::Index c = 0; c < nc; ++c) inputs.push_back({VariableKind::controller_torque, static_cast<int>(c)});
+  std::vector<int> closed;  // controllers closed here
+  for (Eigen::Index c = 0; c < nc; ++c)
+    if (!sc.controllers[static_cast<std::size_t>(c)].limited()) {
+      inputs.push_back({VariableKind::controller_torque, static_cast<int>(c)});
+      closed.push_back(static_cast<int>(c));
+    }
   std::vector<const LoadSpec*> state_loads;
   for (const LoadSpec& l : sc.loads)
     if (l.linear != 0 || l.quadratic != 0) {
@@ -134,20 +140,44 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
   out.N = Eigen::MatrixXd::Zero(nx, nu);
   out.M.topLeftCorner(nb, nb) = o.M;
   out.N.topRows(nb) = o.N.leftCols(nu);
+  // Each controller's law, Tc = kp (ref - omega_measured) + ki theta, as rows over x and u; its
+  // integral theta' = ref - omega_measured.
+  Eigen::MatrixXd law_x = Eigen::MatrixXd::Zero(nc, nx), law_u = Eigen::MatrixXd::Zero(nc, nu);
   for (Eigen::Index c = 0; c < nc; ++c) {
     const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
     const auto ref = static_cast<Eigen::Index>(
         std::find(sys.input_variables.begin(), sys.input_variables.end(), Variable{VariableKind::set_point, static_cast<int>(c)}) -
         sys.input_variables.begin());
-    // theta' = ref - omega_measured; Tc = kp (ref - omega_measured) + ki theta
     out.M.row(nb + c).head(nb) = -o.speeds.row(k.measured);
     out.N(nb + c, ref) = 1;
-    Kx.row(c).head(nb) = -k.kp * o.speeds.row(k.measured);
-    Kx(c, nb + c) = k.ki;
-    Kv(c, ref) = k.kp;
+    law_x.row(c).head(nb) = -k.kp * o.speeds.row(k.measured);
+    law_x(c, nb + c) = k.ki;
+    law_u(c, ref) = k.kp;
+  }
+  const auto ncl = static_cast<Eigen::Index>(closed.size());
+  for (Eigen::Index j = 0; j < ncl; ++j) {
+    Kx.row(j) = law_x.row(closed[static_cast<std::size_t>(j)]);
+    Kv.row(j) = law_u.row(closed[static_cast<std::size_t>(j)]);
+  }
+  for (const int c : sys.limited_controllers) {
+    // The integral's back-calculation at a limit: theta' += (Tc - law) / (ki tracking_time).
+    const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
+    if (k.ki != 0) {
+      const double gain = 1 / (k.ki * k.tracking_time);
+      const auto torque = static_cast<Eigen::Index>(
+          std::find(sys.input_variables.begin(), sys.input_variables.end(), Variable{VariableKind::controller_torque, c}) -
+          sys.input_variables.begin());
+      out.M.row(nb + c) -= gain * law_x.row(c);
+      out.N.row(nb + c) -= gain * law_u.row(c);
+      out.N(nb + c, torque) += gain;
+    }
+    out.limit_x.conservativeResize(out.limit_x.rows() + 1, nx);
+    out.limit_u.conservativeResize(out.limit_u.rows() + 1, nu);
+    out.limit_x.bottomRows(1) = law_x.row(c);
+    out.limit_u.bottomRows(1) = law_u.row(c);
   }
   for (std::size_t l = 0; l < state_loads.size(); ++l)
-    Kx.row(nc + static_cast<Eigen::Index>(l)).head(nb) = -state_loads[l]->linear * o.speeds.row(state_loads[l]->body);
+    Kx.row(ncl + static_cast<Eigen::Index>(l)).head(nb) = -state_loads[l]->linear * o.speeds.row(state_loads[l]->body);
   Eigen::MatrixXd Nw = Eigen::MatrixXd::Zero(nx, nw);
   Nw.topRows(nb) = o.N.rightCols(nw);
   const Eigen::MatrixXd Dw = o.D.rightCols(nw);
@@ -161,15 +191,22 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
   out.E.leftCols(nb) = o.E;
   for (std::size_t l = 0; l < state_loads.size(); ++l) {
     if (state_loads[l]->quadratic == 0) continue;
-    QuadraticLoad q{Nw.col(nc + static_cast<Eigen::Index>(l)), Dw.col(nc + static_cast<Eigen::Index>(l)),
+    QuadraticLoad q{Nw.col(ncl + static_cast<Eigen::Index>(l)), Dw.col(ncl + static_cast<Eigen::Index>(l)),
                     Eigen::VectorXd::Zero(nx), state_loads[l]->quadratic};
     q.speed_row.head(nb) = o.speeds.row(state_loads[l]->body).transpose();
     out.quadratic.push_back(std::move(q));
   }
   for (Eigen::Index i = 0; i < ny; ++i)
     if (const Variable y = sys.output_variables[static_cast<std::size_t>(i)]; y.kind == VariableKind::controller_torque) {
-      out.C.row(i) = Kx.row(y.index);
-      out.D.row(i) = Kv.row(y.index);
+      const auto input = std::find(sys.input_variables.begin(), sys.input_variables.end(), y);
+      out.C.row(i).setZero();
+      out.D.row(i).setZero();
+      if (input != sys.input_variables.end()) {  // with limits: the input the hybrid run sets
+        out.D(i, input - sys.input_variables.begin()) = 1;
+      } else {
+        out.C.row(i) = law_x.row(y.index);
+        out.D.row(i) = law_u.row(y.index);
+      }
     }
   if (nc == 0) out.L = o.L;
   out.S = Eigen::MatrixXd::Zero(o.S.rows(), nx);

@@ -28,6 +28,7 @@ struct NumericSystem {
   Eigen::MatrixXd L;           // energy E = x^T L x / 2; empty with controllers
   Eigen::MatrixXd C, D, E;     // y = C x + D u + E dx/dt
   Eigen::MatrixXd S;           // slips of the engaged brakes and clutches, s = S x
+  Eigen::MatrixXd limit_x, limit_u;  // laws T = limit_x x + limit_u u of the controllers with torque limits
   Eigen::VectorXd x0;
 };
 NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& system);

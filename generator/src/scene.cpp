@@ -89,10 +89,15 @@ void check_loads_and_controllers(Scene& s, bool engaged) {
   if (s.start != Start::given)
     throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [loads] or "
                                     "[controllers]; give the initial speeds in [initial]");
+  const bool limited = std::any_of(s.controllers.begin(), s.controllers.end(), [](const ControllerSpec& c) { return c.limited(); });
+  if (limited && s.solver == Solver::rk4)
+    throw InputError(s.solver_where, "a controller with torque limits switches at events, which rk4 does not locate "
+                                     "(its fixed steps); use solver = \"exact\", \"dopri5\" or \"implicit\"");
   if (!nonlinear(s)) return;
-  if (engaged)
-    throw InputError(where, "a quadratic load makes the scene nonlinear, and brakes and clutches are simulated on "
-                            "linear scenes only; drop the quadratic part of the load or the [engagement]");
+  if (engaged || limited)
+    throw InputError(where, "a quadratic load makes the scene nonlinear, and brakes, clutches and torque limits are "
+                            "simulated on linear scenes only; drop the quadratic part of the load, or the "
+                            "[engagement] and the controllers' limits");
   if (s.solver_given && s.solver == Solver::exact)
     throw InputError(s.solver_where, "a quadratic load makes the scene nonlinear, which exact stepping does not "
                                      "integrate; use solver = \"dopri5\" or \"implicit\", or a linear load");

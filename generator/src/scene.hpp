@@ -2,6 +2,8 @@
 // overrides and tunables, outputs, horizon, solver — read and checked against the model.
 #pragma once
 
+#include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -50,7 +52,13 @@ struct ControllerSpec {
   int body = -1, measured = -1;
   rt::Signal set_point;
   double kp = 0, ki = 0;
+  // Torque limits [N m]: the torque stays within them, held at a limit while the law asks for more;
+  // events at both ends, as for brakes and clutches. At a limit the integral tracks it (anti-windup
+  // by back-calculation): theta' = e + (T - law) / (ki tracking_time).
+  double torque_min = -std::numeric_limits<double>::infinity(), torque_max = std::numeric_limits<double>::infinity();
+  double tracking_time = 0;  // [s], with limits and ki > 0
   SourceLocation where;
+  bool limited() const { return std::isfinite(torque_min) || std::isfinite(torque_max); }
 };
 
 // Whether the signal is zero at every time: such an input is no input.

@@ -70,6 +70,10 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
     throw InputError(SourceLocation{model.scene.file, 0, 0},
                      "the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate "
                      "their events); use --solver exact, dopri5 or implicit");
+  if (!model.main.limited_controllers.empty() && run.solver == rt::Solver::rk4)
+    throw InputError(SourceLocation{model.scene.file, 0, 0},
+                     "a controller with torque limits switches at events, which rk4 does not locate (its fixed steps); "
+                     "use --solver exact, dopri5 or implicit");
   if (model.main.nonlinear && run.solver == rt::Solver::exact)
     throw InputError(SourceLocation{model.scene.file, 0, 0},
                      "a quadratic load makes the scene nonlinear, which exact stepping does not integrate; use --solver "

@@ -87,10 +87,12 @@ ex body_torque(const SymbolTable& s, const std::vector<Variable>& inputs, const 
 // become functions of the state. A controller adds its integral theta' = ref - omega_measured and
 // reads its set-point ref as an input; a load keeps its constant part as the input TL_<body>
 // (a constant signal) and its quadratic part as a temporary TQ_<body>, added after the linear form.
-// Returns the substitution the outputs take too.
+// A controller with torque limits keeps its torque as an input (the last), its law in `limited`:
+// the hybrid runs close it while it is within its limits. Returns the substitution the outputs take too.
 struct ClosedLoops {
   GiNaC::exmap torques;  // TL_ and Tc_ -> their laws
   std::vector<Assignment> quadratic;  // TQ_<body> = -c omega |omega|
+  std::vector<GiNaC::ex> limited;  // the laws of the controllers with limits
 };
 
 ClosedLoops close_loops(const Scene& sc, const Derivation& d, bool elastic, const GiNaC::exmap& fold,
@@ -147,11 +149,24 @@ ClosedLoops close_loops(const Scene& sc, const Derivation& d, bool elastic, cons
     sys.input_signals.push_back(k.set_point);
     add_state(t, theta, sys);
     const ex error = variable_symbol(s, ref) - speed(k.measured);
-    sys.rhs.push_back(error);
-    out.torques[variable_symbol(s, {VariableKind::controller_torque, i})] =
-        (exact_number(k.kp) * error + exact_number(k.ki) * variable_symbol(s, theta)).expand();
+    const ex law = (exact_number(k.kp) * error + exact_number(k.ki) * variable_symbol(s, theta)).expand();
+    if (k.limited() && k.ki != 0) {
+      // Back-calculation: T - law is zero within the limits, and at a limit draws the integral
+      // towards it with the time constant tracking_time.
+      const ex torque = variable_symbol(s, {VariableKind::controller_torque, i});
+      sys.rhs.push_back((error + (torque - law) / (exact_number(k.ki) * exact_number(k.tracking_time))).expand());
+    } else {
+      sys.rhs.push_back(error);
+    }
+    if (k.limited()) {
+      sys.limited_controllers.push_back(i);
+      out.limited.push_back(law);
+    } else {
+      out.torques[variable_symbol(s, {VariableKind::controller_torque, i})] = law;
+    }
   }
   for (const Variable v : frictions) add_input(t, v, sys);
+  for (const int c : sys.limited_controllers) add_input(t, {VariableKind::controller_torque, c}, sys);
   for (std::size_t i = 0; i < sys.rhs.size(); ++i)
     sys.rhs[i] = sys.rhs[i].subs(out.torques, GiNaC::subs_options::no_pattern).expand();
   return out;
@@ -380,6 +395,19 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
     sys.x0[gear_states + c] = (given->second - k.kp * (rt::value(k.set_point, 0.0) - omega)) / k.ki;
   }
   if (!sys.implicit) linear_form(s, sys);
+  if (!loops.limited.empty()) {  // the limited controllers' laws as rows over the states and the inputs
+    std::vector<ex> variables;
+    for (const Variable v : sys.state_variables) variables.push_back(variable_symbol(s, v));
+    for (const Variable v : sys.input_variables) variables.push_back(variable_symbol(s, v));
+    const GiNaC::matrix law = linear_coefficients(loops.limited, variables);
+    const auto nx = static_cast<unsigned>(sys.states.size()), nu = static_cast<unsigned>(sys.inputs.size());
+    sys.limit_law_x = GiNaC::matrix(law.rows(), nx);
+    sys.limit_law_u = GiNaC::matrix(law.rows(), nu);
+    for (unsigned r = 0; r < law.rows(); ++r) {
+      for (unsigned j = 0; j < nx; ++j) sys.limit_law_x(r, j) = law(r, j);
+      for (unsigned j = 0; j < nu; ++j) sys.limit_law_u(r, j) = law(r, nx + j);
+    }
+  }
   // After the linear form, which reads a temporary it does not know as a constant, and leaves it out.
   sys.rhs_temporaries.insert(sys.rhs_temporaries.end(), loops.quadratic.begin(), loops.quadratic.end());
   GiNaC::exmap loop_outputs = loops.torques;  // the outputs have no temporaries: TQ_ written out
@@ -392,8 +420,9 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool e
     sys.output_variables.push_back(out);
     sys.outputs.push_back(variable_name(t, out));
     sys.output_units.emplace_back(unit_of(out.kind));
-    if (out.kind == VariableKind::controller_torque) {
-      sys.output_values.push_back(loop_outputs.at(variable_symbol(s, out)));
+    if (out.kind == VariableKind::controller_torque) {  // its law, or with limits its input
+      const auto law = loop_outputs.find(variable_symbol(s, out));
+      sys.output_values.push_back(law != loop_outputs.end() ? law->second : ex(variable_symbol(s, out)));
     } else if (elastic || contains(sys.state_variables, out)) {
       sys.output_values.push_back(variable_symbol(s, out));
     } else if (out.kind == VariableKind::velocity) {

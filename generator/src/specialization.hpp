@@ -62,6 +62,11 @@ struct SpecializedSystem {
   // Tf_<element> are the last inputs, after the scene's, and their slips are s = slip x.
   std::vector<int> friction_elements;
   GiNaC::matrix slip;
+  // Controllers with torque limits (indices into Scene::controllers): their torques Tc_<controller>
+  // are the very last inputs, after the friction torques, and the hybrid runs apply their laws
+  // T = limit_law_x x + limit_law_u u (one row each, exact) within the limits.
+  std::vector<int> limited_controllers;
+  GiNaC::matrix limit_law_x, limit_law_u;
   std::vector<TunableParameter> params;
   std::vector<Assignment> rhs_temporaries;
   std::vector<GiNaC::ex> rhs;  // dx/dt, one per state

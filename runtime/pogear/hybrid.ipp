@@ -27,8 +27,12 @@ class HybridEngineCore {
  public:
   HybridEngineCore(const HybridSystem& sys, double horizon, HybridMethod method)
       : sys_(sys), horizon_(horizon), method_(std::move(method)) {
-    ne_ = static_cast<int>(sys.S.rows());
+    nf_ = static_cast<int>(sys.S.rows());
+    ne_ = nf_ + static_cast<int>(sys.limits.size());
     nx_ = sys.M.rows();
+    // The slips of every element: a torque-limited controller's row is zero (it has no slip).
+    S_ = Eigen::MatrixXd::Zero(ne_, nx_);
+    S_.topRows(nf_) = sys.S;
     nu_ = static_cast<Eigen::Index>(sys.inputs.size());
     nw_ = nu_ + ne_;
   }
@@ -140,7 +144,23 @@ class HybridEngineCore {
     if (!(d.rounding <= kExactMaxRounding) && !inaccurate_) inaccurate_ = std::make_pair(h, d.rounding);
   }
 
-  double command(int k, double t) const { return value(sys_.elements[static_cast<std::size_t>(k)].command, t); }
+  // Elements k >= nf_ are the controllers' torque limits (TorqueLimitData), after the brakes and clutches.
+  bool is_limit(int k) const { return k >= nf_; }
+  const TorqueLimitData& limit(int k) const { return sys_.limits[static_cast<std::size_t>(k - nf_)]; }
+  const std::string& element_name(int k) const {
+    return is_limit(k) ? limit(k).name : sys_.elements[static_cast<std::size_t>(k)].name;
+  }
+  // A controller's torque at the limit it reached in direction dir.
+  double held_torque(int k) const { return dir_[static_cast<std::size_t>(k)] > 0 ? limit(k).torque_max : limit(k).torque_min; }
+  // A controller's law at state x and known inputs v.
+  double law(int k, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const {
+    return limit(k).law_x.dot(x) + limit(k).law_w.dot(v);
+  }
+
+  // An element's command: a controller's is 1 throughout (it is never open).
+  double command(int k, double t) const {
+    return is_limit(k) ? 1.0 : value(sys_.elements[static_cast<std::size_t>(k)].command, t);
+  }
 
   // The torque per unit command of element k while it slips: its capacity, or zero for a one-way
   // element overrunning in its free direction.
@@ -151,6 +171,7 @@ class HybridEngineCore {
 
   // Whether element k's command is zero from t until the next breakpoint (it is linear there).
   bool open_after(int k, double t) const {
+    if (is_limit(k)) return false;
     const auto next = std::upper_bound(breaks_.begin(), breaks_.end(), t);
     const double t_next = next == breaks_.end() ? std::max(horizon_, t) : *next;
     return command(k, t) == 0 && command(k, t + 0.5 * (t_next - t)) == 0;
@@ -165,7 +186,9 @@ class HybridEngineCore {
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
       // + 0.0: an open element's torque is 0, not -0, in the CSV.
-      v(nu_ + k) = state_[K] == ElementState::stuck ? 0.0 : torque_scale(k) * command(k, at) * dir_[K] + 0.0;
+      v(nu_ + k) = state_[K] == ElementState::stuck ? 0.0
+                   : is_limit(k)                     ? held_torque(k)
+                                                     : torque_scale(k) * command(k, at) * dir_[K] + 0.0;
     }
   }
   Eigen::VectorXd known_inputs(double t, bool before) const {
@@ -189,7 +212,7 @@ class HybridEngineCore {
         sample_w_(nu_ + m.stuck[j]) = sample_T_(static_cast<Eigen::Index>(j));
     }
     sample_slip_.setZero(ne_);
-    detail::small_matvec_add(sys_.S, nx_, x.data(), sample_slip_.data());
+    detail::small_matvec_add(S_, nx_, x.data(), sample_slip_.data());
     return obs(t, HybridSample{x, sample_w_, sample_slip_, energy, mask_});
   }
 
@@ -204,14 +227,21 @@ class HybridEngineCore {
     if (!m.stuck.empty()) T = m.Kx * x + m.Kv * v;
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
       const int k = m.stuck[j];
-      const auto& e = sys_.elements[static_cast<std::size_t>(k)];
       const double Tk = T(static_cast<Eigen::Index>(j));
+      if (is_limit(k)) {  // a controller within its limits: the margin to the nearer one
+        g(k) = std::min(limit(k).torque_max - Tk, Tk - limit(k).torque_min);
+        continue;
+      }
+      const auto& e = sys_.elements[static_cast<std::size_t>(k)];
       g(k) = e.static_ratio * e.capacity * command(k, at) - std::abs(Tk);
       if (e.one_way) g(k) = std::min(g(k), -Tk);  // a one-way element lets go when T turns positive
     }
-    for (int k = 0; k < ne_; ++k)
-      if (watched[static_cast<std::size_t>(k)] && state_[static_cast<std::size_t>(k)] != ElementState::stuck)
-        g(k) = dir_[static_cast<std::size_t>(k)] * sys_.S.row(k).dot(x);
+    for (int k = 0; k < ne_; ++k) {
+      const auto K = static_cast<std::size_t>(k);
+      if (!watched[K] || state_[K] == ElementState::stuck) continue;
+      // A saturated controller: how far its law lies beyond the limit it holds.
+      g(k) = is_limit(k) ? dir_[K] * (law(k, x, v) - held_torque(k)) : dir_[K] * S_.row(k).dot(x);
+    }
     return g;
   }
 
@@ -226,15 +256,21 @@ class HybridEngineCore {
       const Eigen::VectorXd T = m.Kx * x + m.Kv * v, dT = m.Kx * dx + m.Kv * dv;
       for (std::size_t j = 0; j < m.stuck.size(); ++j) {
         const int k = m.stuck[j];
-        const auto& e = sys_.elements[static_cast<std::size_t>(k)];
         const auto J = static_cast<Eigen::Index>(j);
+        if (is_limit(k)) {
+          r(k) = limit(k).torque_max - T(J) < T(J) - limit(k).torque_min ? -dT(J) : dT(J);
+          continue;
+        }
+        const auto& e = sys_.elements[static_cast<std::size_t>(k)];
         const double margin = e.static_ratio * e.capacity * p(k) - std::abs(T(J));
         r(k) = e.one_way && -T(J) < margin ? -dT(J) : e.static_ratio * e.capacity * dp(k) - (T(J) < 0 ? -dT(J) : dT(J));
       }
     }
-    for (int k = 0; k < ne_; ++k)
-      if (watched[static_cast<std::size_t>(k)] && state_[static_cast<std::size_t>(k)] != ElementState::stuck)
-        r(k) = dir_[static_cast<std::size_t>(k)] * sys_.S.row(k).dot(dx);
+    for (int k = 0; k < ne_; ++k) {
+      const auto K = static_cast<std::size_t>(k);
+      if (!watched[K] || state_[K] == ElementState::stuck) continue;
+      r(k) = is_limit(k) ? dir_[K] * (limit(k).law_x.dot(dx) + limit(k).law_w.dot(dv)) : dir_[K] * S_.row(k).dot(dx);
+    }
     return r;
   }
 
@@ -309,7 +345,7 @@ class HybridEngineCore {
     const double at1 = before ? std::nextafter(t1, -std::numeric_limits<double>::infinity()) : t1;
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
-      if (state_[K] == ElementState::stuck) continue;
+      if (state_[K] == ElementState::stuck || is_limit(k)) continue;
       const double p0 = command(k, t0), p1 = command(k, at1);
       const double sigma = z(nx_ + k), rho = z(nx_ + ne_ + k);
       energy_(k) += torque_scale(k) * dir_[K] * (p1 * sigma - (p1 - p0) * rho / h);
@@ -325,7 +361,7 @@ class HybridEngineCore {
       const auto K = static_cast<std::size_t>(k);
       const bool open = command(k, t) == 0 && command(k, std::nextafter(t_end, t)) == 0;
       if (open && state_[K] != ElementState::stuck) {
-        const double s = sys_.S.row(k).dot(x_);
+        const double s = S_.row(k).dot(x_);
         dir_[K] = s > 0 ? 1 : s < 0 ? -1 : dir_[K];
         if (state_[K] != ElementState::open) {
           record(t, k, state_[K], ElementState::open, on_event);
@@ -379,12 +415,19 @@ class HybridEngineCore {
     slow_motion(p, x0, x1, v0, v1, slow_);
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
-      if (watched[K] && state_[K] != ElementState::stuck && !stays_positive(p, slow_, k, dir_[K], 0, 0, h))
+      // A saturated controller's function is dir (law - held torque).
+      const double offset = is_limit(k) ? -dir_[K] * held_torque(k) : 0.0;
+      if (watched[K] && state_[K] != ElementState::stuck && !stays_positive(p, slow_, k, dir_[K], offset, offset, h))
         return false;
     }
     const double t1 = t + h, at1 = before ? std::nextafter(t1, t) : t1;
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
       const int k = m.stuck[j];
+      if (is_limit(k)) {  // torque_max - T and T - torque_min
+        const double hi = limit(k).torque_max, lo = limit(k).torque_min;
+        if (!stays_positive(p, slow_, k, -1, hi, hi, h) || !stays_positive(p, slow_, k, 1, -lo, -lo, h)) return false;
+        continue;
+      }
       const auto& el = sys_.elements[static_cast<std::size_t>(k)];
       const double mu_c = el.static_ratio * el.capacity, L0 = mu_c * command(k, t), L1 = mu_c * command(k, at1);
       // mu c p - T and mu c p + T: the margin for each sign of T; a one-way element also -T.
@@ -399,11 +442,16 @@ class HybridEngineCore {
     auto it = near_step(proofs_, mask_, h);
     if (it == proofs_.end()) {
       if (proofs_.size() > 256) proofs_.clear();  // bounded, as the discretizations
-      // One function per element: its slip S_k x, or while it is stuck its torque Kx_j x + Kv_j w.
-      Eigen::MatrixXd C = sys_.S, D = Eigen::MatrixXd::Zero(ne_, nw_);
+      // One function per element: its slip S_k x, or while it is stuck its torque Kx_j x + Kv_j w; a
+      // controller's law in either regime.
+      Eigen::MatrixXd C = S_, D = Eigen::MatrixXd::Zero(ne_, nw_);
       for (std::size_t j = 0; j < m.stuck.size(); ++j) {
         C.row(m.stuck[j]) = m.Kx.row(static_cast<Eigen::Index>(j));
         D.row(m.stuck[j]) = m.Kv.row(static_cast<Eigen::Index>(j));
+      }
+      for (int k = nf_; k < ne_; ++k) {
+        C.row(k) = limit(k).law_x;
+        D.row(k) = limit(k).law_w;
       }
       it = proofs_.emplace(std::make_pair(mask_, h), step_proof(m.modal, m.A, m.B, C, D, h)).first;
     }
@@ -583,9 +631,9 @@ class HybridEngineCore {
       const double ti = mid + (i - 1) * node * half;
       s.dense(ti, dense_x_);
       known_inputs(ti, false, dense_v_);
-      for (int k = 0; k < ne_; ++k)
+      for (int k = 0; k < nf_; ++k)
         if (state_[static_cast<std::size_t>(k)] != ElementState::stuck)
-          energy(k) += weight[i] * half * dense_v_(nu_ + k) * sys_.S.row(k).dot(dense_x_);
+          energy(k) += weight[i] * half * dense_v_(nu_ + k) * S_.row(k).dot(dense_x_);
     }
   }
 
@@ -745,19 +793,21 @@ class HybridEngineCore {
   bool resolve(double t, int trigger, const EventObserver& on_event, std::string& error) {
     const std::vector<ElementState> old = state_;
     std::uint32_t mask = 0;
-    const Eigen::VectorXd slip = sys_.S * x_;
+    const Eigen::VectorXd slip = S_ * x_;
     // An element without command until the next breakpoint holds nothing: it is no candidate (at
-    // rest every slip is zero, and open elements tried stuck could over-constrain the gear).
+    // rest every slip is zero, and open elements tried stuck could over-constrain the gear). A
+    // controller is always tried within its limits: it leaves saturation whenever its law allows.
     for (int k = 0; k < ne_; ++k) {
       const auto K = static_cast<std::size_t>(k);
-      if (!open_after(k, t) && (state_[K] == ElementState::stuck || slip(k) == 0 || k == trigger)) mask |= 1u << k;
+      if (is_limit(k) || (!open_after(k, t) && (state_[K] == ElementState::stuck || slip(k) == 0 || k == trigger)))
+        mask |= 1u << k;
       else if (slip(k) != 0) dir_[K] = slip(k) > 0 ? 1 : -1;
     }
     for (int round = 0; round <= ne_; ++round) {
       const auto& m = mode_of(mask);
       if (m.singular) {
         std::string names;
-        for (int k : m.stuck) names += (names.empty() ? "" : ", ") + sys_.elements[static_cast<std::size_t>(k)].name;
+        for (int k : m.stuck) names += (names.empty() ? "" : ", ") + element_name(k);
         error = "the stuck elements " + names + " constrain the gear more than once at t = " + detail::num(t) +
                 " s (their torques are undetermined); engage fewer elements at a time";
         return false;
@@ -770,6 +820,16 @@ class HybridEngineCore {
       double worst_ratio = 1;
       for (std::size_t j = 0; j < m.stuck.size(); ++j) {
         const int k = m.stuck[j];
+        if (is_limit(k)) {  // beyond a limit: by how much, relative to the range
+          const double Tk = T(static_cast<Eigen::Index>(j)), lo = limit(k).torque_min, hi = limit(k).torque_max;
+          const double range = std::isfinite(hi - lo) ? hi - lo : std::max({1.0, std::abs(std::isfinite(hi) ? hi : lo)});
+          const double ratio = Tk > hi ? 1 + (Tk - hi) / range : Tk < lo ? 1 + (lo - Tk) / range : 0.0;
+          if (ratio > worst_ratio) {
+            worst_ratio = ratio;
+            worst = k;
+          }
+          continue;
+        }
         const auto& e = sys_.elements[static_cast<std::size_t>(k)];
         const double limit = e.static_ratio * e.capacity * command(k, t);
         const double Tj = std::abs(T(static_cast<Eigen::Index>(j)));
@@ -787,7 +847,10 @@ class HybridEngineCore {
       }
       const auto W = static_cast<std::size_t>(worst);
       for (std::size_t j = 0; j < m.stuck.size(); ++j)
-        if (m.stuck[j] == worst) dir_[W] = T(static_cast<Eigen::Index>(j)) > 0 ? 1 : -1;
+        if (m.stuck[j] == worst) {
+          const double Tw = T(static_cast<Eigen::Index>(j));
+          dir_[W] = is_limit(worst) ? (Tw > limit(worst).torque_max ? 1 : -1) : (Tw > 0 ? 1 : -1);
+        }
       mask &= ~(1u << worst);
     }
     for (int k = 0; k < ne_; ++k) {
@@ -796,7 +859,7 @@ class HybridEngineCore {
       if (old[K] != state_[K]) {
         record(t, k, old[K], state_[K], on_event);
         if (++events_in_sample_[K] > max_events_per_sample) {
-          error = "chattering: " + sys_.elements[K].name + " changed state more than " +
+          error = "chattering: " + element_name(k) + " changed state more than " +
                   std::to_string(max_events_per_sample) + " times within one sample period, at t = " + detail::num(t) +
                   " s; shorten the sample period if the changes are real, or check the engagement commands";
           return false;
@@ -812,7 +875,8 @@ class HybridEngineCore {
 
   const HybridSystem& sys_;
   double horizon_;
-  int ne_ = 0;
+  int ne_ = 0, nf_ = 0;  // elements, and of them brakes and clutches (the rest: torque limits)
+  Eigen::MatrixXd S_;    // the slips of all elements (the limits' rows zero)
   Eigen::Index nx_ = 0, nu_ = 0, nw_ = 0;
   std::vector<double> breaks_;
   Eigen::VectorXd x_, energy_;

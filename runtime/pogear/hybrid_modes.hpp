@@ -25,12 +25,26 @@ struct FrictionElementData {
   bool one_way = false;
 };
 
-// The system with its friction elements: dx/dt = M x + N w, w = [u; T], the scene's nu inputs u and
-// one torque T_k per element, acting as -T_k on the element's first body and +T_k on its second; its
-// slips s = S x. A stuck element is the constraint S_k x = 0 with T_k its multiplier.
+// A speed controller's torque limits (docs/scene-format.md, "Controllers"). The engine treats the
+// controller as an element after the brakes and clutches: "stuck" is its linear regime, where its
+// torque is its law T = law_x x + law_w w and lies within [torque_min, torque_max]; "slipping" is
+// its saturation, the torque held at the limit it reached until the law comes back within the
+// limits. (Its integral's anti-windup is in M and N: a term in T - law, zero within the limits.)
+// It has no slip and dissipates nothing.
+struct TorqueLimitData {
+  std::string name;
+  double torque_min = -std::numeric_limits<double>::infinity(), torque_max = std::numeric_limits<double>::infinity();
+  Eigen::RowVectorXd law_x, law_w;  // over the states and over w (its entries on the known inputs only)
+};
+
+// The system with its friction elements and torque limits: dx/dt = M x + N w, w = [u; T], the
+// scene's nu inputs u, one torque T_k per friction element, acting as -T_k on the element's first
+// body and +T_k on its second, then one per torque-limited controller; the friction elements'
+// slips s = S x. A stuck friction element is the constraint S_k x = 0 with T_k its multiplier.
 struct HybridSystem {
   Eigen::MatrixXd M, N, S;
   std::vector<FrictionElementData> elements;
+  std::vector<TorqueLimitData> limits;
   std::vector<Signal> inputs;  // u
 };
 
@@ -59,21 +73,37 @@ struct ModeMatrices {
 };
 
 inline ModeMatrices mode_matrices(const HybridSystem& sys, std::uint32_t mask) {
-  const Eigen::Index nx = sys.M.rows(), nw = sys.N.cols(), ne = sys.S.rows(), nu = nw - ne;
+  const Eigen::Index nx = sys.M.rows(), nw = sys.N.cols(), nf = sys.S.rows(),
+                     nl = static_cast<Eigen::Index>(sys.limits.size()), ne = nf + nl, nu = nw - ne;
   ModeMatrices m;
   for (Eigen::Index k = 0; k < ne; ++k)
     if (mask & (1u << k)) m.stuck.push_back(static_cast<int>(k));
-  const auto ns = static_cast<Eigen::Index>(m.stuck.size());
-  Eigen::MatrixXd Bv = sys.N;
+  // Torque limits first: a controller within its limits is a known feedback, its torque column
+  // closed through its law; at a limit its torque is a known input.
+  Eigen::MatrixXd M0 = sys.M, N0 = sys.N;
+  for (Eigen::Index l = 0; l < nl; ++l) {
+    const TorqueLimitData& c = sys.limits[static_cast<std::size_t>(l)];
+    const Eigen::Index col = nu + nf + l;
+    if (mask & (1u << (nf + l))) {
+      M0 += sys.N.col(col) * c.law_x;
+      N0 += sys.N.col(col) * c.law_w;
+      N0.col(col).setZero();
+    }
+  }
+  std::vector<int> stuck_friction;
+  for (const int k : m.stuck)
+    if (k < nf) stuck_friction.push_back(k);
+  const auto ns = static_cast<Eigen::Index>(stuck_friction.size());
+  Eigen::MatrixXd Bv = N0;
   m.projector = Eigen::MatrixXd::Identity(nx, nx);
-  m.Kx = Eigen::MatrixXd::Zero(ns, nx);
-  m.Kv = Eigen::MatrixXd::Zero(ns, nw);
+  Eigen::MatrixXd Kx_f = Eigen::MatrixXd::Zero(ns, nx), Kv_f = Eigen::MatrixXd::Zero(ns, nw);
+  Eigen::MatrixXd NS(nx, ns);
   if (ns > 0) {
-    Eigen::MatrixXd H(ns, nx), NS(nx, ns);
+    Eigen::MatrixXd H(ns, nx);
     for (Eigen::Index j = 0; j < ns; ++j) {
-      H.row(j) = sys.S.row(m.stuck[j]);
-      NS.col(j) = sys.N.col(nu + m.stuck[j]);
-      Bv.col(nu + m.stuck[j]).setZero();
+      H.row(j) = sys.S.row(stuck_friction[static_cast<std::size_t>(j)]);
+      NS.col(j) = N0.col(nu + stuck_friction[static_cast<std::size_t>(j)]);
+      Bv.col(nu + stuck_friction[static_cast<std::size_t>(j)]).setZero();
     }
     const Eigen::MatrixXd HN = H * NS;
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(HN);
@@ -83,22 +113,37 @@ inline ModeMatrices mode_matrices(const HybridSystem& sys, std::uint32_t mask) {
       m.singular = true;
       return m;
     }
-    m.Kx = -lu.solve(H * sys.M);
-    m.Kv = -lu.solve(H * Bv);
+    Kx_f = -lu.solve(H * M0);
+    Kv_f = -lu.solve(H * Bv);
     m.projector -= NS * lu.solve(H);
   }
-  m.A = sys.M;
+  m.A = M0;
   m.B = Bv;
-  for (Eigen::Index j = 0; j < ns; ++j) {
-    m.A += sys.N.col(nu + m.stuck[j]) * m.Kx.row(j);
-    m.B += sys.N.col(nu + m.stuck[j]) * m.Kv.row(j);
+  for (Eigen::Index j = 0; j < ns; ++j) {  // rank-one updates, in the order of the stuck elements
+    m.A += NS.col(j) * Kx_f.row(j);
+    m.B += NS.col(j) * Kv_f.row(j);
+  }
+  // The stuck elements' torques T_S = Kx x + Kv v, in the order of m.stuck: a friction element's
+  // from its constraint, a controller's from its law.
+  const auto nstuck = static_cast<Eigen::Index>(m.stuck.size());
+  m.Kx = Eigen::MatrixXd::Zero(nstuck, nx);
+  m.Kv = Eigen::MatrixXd::Zero(nstuck, nw);
+  for (Eigen::Index j = 0, f = 0; j < nstuck; ++j) {
+    const int k = m.stuck[static_cast<std::size_t>(j)];
+    if (k < nf) {
+      m.Kx.row(j) = Kx_f.row(f);
+      m.Kv.row(j) = Kv_f.row(f++);
+    } else {
+      m.Kx.row(j) = sys.limits[static_cast<std::size_t>(k - nf)].law_x;
+      m.Kv.row(j) = sys.limits[static_cast<std::size_t>(k - nf)].law_w;
+    }
   }
   // Augmented with sigma' = S x and rho' = sigma: the integrals that make each element's dissipated
   // energy exact over a step (Engine::energy_step).
   const Eigen::Index na = nx + 2 * ne;
   m.augmented_A = Eigen::MatrixXd::Zero(na, na);
   m.augmented_A.topLeftCorner(nx, nx) = m.A;
-  m.augmented_A.block(nx, 0, ne, nx) = sys.S;
+  m.augmented_A.block(nx, 0, nf, nx) = sys.S;  // a controller's rows stay zero: no slip
   m.augmented_A.block(nx + ne, nx, ne, ne) = Eigen::MatrixXd::Identity(ne, ne);
   m.augmented_B = Eigen::MatrixXd::Zero(na, nw);
   m.augmented_B.topRows(nx) = m.B;

@@ -14,10 +14,12 @@
 
 namespace pogear::rt {
 
-// Writes OUT/<name><suffix>.events.csv: `t [s],element,from,to`, one row per change of state.
-// Element names are identifiers (the model reader checks them), so no field needs quoting.
+// Writes OUT/<name><suffix>.events.csv: `t [s],element,from,to`, one row per change of state (a
+// controller's states are `linear` and `at_limit`). Element and controller names are identifiers
+// (the readers check them), so no field needs quoting.
 inline bool write_events(const SceneRun& run, const std::string& suffix, const std::vector<HybridEvent>& events,
-                         const std::vector<FrictionElementData>& elements, const std::string& incomplete) {
+                         const std::vector<FrictionElementData>& elements, const std::vector<TorqueLimitData>& limits,
+                         const std::string& incomplete) {
   OutputFile file(run.out_dir + "/" + run.name + suffix + ".events.csv");
   if (!file.ok()) {
     std::fprintf(stderr, "%s%s: error: %s\n", run.name.c_str(), suffix.c_str(), file.error().c_str());
@@ -27,7 +29,13 @@ inline bool write_events(const SceneRun& run, const std::string& suffix, const s
   for (const HybridEvent& e : events) {
     char t[32];
     text.append(t, std::to_chars(t, t + sizeof t, e.t).ptr);
-    text += ',' + elements[static_cast<std::size_t>(e.element)].name + ',' + state_name(e.from) + ',' + state_name(e.to) + '\n';
+    const auto k = static_cast<std::size_t>(e.element);
+    if (k < elements.size()) {
+      text += ',' + elements[k].name + ',' + state_name(e.from) + ',' + state_name(e.to) + '\n';
+    } else {
+      auto name = [](ElementState s) { return s == ElementState::stuck ? "linear" : "at_limit"; };
+      text += ',' + limits[k - elements.size()].name + ',' + name(e.from) + ',' + name(e.to) + '\n';
+    }
   }
   if (!incomplete.empty()) text += "# incomplete: " + incomplete + "\n";
   file.write(text);
@@ -39,24 +47,36 @@ inline bool write_events(const SceneRun& run, const std::string& suffix, const s
 }
 
 // Runs `sys` (a generated system struct whose last inputs are the elements' torques, with
-// slip_matrix) with brakes and clutches, and writes OUT/<name><suffix>.csv (the system's outputs,
-// then T_<element> [N m], slip_<element> [rad/s], E_<element> [J] and the mode) and
-// OUT/<name><suffix>.events.csv, with the exact method, dopri5 or implicit (rk4 is refused). Returns 0, or 3 when the run failed.
+// slip_matrix) with brakes and clutches and torque-limited controllers, and writes
+// OUT/<name><suffix>.csv (the system's outputs, a controller's torque among them, then for each
+// brake and clutch T_<element> [N m], slip_<element> [rad/s], E_<element> [J], and the mode) and
+// OUT/<name><suffix>.events.csv, with the exact method, dopri5 or implicit (rk4 is refused). The
+// controllers' laws come from the system's torque_limit_laws. Returns 0, or 3 when the run failed.
 template <class System>
 int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
-                      const std::vector<FrictionElementData>& elements, const typename System::State& x0,
-                      const SceneRun& run, const std::string& suffix) {
+                      const std::vector<FrictionElementData>& elements, std::vector<TorqueLimitData> limits,
+                      const typename System::State& x0, const SceneRun& run, const std::string& suffix) {
   const Eigen::Index nx = x0.size();
-  const auto nu = static_cast<Eigen::Index>(signals.size()), ne = static_cast<Eigen::Index>(elements.size());
+  const auto nu = static_cast<Eigen::Index>(signals.size()), ne = static_cast<Eigen::Index>(elements.size()),
+             nl = static_cast<Eigen::Index>(limits.size());
   const auto ny = static_cast<Eigen::Index>(std::size(sys.output_names));
   typename System::StateMatrix M(nx, nx);
-  typename System::InputMatrix N(nx, nu + ne);
+  typename System::InputMatrix N(nx, nu + ne + nl);
   sys.matrices(p, M, N);
   HybridSystem hs;
   hs.M = M;
   hs.N = N;
   sys.slip_matrix(p, hs.S);
+  if constexpr (requires(Eigen::MatrixXd& X) { sys.torque_limit_laws(p, X, X); }) {
+    Eigen::MatrixXd X, W;
+    sys.torque_limit_laws(p, X, W);
+    for (Eigen::Index l = 0; l < nl; ++l) {
+      limits[static_cast<std::size_t>(l)].law_x = X.row(l);
+      limits[static_cast<std::size_t>(l)].law_w = W.row(l);
+    }
+  }
   hs.elements = elements;
+  hs.limits = std::move(limits);
   hs.inputs = signals;
 
   std::vector<std::string> names(std::begin(sys.output_names), std::end(sys.output_names));
@@ -89,7 +109,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
       energy_bound.emplace(Eigen::MatrixXd(L), hs.N, bounds, Eigen::VectorXd(x0), run.horizon);
   }
 
-  typename System::Input w(nu + ne);
+  typename System::Input w(nu + ne + nl);
   typename System::Output y(ny);
   Eigen::VectorXd row(ny + 3 * ne + 1);
   RunStatus st;
@@ -108,9 +128,9 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
       w = s.w;
       sys.outputs(p, x, w, y);
       row.head(ny) = y;
-      row.segment(ny, ne) = s.w.tail(ne);
-      row.segment(ny + ne, ne) = s.slip;
-      row.segment(ny + 2 * ne, ne) = s.energy;
+      row.segment(ny, ne) = s.w.segment(nu, ne);
+      row.segment(ny + ne, ne) = s.slip.head(ne);
+      row.segment(ny + 2 * ne, ne) = s.energy.head(ne);
       row(ny + 3 * ne) = static_cast<double>(s.mode);
       if (log.writes_csv()) log.row(t, row.data(), static_cast<long>(row.size()));
       return true;
@@ -119,12 +139,20 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
     st.steps = engine.steps();
     modes = engine.modes_met();
     if (!log.end(st)) return 3;
-    if (run.csv && !write_events(run, suffix, events, elements, st.ok ? "" : st.message)) return 3;
+    if (run.csv && !write_events(run, suffix, events, elements, hs.limits, st.ok ? "" : st.message)) return 3;
     if (!st.ok) break;
   }
   if (st.ok && !run.quiet)
     std::printf("%s%s: %zu events, %d modes met\n", run.name.c_str(), suffix.c_str(), events.size(), modes);
   return log.finish(st);
+}
+
+// The same without torque-limited controllers.
+template <class System>
+int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
+                      const std::vector<FrictionElementData>& elements, const typename System::State& x0,
+                      const SceneRun& run, const std::string& suffix) {
+  return run_hybrid_system(sys, p, signals, elements, std::vector<TorqueLimitData>{}, x0, run, suffix);
 }
 
 }  // namespace pogear::rt

@@ -1146,9 +1146,35 @@ TEST_F(LoadsAndControllers, ControllerGains) {
                R"~(scene.toml:22:7: error: a controller's gains kp and ki are non-negative and not both zero; give kp = "<N*m*s/rad>" and ki = "<N*m/rad>")~");
 }
 
-TEST_F(LoadsAndControllers, TorqueLimitsNotYet) {
+TEST_F(LoadsAndControllers, TorqueLimitsOutOfOrder) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\", torque_min = \"50*N*m\", torque_max = \"-50*N*m\" }\n",
+               R"~(scene.toml:22:96: error: torque_max (-50 N m) is not above torque_min (50 N m); give the limits of the torque the controller can apply)~");
+}
+
+TEST_F(LoadsAndControllers, TrackingTimeWithoutLimits) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\", ki = \"1*N*m\", tracking_time = \"0.1*s\" }\n",
+               R"~(scene.toml:22:90: error: tracking_time is the time constant with which the integral follows a torque limit; it needs torque_min or torque_max, and ki)~");
+}
+
+TEST_F(LoadsAndControllers, LimitedIntegralControllerNeedsTrackingTime) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", ki = \"1*N*m\", torque_max = \"50*N*m\" }\n",
+               R"~(scene.toml:22:7: error: a controller with torque limits and no kp needs tracking_time, the time constant with which its integral follows a limit (kp / ki, the default, is zero))~");
+}
+
+TEST_F(LoadsAndControllers, TooManyControllers) {
+  std::string controllers = "[controllers]\n";
+  for (int i = 0; i < 17; ++i) controllers += "c" + std::to_string(i) + " = { body = \"s\", set_point = \"1*rpm\", kp = \"1*N*m*s\" }\n";
+  expect_error(controllers, R"~(scene.toml:21:1: error: 17 controllers; a scene has at most 16)~");
+}
+
+TEST_F(LoadsAndControllers, TorqueLimitsWithRk4) {
   expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\", torque_max = \"50*N*m\" }\n",
-               R"~(scene.toml:22:73: error: torque limits of a controller are not simulated yet; drop torque_min and torque_max, or limit the set-point instead)~");
+               R"~(scene.toml:17:10: error: a controller with torque limits switches at events, which rk4 does not locate (its fixed steps); use solver = "exact", "dopri5" or "implicit")~",
+               {{R"(solver = "exact")", R"(solver = "rk4")"}});
+  write_text("gear.toml", base_model());
+  write_text("scene.toml", base_scene() + "\n[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\", torque_max = \"50*N*m\" }\n");
+  expect_pogear_error("simulate scene.toml --solver rk4 --interpreted -o out", 2,
+                      R"~(scene.toml: error: a controller with torque limits switches at events, which rk4 does not locate (its fixed steps); use --solver exact, dopri5 or implicit)~");
 }
 
 TEST_F(LoadsAndControllers, ParameterNamedLikeAQuadraticLoad) {
@@ -1185,7 +1211,7 @@ TEST_F(LoadsAndControllers, QuadraticLoadWithBrakes) {
   const std::string model = edited(base_model(), {{"[parameters]", "[[brake]]\nname = \"B1\"\nbody = \"r\"\n\n[parameters]"},
                                                   {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nT_B1 = \"50*N*m\""}});
   expect_error("[engagement]\nB1 = \"1\"\n\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n",
-               R"~(scene.toml:24:1: error: a quadratic load makes the scene nonlinear, and brakes and clutches are simulated on linear scenes only; drop the quadratic part of the load or the [engagement])~",
+               R"~(scene.toml:24:1: error: a quadratic load makes the scene nonlinear, and brakes, clutches and torque limits are simulated on linear scenes only; drop the quadratic part of the load, or the [engagement] and the controllers' limits)~",
                {{R"(solver = "exact")", R"(solver = "dopri5")"}}, model);
 }
 

@@ -2,6 +2,9 @@
 // closed loop, constant, linear and quadratic loads, and the power balance of the power-split
 // drive with its loads and its controller's work. The compiled simulator against the interpreted run.
 #include <cmath>
+#include <fstream>
+#include <sstream>
+#include <tuple>
 
 #include "sim_support.hpp"
 
@@ -215,6 +218,135 @@ TEST(SpeedController, CompiledPowerSplitDriveMatchesTheInterpretedRun) {
   // another order, and rounding differences move the adaptive steps: measured 3e-9 of the scale.
   expect_csv_matches_interpreted(dir / "power_split_drive.csv", m, m.main, 1e-6);
   expect_csv_matches_interpreted(dir / "power_split_drive.rigid.csv", m, *m.rigid, 1e-6);
+}
+
+// A hybrid run's CSV and the rows of its events file (t, element, from, to), as `pogear simulate`
+// writes them to DIR/<scene><suffix>.
+struct HybridRun {
+  Csv csv;
+  std::vector<std::tuple<double, std::string, std::string, std::string>> events;
+};
+HybridRun read_hybrid_run(const std::filesystem::path& dir, const std::string& name) {
+  HybridRun out;
+  out.csv = read_csv((dir / (name + ".csv")).string());
+  std::ifstream events(dir / (name + ".events.csv"));
+  std::string line;
+  std::getline(events, line);  // header
+  while (std::getline(events, line)) {
+    std::stringstream fields(line);
+    std::string t, element, from, to;
+    std::getline(fields, t, ',');
+    std::getline(fields, element, ',');
+    std::getline(fields, from, ',');
+    std::getline(fields, to, ',');
+    out.events.emplace_back(std::stod(t), element, from, to);
+  }
+  return out;
+}
+
+// The scene's main system run interpreted with `solver` (a hybrid run with torque limits).
+HybridRun hybrid_run(const SpecializedScene& m, rt::Solver solver, const std::string& tag) {
+  rt::SceneRun run = run_settings(m, solver);
+  run.out_dir = temp_dir("limits_" + tag).string();
+  run.quiet = true;
+  EXPECT_EQ(run_interpreted(m, run), 0);
+  return read_hybrid_run(run.out_dir, m.scene.name);
+}
+
+TEST(TorqueLimits, PControllerAtItsLimitThenTheClosedLoop) {
+  // From rest toward 100 rad/s with kp = 0.5 N m s/rad: the law asks 50 N m, the limit gives 5, so
+  // J omega' = 5 until kp (100 - omega) = 5, at omega* = 90 and t* = 90 J / 5; then
+  // omega = 100 - 10 exp(-(t - t*) / (J / kp)).
+  const double ref = 100, kp = 0.5, limit = 5, J = J_seen_from_a;
+  const double t_star = (ref - limit / kp) * J / limit;
+  const SpecializedScene m = scene_model(pair_scene(
+      "[controllers]\nspeed = { body = \"a\", set_point = \"100*rad/s\", kp = \"0.5*N*m*s/rad\", torque_max = \"5*N*m\" }\n"));
+  for (const rt::Solver solver : {rt::Solver::exact, rt::Solver::dopri5}) {
+    const HybridRun r = hybrid_run(m, solver, "p");
+    ASSERT_EQ(r.events.size(), 1u) << rt::solver_name(solver);
+    const auto& [t_event, element, from, to] = r.events[0];
+    EXPECT_EQ(element + " " + from + " " + to, "speed at_limit linear");
+    // Exact: the event on the exact trajectory to 4 ulps; dopri5: on its dense output at 1e-11.
+    EXPECT_NEAR(t_event, t_star, solver == rt::Solver::exact ? 1e-14 : 1e-9) << rt::solver_name(solver);
+    const std::size_t omega = r.csv.column("omega_a [rad/s]"), torque = r.csv.column("Tc_speed [N m]");
+    double worst = 0;
+    for (const auto& row : r.csv.rows) {
+      const double t = row[0];
+      worst = std::max(worst, std::abs(row[omega] - (t <= t_star ? limit * t / J : ref - 10 * std::exp(-(t - t_star) * kp / J))));
+      if (t < t_star) {
+        EXPECT_EQ(row[torque], limit) << t;
+      }
+    }
+    // Exact stepping: rounding only; dopri5 at 1e-11 relative, over 2000 samples.
+    EXPECT_LT(worst, (solver == rt::Solver::exact ? 1e-11 : 1e-7) * ref) << rt::solver_name(solver);
+  }
+}
+
+TEST(TorqueLimits, IntegralTracksTheLimitThenThePIControllerCloses) {
+  // kp = ki = 0.5, limit 5 N m, tracking time kp / ki = 1 s. At the limit, J omega' = 5 and
+  // q = ki theta - 5 obeys q' = -q / 1 s from q(0) = -5; the law kp e + ki theta = kp e + q + 5 comes
+  // back to the limit when kp (ref - 5 t / J) + q(t) = 0. From there the PI loop:
+  // J e'' + kp e' + ki e = 0 with e' = -5 / J (the torque is continuous).
+  const double ref = 100, kp = 0.5, ki = 0.5, limit = 5, J = J_seen_from_a;
+  auto q = [&](double t) { return -limit * std::exp(-t); };
+  auto margin = [&](double t) { return kp * (ref - limit * t / J) + q(t); };
+  double lo = 0, hi = 2;  // margin(0) = 45 > 0 > margin(2)
+  for (int i = 0; i < 200; ++i) (margin(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  const double t_star = 0.5 * (lo + hi), e_star = ref - limit * t_star / J;
+  const double disc = std::sqrt(kp * kp - 4 * J * ki), l1 = (-kp + disc) / (2 * J), l2 = (-kp - disc) / (2 * J);
+  const double de = -limit / J, A = (de - l2 * e_star) / (l1 - l2), B = e_star - A;
+  const SpecializedScene m = scene_model(pair_scene(
+      "[controllers]\nspeed = { body = \"a\", set_point = \"100*rad/s\", kp = \"0.5*N*m*s/rad\", ki = \"0.5*N*m/rad\", "
+      "torque_max = \"5*N*m\" }\n"));
+  const HybridRun r = hybrid_run(m, rt::Solver::exact, "pi");
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_NEAR(std::get<0>(r.events[0]), t_star, 1e-13);  // the bisection's root to 1e-16, the event to 4 ulps
+  const std::size_t omega = r.csv.column("omega_a [rad/s]");
+  double worst = 0;
+  for (const auto& row : r.csv.rows) {
+    const double t = row[0], s = t - t_star;
+    worst = std::max(worst, std::abs(row[omega] - (t <= t_star ? limit * t / J : ref - A * std::exp(l1 * s) - B * std::exp(l2 * s))));
+  }
+  EXPECT_LT(worst, 1e-11 * ref);  // exact stepping: rounding only
+}
+
+TEST(TorqueLimits, CompiledSimulatorWithABrakeAndALimitedControllerMatchesTheInterpretedRun) {
+  // The power-split launch with MG1 holding the engine speed within +-40 N m while the one-way brake
+  // holds and releases the engine: friction elements and torque limits in one hybrid run.
+  const std::string text = with_lines(scene_text("power_split_ev_launch"),
+                                      {{"tau_s = \"-20*Nm\"", ""}, {"[engagement]",
+                                        "[controllers]\nmg1 = { body = \"s\", speed_of = \"c\", set_point = { step = "
+                                        "\"1500*rpm\", before = \"0*rpm\", at = \"3*s\" }, kp = \"1.5*N*m*s\", ki = \"4*N*m\", "
+                                        "torque_min = \"-40*N*m\", torque_max = \"40*N*m\" }\n\n[engagement]"}});
+  const auto dir = temp_dir("limits_compiled");
+  write_text(dir / "power_split_ev_launch.toml", with_line(text, "model = \"../power_split.toml\"",
+                                                           "model = \"" + source_path("models/power_split.toml") + "\""));
+  std::filesystem::copy_file(source_path("models/scenes/power_split_mg2.csv"), dir / "power_split_mg2.csv",
+                             std::filesystem::copy_options::overwrite_existing);
+  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " +
+                                (dir / "power_split_ev_launch.toml").string() + " -o " + (dir / "compiled").string());
+  ASSERT_EQ(c.status, 0) << c.err;
+  const Command i = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " +
+                                (dir / "power_split_ev_launch.toml").string() + " --interpreted -o " +
+                                (dir / "interpreted").string());
+  ASSERT_EQ(i.status, 0) << i.err;
+  for (const std::string suffix : {"", ".rigid"}) {
+    const HybridRun compiled = read_hybrid_run(dir / "compiled", "power_split_ev_launch" + suffix);
+    const HybridRun interpreted = read_hybrid_run(dir / "interpreted", "power_split_ev_launch" + suffix);
+    // The brake's and the controller's events, the same in both: the matrices differ by rounding
+    // (folded expressions against L^-1 A), which moves an event by a few ulps of its time.
+    ASSERT_EQ(compiled.events.size(), interpreted.events.size()) << suffix;
+    EXPECT_GE(compiled.events.size(), 5u) << suffix;  // the brake's three, the controller at and off its limit
+    for (std::size_t k = 0; k < compiled.events.size(); ++k) {
+      const auto& [t, element, from, to] = compiled.events[k];
+      const auto& [t_i, element_i, from_i, to_i] = interpreted.events[k];
+      EXPECT_EQ(element + from + to, element_i + from_i + to_i) << suffix << " event " << k;
+      EXPECT_NEAR(t, t_i, 1e-9 * (1 + t)) << suffix << " event " << k;
+    }
+    ASSERT_EQ(compiled.csv.rows.size(), interpreted.csv.rows.size());
+    for (std::size_t col = 1; col < compiled.csv.header.size(); ++col)
+      EXPECT_LT(column_error(compiled.csv.rows, interpreted.csv.rows, col), 1e-9) << suffix << " " << compiled.csv.header[col];
+  }
 }
 
 }  // namespace
