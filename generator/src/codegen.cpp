@@ -203,6 +203,12 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
               comment_text(k.name), number_code(k.kp), number_code(k.ki),
               comment_text(d.topology.bodies[static_cast<std::size_t>(k.body)].name),
               comment_text(d.topology.bodies[static_cast<std::size_t>(k.measured)].name));
+    if (k.limited())
+      h += code("//     within [{}, {}] N m, held at a limit beyond it (events){}\n", limit_code(k.torque_min),
+                limit_code(k.torque_max),
+                k.ki != 0 ? code("; there theta' = e + (Tc - law) / (ki {} s), its back-calculation",
+                                 number_code(k.tracking_time))
+                          : CppText{});
   }
   if (model.rigid) h += code("//   {} (for comparison)\n", comment_text(model.rigid->equations));
   h += code("// Units are SI: rad/s, N, N m. Parameters are literals (see namespace parameters) unless listed in Params.\n");

@@ -109,6 +109,10 @@ struct SpecializedScene {
 inline constexpr double rpm_per_rad_per_s = 9.5492965855137201;
 
 SpecializedScene specialize(const Scene& scene);
+
+// A state or an input appended to a system being built, with its name and unit.
+void add_state(const Topology& t, Variable v, SpecializedSystem& sys);
+void add_input(const Topology& t, Variable v, SpecializedSystem& sys);
 SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, bool elastic);
 
 // The torque each input applies to each body (bodies x inputs, exact): a unit column for tau_<body>,
