@@ -299,10 +299,14 @@ GeneratedSources generate_sources(const SpecializedScene& model, std::vector<rt:
   for (rt::Solver s : rt::all_solvers)
     if ((solvers.empty() && s == model.scene.solver) || std::find(solvers.begin(), solvers.end(), s) != solvers.end())
       compiled.push_back(s);
-  if (model.main.nonlinear && std::find(compiled.begin(), compiled.end(), rt::Solver::exact) != compiled.end())
-    throw InputError(SourceLocation{model.scene.file, 0, 0},
-                     "a quadratic load makes this scene nonlinear, which exact stepping does not integrate; leave "
-                     "exact out of --solvers");
+  for (const rt::Solver fixed : {rt::Solver::exact, rt::Solver::rk4})
+    if (model.main.nonlinear && std::find(compiled.begin(), compiled.end(), fixed) != compiled.end())
+      throw InputError(SourceLocation{model.scene.file, 0, 0},
+                       fmt::format("a quadratic load makes this scene nonlinear, which {}; leave {} out of --solvers",
+                                   fixed == rt::Solver::exact ? "exact stepping does not integrate"
+                                                              : "rk4's fixed step cannot be checked against its "
+                                                                "stability limit",
+                                   rt::solver_name(fixed)));
   try {
     return generate(model, compiled);
   } catch (const std::logic_error& e) {
@@ -327,8 +331,8 @@ std::string loads_and_controllers_note(const SpecializedScene& model) {
                      parts.empty() ? std::string("zero") : joined(parts));
   }
   for (const ControllerSpec& c : sc.controllers)
-    s += fmt::format("controller {}: PI torque on {} for the speed of {}, its integral theta_{} a state{}\n",
-                     c.name, t.bodies[static_cast<std::size_t>(c.body)].name,
+    s += fmt::format("controller {}: {} torque on {} for the speed of {}, its integral theta_{} a state{}\n",
+                     c.name, c.kp != 0 && c.ki != 0 ? "PI" : c.kp != 0 ? "P" : "I", t.bodies[static_cast<std::size_t>(c.body)].name,
                      t.bodies[static_cast<std::size_t>(c.measured)].name, c.name,
                      c.limited() ? fmt::format("; torque from {} to {} N m, events at the limits, where its integral "
                                                "tracks the limit (time constant {} s)", c.torque_min, c.torque_max,

@@ -27,8 +27,9 @@ int body_named(const SceneReader& r, const toml::node& n, const std::string& nam
   return b;
 }
 
-double non_negative(const SceneReader& r, const toml::node& n, const Dimension& dim, std::string_view what) {
-  const double v = r.quantity(n, dim, what);
+double non_negative(const SceneReader& r, const toml::node& n, const Dimension& dim, std::string_view what,
+                    std::string_view example_unit) {
+  const double v = r.coefficient(n, dim, what, example_unit);
   if (v < 0) r.fail(n, fmt::format("{} is negative; a load takes power from the gear (a torque that drives it is an "
                                    "input in [inputs])", what));
   return v;
@@ -49,10 +50,11 @@ std::vector<LoadSpec> read_loads(const SceneReader& r, const toml::node& n) {
     LoadSpec l;
     l.body = body;
     l.where = r.loc(value);
-    if (const toml::node* v = t.get("constant")) l.constant = non_negative(r, *v, torque_dimension(), "constant");
-    if (const toml::node* v = t.get("linear")) l.linear = non_negative(r, *v, times_seconds(torque_dimension(), 1), "linear");
+    if (const toml::node* v = t.get("constant")) l.constant = non_negative(r, *v, torque_dimension(), "constant", "5*N*m");
+    if (const toml::node* v = t.get("linear"))
+      l.linear = non_negative(r, *v, times_seconds(torque_dimension(), 1), "linear", "0.5*N*m*s/rad");
     if (const toml::node* v = t.get("quadratic"))
-      l.quadratic = non_negative(r, *v, times_seconds(torque_dimension(), 2), "quadratic");
+      l.quadratic = non_negative(r, *v, times_seconds(torque_dimension(), 2), "quadratic", "0.002*N*m*s^2/rad^2");
     out.push_back(l);
   }
   std::sort(out.begin(), out.end(), [](const LoadSpec& a, const LoadSpec& b) { return a.body < b.body; });
@@ -98,11 +100,14 @@ std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::n
     const toml::node* set_point = t.get("set_point");
     if (!set_point) r.fail(value, "the controller has no set_point; add set_point = \"<speed>\", e.g. \"1500*rpm\"");
     c.set_point = read_signal(r, *set_point, scene_dir, SignalQuantity::speed);
-    if (const toml::node* v = t.get("kp")) c.kp = r.quantity(*v, times_seconds(torque_dimension(), 1), "kp");
-    if (const toml::node* v = t.get("ki")) c.ki = r.quantity(*v, torque_dimension(), "ki");
+    const toml::node* kp = t.get("kp");
+    const toml::node* ki = t.get("ki");
+    if (kp) c.kp = r.coefficient(*kp, times_seconds(torque_dimension(), 1), "kp", "1.5*N*m*s/rad");
+    if (ki) c.ki = r.coefficient(*ki, torque_dimension(), "ki", "4*N*m/rad");
     if (c.kp < 0 || c.ki < 0 || (c.kp == 0 && c.ki == 0))
-      r.fail(value, "a controller's gains kp and ki are non-negative and not both zero; give kp = \"<N*m*s/rad>\" "
-                    "and ki = \"<N*m/rad>\"");
+      r.fail(c.kp < 0 ? *kp : c.ki < 0 ? *ki : value,
+             "a controller's gains kp and ki are non-negative and not both zero; give kp = \"<N*m*s/rad>\" "
+             "and ki = \"<N*m/rad>\"");
     if (const toml::node* v = t.get("torque_min")) c.torque_min = r.quantity(*v, torque_dimension(), "torque_min");
     if (const toml::node* v = t.get("torque_max")) c.torque_max = r.quantity(*v, torque_dimension(), "torque_max");
     if (!(c.torque_min < c.torque_max))

@@ -26,7 +26,10 @@ std::string gnuplot_label(const std::string& name) {
   const auto us = name.find('_');
   std::string base = name.substr(0, us), sub = us == std::string::npos ? "" : name.substr(us + 1);
   if (base == "omega") base = "{/Symbol w}";
-  return sub.empty() ? base : base + "_{" + sub + "}";
+  // Enhanced text would read a further '_' as another subscript (Tc_engine_speed).
+  std::string escaped;
+  for (const char c : sub) escaped += c == '_' ? std::string("\\_") : std::string(1, c);
+  return sub.empty() ? base : base + "_{" + escaped + "}";
 }
 
 namespace {

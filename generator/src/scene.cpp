@@ -98,9 +98,12 @@ void check_loads_and_controllers(Scene& s, bool engaged) {
     throw InputError(where, "a quadratic load makes the scene nonlinear, and brakes, clutches and torque limits are "
                             "simulated on linear scenes only; drop the quadratic part of the load, or the "
                             "[engagement] and the controllers' limits");
-  if (s.solver_given && s.solver == Solver::exact)
-    throw InputError(s.solver_where, "a quadratic load makes the scene nonlinear, which exact stepping does not "
-                                     "integrate; use solver = \"dopri5\" or \"implicit\", or a linear load");
+  if (s.solver_given && (s.solver == Solver::exact || s.solver == Solver::rk4))
+    throw InputError(s.solver_where, fmt::format("a quadratic load makes the scene nonlinear, which {}; use solver = "
+                                                 "\"dopri5\" or \"implicit\", or a linear load",
+                                                 s.solver == Solver::exact
+                                                     ? "exact stepping does not integrate"
+                                                     : "rk4's fixed step cannot be checked against its stability limit"));
   if (!s.solver_given) s.solver = Solver::dopri5;
 }
 
@@ -282,7 +285,8 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       const auto v = find_variable(topology, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
       if (!v)
         throw InputError(toml_location(path, key.source()),
-                         fmt::format("'{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene", name));
+                         fmt::format("'{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene; name a "
+                                     "body's speed, a mesh's force or a controller's start torque", name));
       if (v->kind == VariableKind::controller_torque) {
         // The controller starts at this torque through its integral's initial value.
         const ControllerSpec& c = s.controllers[static_cast<std::size_t>(v->index)];

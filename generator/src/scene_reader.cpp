@@ -35,6 +35,13 @@ double SceneReader::quantity(const toml::node& n, const Dimension& dim, std::str
                               describe(dim))
                 : fmt::format("{} has unit {}; it needs {}", what, describe(q.dimension), describe(dim)));
   if (!std::isfinite(q.si)) fail(n, fmt::format("{} is not finite", what));
+  // Hz is 1/s, which in a speed would be read as rad/s: 2 pi short of the revolutions it usually means.
+  Dimension acceleration = angular_velocity_dimension();
+  acceleration.exponent[2] -= 1;
+  if (n.is_string() && (dim == angular_velocity_dimension() || dim == acceleration) &&
+      n.value<std::string>()->find("Hz") != std::string::npos)
+    fail(n, fmt::format("{} is in Hz, which for a speed could mean rev/s or rad/s; give it in rpm or rad/s, e.g. "
+                        "\"600*rpm\"", what));
   // A speed or a torque without a unit is ambiguous (rad/s or rpm? N m or kN m?): it needs one.
   if (!q.has_unit && (dim == angular_velocity_dimension() || dim == torque_dimension())) {
     const std::string value = n.is_string() ? *n.value<std::string>() : fmt::format("{}", q.si);
@@ -44,6 +51,18 @@ double SceneReader::quantity(const toml::node& n, const Dimension& dim, std::str
                               value, value, value));
   }
   return q.si;
+}
+
+double SceneReader::coefficient(const toml::node& n, const Dimension& dim, std::string_view what,
+                                std::string_view example_unit) const {
+  if (n.is_string() && n.value<std::string>()->find("Hz") != std::string::npos)
+    fail(n, fmt::format("{} is per Hz, which for a speed could mean per rev/s or per rad/s; give it per rad/s, e.g. "
+                        "\"{}\"", what, example_unit));
+  const double v = quantity(n, dim, what);  // the dimension, when a unit is given
+  if (n.is_string() && evaluate_quantity(*n.value<std::string>(), parameter_quantities(*model), loc(n), 1).has_unit)
+    return v;
+  const std::string text = n.is_string() ? *n.value<std::string>() : fmt::format("{}", v);
+  fail(n, fmt::format("{} has no unit ({}); give it with its unit, e.g. \"{}\"", what, text, example_unit));
 }
 
 namespace {

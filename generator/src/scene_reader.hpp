@@ -24,6 +24,9 @@ struct SceneReader : TomlReader {
   // A quantity with a unit of the given dimension, its parameters the model's; bare numbers are SI,
   // except for speeds and torques, which need a unit.
   double quantity(const toml::node& n, const Dimension& dim, std::string_view what) const;
+  // The same for a gain or a load coefficient (`example_unit` shows one): it needs a unit, and Hz is
+  // refused, which per speed could mean per rev/s or per rad/s.
+  double coefficient(const toml::node& n, const Dimension& dim, std::string_view what, std::string_view example_unit) const;
 };
 
 // What a signal of the scene is: an input torque, a dimensionless engagement command (piecewise

@@ -74,10 +74,12 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
     throw InputError(SourceLocation{model.scene.file, 0, 0},
                      "a controller with torque limits switches at events, which rk4 does not locate (its fixed steps); "
                      "use --solver exact, dopri5 or implicit");
-  if (model.main.nonlinear && run.solver == rt::Solver::exact)
+  if (model.main.nonlinear && (run.solver == rt::Solver::exact || run.solver == rt::Solver::rk4))
     throw InputError(SourceLocation{model.scene.file, 0, 0},
-                     "a quadratic load makes the scene nonlinear, which exact stepping does not integrate; use --solver "
-                     "dopri5 or implicit");
+                     fmt::format("a quadratic load makes the scene nonlinear, which {}; use --solver dopri5 or implicit",
+                                 run.solver == rt::Solver::exact
+                                     ? "exact stepping does not integrate"
+                                     : "rk4's fixed step cannot be checked against its stability limit"));
   run.out_dir = options.out_dir;
   run.repeat = options.repeat;
   ensure_directory(options.out_dir);

@@ -169,6 +169,12 @@ SceneResponse response_of(const ResponseRequest& request) {
     throw InputError(where, "this is a model file; response needs a scene, which says the effects and parameters to "
                             "analyse: write one that names this model (docs/scene-format.md)");
   const Scene scene = parse_scene(request.scene_file);
+  // A frequency response is of a linear system: with a quadratic load it would be of the linear
+  // part only, the gear linearized at rest, which the scene does not say.
+  if (nonlinear(scene))
+    throw InputError(where, "the scene is nonlinear (a quadratic load), and a frequency response is of a linear "
+                            "system; drop the load's quadratic part (or linearize it: a linear load of 2 c omega at "
+                            "the operating speed omega)");
   if (request.inputs.empty())
     throw InputError(where, "--input names no torque; give one or more, comma-separated, e.g. tau_" +
                                 scene.model.bodies.front().name);

@@ -847,7 +847,7 @@ TEST_F(Initial, NotATable) {
                      R"~(scene.toml:7:11: error: [initial] must be a table of omega_<body> and F_<mesh> values)~");
 }
 TEST_F(Initial, UnknownName) { expect_scene_error({{"omega_c = \"0*rpm\"", "omega_x = \"0*rpm\""}},
-    R"~(scene.toml:12:1: error: 'omega_x' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene)~"); }
+    R"~(scene.toml:12:1: error: 'omega_x' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene; name a body's speed, a mesh's force or a controller's start torque)~"); }
 TEST_F(Initial, ForceOfARigidScene) {
   expect_scene_error({{R"("mesh_compliance", "mesh_damping", )", ""}, {"compare_rigid = true\n", ""},
                       {"omega_c = \"0*rpm\"", "F_ps = \"10*N\""}},
@@ -1143,7 +1143,7 @@ TEST_F(LoadsAndControllers, SetPointNotASpeed) {
 
 TEST_F(LoadsAndControllers, ControllerGains) {
   expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"-1*N*m*s\" }\n",
-               R"~(scene.toml:22:7: error: a controller's gains kp and ki are non-negative and not both zero; give kp = "<N*m*s/rad>" and ki = "<N*m/rad>")~");
+               R"~(scene.toml:22:49: error: a controller's gains kp and ki are non-negative and not both zero; give kp = "<N*m*s/rad>" and ki = "<N*m/rad>")~");
 }
 
 TEST_F(LoadsAndControllers, TorqueLimitsOutOfOrder) {
@@ -1159,6 +1159,34 @@ TEST_F(LoadsAndControllers, TrackingTimeWithoutLimits) {
 TEST_F(LoadsAndControllers, LimitedIntegralControllerNeedsTrackingTime) {
   expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", ki = \"1*N*m\", torque_max = \"50*N*m\" }\n",
                R"~(scene.toml:22:7: error: a controller with torque limits and no kp needs tracking_time, the time constant with which its integral follows a limit (kp / ki, the default, is zero))~");
+}
+
+TEST_F(LoadsAndControllers, CoefficientWithoutUnit) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"0.5\" }\n",
+               R"~(scene.toml:22:49: error: kp has no unit (0.5); give it with its unit, e.g. "1.5*N*m*s/rad")~");
+  expect_error("[loads]\nr = { linear = 0.5 }\n",
+               R"~(scene.toml:22:16: error: linear has no unit (0.5); give it with its unit, e.g. "0.5*N*m*s/rad")~");
+}
+
+TEST_F(LoadsAndControllers, SpeedsInHz) {
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"10*Hz\", kp = \"1*N*m*s\" }\n",
+               R"~(scene.toml:22:33: error: a set-point is in Hz, which for a speed could mean rev/s or rad/s; give it in rpm or rad/s, e.g. "600*rpm")~");
+  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"10*rad/s\", kp = \"1*N*m/Hz\" }\n",
+               R"~(scene.toml:22:50: error: kp is per Hz, which for a speed could mean per rev/s or per rad/s; give it per rad/s, e.g. "1.5*N*m*s/rad")~");
+}
+
+TEST_F(LoadsAndControllers, QuadraticLoadWithRk4) {
+  expect_error("[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n",
+               R"~(scene.toml:17:10: error: a quadratic load makes the scene nonlinear, which rk4's fixed step cannot be checked against its stability limit; use solver = "dopri5" or "implicit", or a linear load)~",
+               {{R"(solver = "exact")", R"(solver = "rk4")"}});
+}
+
+TEST_F(LoadsAndControllers, ResponseOfANonlinearScene) {
+  write_text("gear.toml", base_model());
+  write_text("scene.toml", edited(base_scene(), {{R"(solver = "exact")", R"(solver = "dopri5")"}}) +
+                               "\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n");
+  expect_pogear_error("response scene.toml --input tau_c --output omega_c", 2,
+                      R"~(scene.toml: error: the scene is nonlinear (a quadratic load), and a frequency response is of a linear system; drop the load's quadratic part (or linearize it: a linear load of 2 c omega at the operating speed omega))~");
 }
 
 TEST_F(LoadsAndControllers, TooManyControllers) {
