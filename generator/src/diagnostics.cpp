@@ -39,6 +39,11 @@ Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const 
       ++d.undecaying_modes;
       continue;
     }
+    if (decay < 0) {
+      ++d.growing_modes;
+      d.fastest_growth_rate = std::max(d.fastest_growth_rate, -decay);
+      continue;
+    }
     slowest_decay = std::min(slowest_decay, decay);
   }
   for (Eigen::Index i = 0; i < lambda.size(); ++i)
@@ -87,6 +92,10 @@ std::string diagnostics_text(const Diagnostics& d, const std::string& in) {
   s += fmt::format("{}stiffness ratio {}; fastest time scale {} s; slowest time constant {} s{}\n", in,
                    number(d.stiffness_ratio), number(d.fastest_time_constant), number(d.slowest_time_constant),
                    d.undecaying_modes ? fmt::format("; {} mode(s) do not decay", d.undecaying_modes) : "");
+  if (d.growing_modes)
+    s += fmt::format("{}warning: {} mode(s) grow, the fastest by e in {} s: the scene is unstable (a speed controller "
+                     "whose torque slows the speed it measures feeds back positively: check its body and speed_of)\n",
+                     in, d.growing_modes, number(1 / d.fastest_growth_rate));
   s += fmt::format("{}cond(L1) = {}; cond(R R^T) = {}\n", in, number(d.cond_L1),
                    d.cond_RRt ? number(*d.cond_RRt) : "singular (redundant meshes)");
   s += fmt::format("{}largest stable rk4 step {} s; suggested solver: {} ({})\n", in, number(d.rk4_max_step),
@@ -116,6 +125,7 @@ std::string diagnostics_json(const Diagnostics& d, const std::string& in) {
   s += fmt::format("{}  \"fastest_time_scale\": {},\n", in, num(d.fastest_time_constant));
   s += fmt::format("{}  \"slowest_time_constant\": {},\n", in, num(d.slowest_time_constant));
   s += fmt::format("{}  \"undecaying_modes\": {},\n", in, d.undecaying_modes);
+  s += fmt::format("{}  \"growing_modes\": {},\n", in, d.growing_modes);
   s += fmt::format("{}  \"cond_L1\": {},\n", in, num(d.cond_L1));
   s += fmt::format("{}  \"cond_RRt\": {},\n", in, d.cond_RRt ? num(*d.cond_RRt) : "null");
   s += fmt::format("{}  \"rk4_max_step\": {},\n", in, num(d.rk4_max_step));

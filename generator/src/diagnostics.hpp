@@ -16,6 +16,8 @@ struct Diagnostics {
   double slowest_time_constant = 0;   // 1 / smallest decay rate among decaying modes [s]; 0 if none
   double stiffness_ratio = 1;         // fastest_rate / smallest decay rate among decaying modes
   int undecaying_modes = 0;           // |Re lambda| below rounding: free rotation, undamped motion
+  int growing_modes = 0;              // Re lambda above rounding: an unstable scene (a controller feeding back positively)
+  double fastest_growth_rate = 0;     // largest Re lambda of those [1/s]
   double cond_L1 = 0;                 // 2-norm condition number of the reduced inertia
   std::optional<double> cond_RRt;     // of R R^T; none when singular (redundant meshes)
   double rk4_max_step = 0;            // largest stable rk4 step [s]

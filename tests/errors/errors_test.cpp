@@ -1069,6 +1069,12 @@ TEST_F(EngagementCommands, TunableCapacity) {
 // its last line (gear.toml's bodies are c, p, s, r, g).
 class LoadsAndControllers : public ErrorTest {
  protected:
+  // gear.toml and a scene.toml run by dopri5 with a quadratic load on r, for the commands that refuse it.
+  static void write_nonlinear_scene() {
+    write_text("gear.toml", base_model());
+    write_text("scene.toml", edited(base_scene(), {{R"(solver = "exact")", R"(solver = "dopri5")"}}) +
+                                 "\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n");
+  }
   void expect_error(const std::string& tables, const std::string& expected, const Edits& scene_edits = {},
                     const std::string& model = base_model()) {
     expect_documented(scene_error(edited(base_scene(), scene_edits) + "\n" + tables, model), expected);
@@ -1182,9 +1188,7 @@ TEST_F(LoadsAndControllers, QuadraticLoadWithRk4) {
 }
 
 TEST_F(LoadsAndControllers, ResponseOfANonlinearScene) {
-  write_text("gear.toml", base_model());
-  write_text("scene.toml", edited(base_scene(), {{R"(solver = "exact")", R"(solver = "dopri5")"}}) +
-                               "\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n");
+  write_nonlinear_scene();
   expect_pogear_error("response scene.toml --input tau_c --output omega_c", 2,
                       R"~(scene.toml: error: the scene is nonlinear (a quadratic load), and a frequency response is of a linear system; drop the load's quadratic part (or linearize it: a linear load of 2 c omega at the operating speed omega))~");
 }
@@ -1244,9 +1248,7 @@ TEST_F(LoadsAndControllers, QuadraticLoadWithBrakes) {
 }
 
 TEST_F(LoadsAndControllers, SimulateWithExactSolver) {
-  write_text("gear.toml", base_model());
-  write_text("scene.toml", edited(base_scene(), {{R"(solver = "exact")", R"(solver = "dopri5")"}}) +
-                               "\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n");
+  write_nonlinear_scene();
   expect_pogear_error("simulate scene.toml --solver exact --interpreted -o out", 2,
                       R"~(scene.toml: error: a quadratic load makes the scene nonlinear, which exact stepping does not integrate; use --solver dopri5 or implicit)~");
   expect_pogear_error("generate scene.toml --solvers exact,dopri5 -o out", 2,

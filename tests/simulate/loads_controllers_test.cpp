@@ -6,6 +6,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "reference_model.hpp"
 #include "sim_support.hpp"
 
 namespace pogear::test {
@@ -44,6 +45,7 @@ TEST(SpeedController, PReachesItsSetPointWithTheClosedLoopTimeConstant) {
   const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m));
   ASSERT_TRUE(tr.status.ok) << tr.status.message;
   const double T = J_seen_from_a / kp;
+  EXPECT_EQ(system_diagnostics(m, m.main).growing_modes, 0);
   const std::vector<double> omega = column(tr, m.main, "omega_a"), torque = column(tr, m.main, "Tc_speed");
   for (std::size_t i = 0; i < tr.t.size(); ++i) {
     // Exact stepping of a 2-state linear system: rounding only, ~1e-15 of the scale per step.
@@ -105,6 +107,10 @@ TEST(SpeedController, MeasuresTheBodyItIsGiven) {
   const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m));
   ASSERT_TRUE(tr.status.ok) << tr.status.message;
   const double T = J_seen_from_a / (kp * ratio);
+  // The summary warns of it: one mode growing at 1 / T (an eigenvalue of M, to rounding).
+  const Diagnostics d = system_diagnostics(m, m.main);
+  EXPECT_EQ(d.growing_modes, 1);
+  EXPECT_NEAR(d.fastest_growth_rate, 1 / T, 1e-12 / T);
   const std::vector<double> omega_b = column(tr, m.main, "omega_b");
   for (std::size_t i = 0; i < tr.t.size(); i += 100) {
     const double expected = ref * (1 - std::exp(tr.t[i] / T));
