@@ -80,11 +80,7 @@ std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::n
     ControllerSpec c;
     c.name = std::string(key.str());
     c.where = r.loc(value);
-    const bool name_ok = !c.name.empty() && c.name.size() <= max_name_length &&
-                         std::isalpha(static_cast<unsigned char>(c.name[0])) &&
-                         std::all_of(c.name.begin(), c.name.end(),
-                                     [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; });
-    if (!name_ok)
+    if (!is_name(c.name) || c.name.size() > max_name_length)
       r.fail(value, fmt::format("controller name '{}' must be letters, digits and '_', from a letter, at most {} "
                                 "characters (it names the controller's variables in the generated code)",
                                 c.name, max_name_length));

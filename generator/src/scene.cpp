@@ -147,9 +147,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   s.digest = text_digest(text);
   s.name = fs::path(path).stem().string();
   if (const toml::node* n = root.get("name")) s.name = r.string(*n, "name");
-  const bool name_ok = !s.name.empty() && std::isalpha(static_cast<unsigned char>(s.name[0])) &&
-                       std::all_of(s.name.begin(), s.name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-  if (!name_ok)
+  if (!is_name(s.name))
     throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
                      fmt::format("scene name '{}' must be letters, digits and '_' (it names C++ code and files)", s.name));
   if (s.name.size() > max_name_length)
@@ -295,10 +293,6 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                                     "t = 0 is kp times the speed error: drop {}", c.name, name));
         s.initial[*v] = r.quantity(value, torque_dimension(), name);
       } else if (v->kind == VariableKind::velocity) {
-        // Hz is 1/s, which as a speed would be read as rad/s: 2 pi short of the revolutions it usually means.
-        if (value.is_string() && value.value<std::string>()->find("Hz") != std::string::npos)
-          r.fail(value, fmt::format("{} is in Hz, which for a speed could mean rev/s or rad/s; give it in rpm or rad/s, "
-                                    "e.g. \"600*rpm\"", name));
         s.initial[*v] = r.quantity(value, angular_velocity_dimension(), name);
       } else {
         if (!s.effects.mesh_compliance)

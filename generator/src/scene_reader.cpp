@@ -19,13 +19,12 @@ std::vector<std::string> SceneReader::strings(const toml::node& n, std::string_v
   return out;
 }
 
-double SceneReader::quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
-  const std::map<std::string, Quantity> known = parameter_quantities(*model);
+Quantity SceneReader::checked_quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
   Quantity q;
   if (n.is_integer() || n.is_floating_point()) {
     q.si = *n.value<double>();
   } else if (n.is_string()) {
-    q = evaluate_quantity(*n.value<std::string>(), known, loc(n), 1);
+    q = evaluate_quantity(*n.value<std::string>(), parameter_quantities(*model), loc(n), 1);
   } else {
     fail(n, fmt::format("{} must be a number (SI) or a string with a unit", what));
   }
@@ -42,6 +41,11 @@ double SceneReader::quantity(const toml::node& n, const Dimension& dim, std::str
       n.value<std::string>()->find("Hz") != std::string::npos)
     fail(n, fmt::format("{} is in Hz, which for a speed could mean rev/s or rad/s; give it in rpm or rad/s, e.g. "
                         "\"600*rpm\"", what));
+  return q;
+}
+
+double SceneReader::quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
+  const Quantity q = checked_quantity(n, dim, what);
   // A speed or a torque without a unit is ambiguous (rad/s or rpm? N m or kN m?): it needs one.
   if (!q.has_unit && (dim == angular_velocity_dimension() || dim == torque_dimension())) {
     const std::string value = n.is_string() ? *n.value<std::string>() : fmt::format("{}", q.si);
@@ -58,11 +62,12 @@ double SceneReader::coefficient(const toml::node& n, const Dimension& dim, std::
   if (n.is_string() && n.value<std::string>()->find("Hz") != std::string::npos)
     fail(n, fmt::format("{} is per Hz, which for a speed could mean per rev/s or per rad/s; give it per rad/s, e.g. "
                         "\"{}\"", what, example_unit));
-  const double v = quantity(n, dim, what);  // the dimension, when a unit is given
-  if (n.is_string() && evaluate_quantity(*n.value<std::string>(), parameter_quantities(*model), loc(n), 1).has_unit)
-    return v;
-  const std::string text = n.is_string() ? *n.value<std::string>() : fmt::format("{}", v);
-  fail(n, fmt::format("{} has no unit ({}); give it with its unit, e.g. \"{}\"", what, text, example_unit));
+  const Quantity q = checked_quantity(n, dim, what);
+  if (!q.has_unit) {
+    const std::string text = n.is_string() ? *n.value<std::string>() : fmt::format("{}", q.si);
+    fail(n, fmt::format("{} has no unit ({}); give it with its unit, e.g. \"{}\"", what, text, example_unit));
+  }
+  return q.si;
 }
 
 namespace {

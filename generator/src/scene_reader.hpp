@@ -27,6 +27,10 @@ struct SceneReader : TomlReader {
   // The same for a gain or a load coefficient (`example_unit` shows one): it needs a unit, and Hz is
   // refused, which per speed could mean per rev/s or per rad/s.
   double coefficient(const toml::node& n, const Dimension& dim, std::string_view what, std::string_view example_unit) const;
+
+ private:
+  // The quantity, checked: its dimension when it has a unit, finite, no Hz in a speed.
+  Quantity checked_quantity(const toml::node& n, const Dimension& dim, std::string_view what) const;
 };
 
 // What a signal of the scene is: an input torque, a dimensionless engagement command (piecewise

@@ -110,11 +110,14 @@ std::optional<std::string> TomlReader::optional_string(const toml::table& t, std
   return string(*n, what);
 }
 
+bool is_name(std::string_view s) {
+  return !s.empty() && std::isalpha(static_cast<unsigned char>(s[0])) &&
+         std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
 std::string TomlReader::identifier(const toml::node& n, std::string_view what) const {
   std::string s = string(n, what);
-  const bool ok = !s.empty() && std::isalpha(static_cast<unsigned char>(s[0])) &&
-                  std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-  if (!ok) fail(n, fmt::format("{} '{}' is not a name; use letters, digits and '_', starting with a letter", what, s));
+  if (!is_name(s)) fail(n, fmt::format("{} '{}' is not a name; use letters, digits and '_', starting with a letter", what, s));
   if (s.size() > max_name_length)
     fail(n, fmt::format("{} is {} characters long; names have at most {}", what, s.size(), max_name_length));
   return s;

@@ -50,4 +50,7 @@ struct TomlReader {
   std::string identifier(const toml::node& n, std::string_view what) const;
 };
 
+// Whether `s` is such a name's form: letters, digits and '_', from a letter (its length unchecked).
+bool is_name(std::string_view s);
+
 }  // namespace pogear

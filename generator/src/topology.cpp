@@ -226,10 +226,7 @@ void read_parameters(const TomlReader& r, const toml::table& params, Topology& t
     r.fail(params, fmt::format("{} parameters; a model has at most {}", params.size(), max_parameters));
   for (const auto& [key, node] : params) {
     const std::string name(key.str());
-    const bool ok = !name.empty() && std::isalpha(static_cast<unsigned char>(name[0])) &&
-                    std::all_of(name.begin(), name.end(), [](char c) {
-                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-                    });
+    const bool ok = is_name(name);
     if (!ok)
       throw InputError(toml_location(r.file, key.source()),
                        fmt::format("'{}' is not a parameter name; use letters, digits and '_', starting with a letter",

@@ -1103,7 +1103,7 @@ TEST_F(LoadsAndControllers, NegativeLoad) {
 
 TEST_F(LoadsAndControllers, LoadWithoutUnit) {
   expect_error("[loads]\nr = { constant = \"5\" }\n",
-               R"~(scene.toml:22:18: error: constant has no unit (5); a torque needs one, e.g. "5*N*m")~");
+               R"~(scene.toml:22:18: error: constant has no unit (5); give it with its unit, e.g. "5*N*m")~");
 }
 
 TEST_F(LoadsAndControllers, ControllersNotATable) {
