@@ -671,6 +671,15 @@ class HybridEngineCore {
       }
       return true;
     };
+    // A sample at the instant of an event sees the new mode, as with the exact method.
+    auto observe_event_instant = [&](double t_event) {
+      if (k >= grid.count || grid.at(k) != t_event) return true;
+      if (!observe(t_event, obs)) return false;
+      ++k;
+      events_in_sample_.assign(static_cast<std::size_t>(ne_), 0);
+      locations_in_sample_ = 0;
+      return true;
+    };
     while (k < grid.count) {
       while (next_break < breaks_.size() && breaks_[next_break] <= t) ++next_break;
       const bool before_break = next_break < breaks_.size();
@@ -747,7 +756,8 @@ class HybridEngineCore {
         }
       }
       if (hit < 0) {
-        if (!emit(t1, false)) return RunStatus{false, "stopped", t1};
+        // A sample on a breakpoint waits for the mode the breakpoint's commands resolve to.
+        if (!emit(t1, brk)) return RunStatus{false, "stopped", t1};
         add_dissipation(*s, t, t1, energy_);
         const double h_next = s->next_h(err, hs);
         // A step shortened to end on a stop says nothing against the step size before it.
@@ -759,6 +769,7 @@ class HybridEngineCore {
         if (brk) {
           if (!resolve(t, -1, on_event, error)) return fail(error, t);
           restart = true;
+          if (!observe_event_instant(t)) return RunStatus{false, "stopped", t};
         }
         continue;
       }
@@ -771,11 +782,7 @@ class HybridEngineCore {
       t = te;
       if (!resolve(t, element, on_event, error)) return fail(error, t);
       restart = true;
-      // A sample at the event's time sees the new mode.
-      if (k < grid.count && grid.at(k) == t) {
-        if (!observe(t, obs)) return RunStatus{false, "stopped", t};
-        ++k;
-      }
+      if (!observe_event_instant(t)) return RunStatus{false, "stopped", t};
     }
     return RunStatus{true, "", t};
   }
