@@ -43,11 +43,14 @@ struct TransferFunction {
   std::vector<ResonancePeak> peaks;
 };
 
-// x' = M x + N u, y = C x + D u in the coordinates of M's Hessenberg form: M = Q H Q^T, N~ = Q^T N,
-// C~ = C Q.
+// The diagonal D (powers of 2) that balances M: D^-1 M D has rows and columns of comparable norms.
+Eigen::VectorXd balancing_scales(const Eigen::MatrixXd& M);
+
+// x' = M x + N u, y = C x + D u in the coordinates of the Hessenberg form of balanced M:
+// D^-1 M D = Q H Q^T, N~ = Q^T D^-1 N, C~ = C D Q.
 struct HessenbergSystem {
   Eigen::MatrixXd H, N, C, D;
-  double norm_M = 0;  // Frobenius
+  double norm_M = 0;  // Frobenius, of the balanced M
 };
 // The system y = C x + D u + E x' of `s` (E reads x' of a rigid model's mesh forces) as above.
 HessenbergSystem hessenberg_system(const NumericSystem& s);
