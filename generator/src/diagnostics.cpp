@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "matrix_balancing.hpp"
 #include "pogear/stability_limit.hpp"
 
 namespace pogear {
@@ -27,7 +28,9 @@ std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v
 
 Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R, double sample) {
   Diagnostics d;
-  const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(M, false).eigenvalues();
+  // Balanced first (exact, the same eigenvalues): unbalanced, the mesh-force rows of a very stiff
+  // gear ruled the rounding, and modes of a passive gear came out growing.
+  const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(balanced(M), false).eigenvalues();
   d.fastest_rate = lambda.cwiseAbs().maxCoeff();
   d.fastest_time_constant = d.fastest_rate > 0 ? 1 / d.fastest_rate : std::numeric_limits<double>::infinity();
   double slowest_decay = std::numeric_limits<double>::infinity();

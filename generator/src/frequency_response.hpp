@@ -43,9 +43,6 @@ struct TransferFunction {
   std::vector<ResonancePeak> peaks;
 };
 
-// The diagonal D (powers of 2) that balances M: D^-1 M D has rows and columns of comparable norms.
-Eigen::VectorXd balancing_scales(const Eigen::MatrixXd& M);
-
 // x' = M x + N u, y = C x + D u in the coordinates of the Hessenberg form of balanced M:
 // D^-1 M D = Q H Q^T, N~ = Q^T D^-1 N, C~ = C D Q.
 struct HessenbergSystem {

@@ -299,7 +299,10 @@ Quantity evaluate_quantity(std::string_view text, const std::map<std::string, Qu
   return Parser(text, known, where, column_offset).parse();
 }
 
-std::vector<std::string> referenced_names(std::string_view text) {
+namespace {
+
+// The identifiers of an expression that are units (or not), in order of appearance.
+std::vector<std::string> identifiers(std::string_view text, bool units) {
   std::vector<std::string> names;
   std::size_t i = 0;
   while (i < text.size()) {
@@ -308,7 +311,7 @@ std::vector<std::string> referenced_names(std::string_view text) {
       while (j < text.size() && is_ident_char(text[j])) ++j;
       std::string id(text.substr(i, j - i));
       const bool exponent_of_number = (id == "e" || id == "E");
-      if (!find_unit(id) && !exponent_of_number) names.push_back(std::move(id));
+      if ((find_unit(id) != nullptr) == units && !exponent_of_number) names.push_back(std::move(id));
       i = j;
     } else {
       ++i;
@@ -316,6 +319,11 @@ std::vector<std::string> referenced_names(std::string_view text) {
   }
   return names;
 }
+
+}  // namespace
+
+std::vector<std::string> referenced_names(std::string_view text) { return identifiers(text, false); }
+std::vector<std::string> referenced_units(std::string_view text) { return identifiers(text, true); }
 
 bool is_unit_name(std::string_view name) { return find_unit(name) != nullptr; }
 

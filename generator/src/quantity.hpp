@@ -51,6 +51,8 @@ Quantity evaluate_quantity(std::string_view text, const std::map<std::string, Qu
 
 // The names a quantity expression refers to that are not units, in order of appearance.
 std::vector<std::string> referenced_names(std::string_view text);
+// The units it names, in order of appearance.
+std::vector<std::string> referenced_units(std::string_view text);
 
 bool is_unit_name(std::string_view name);
 std::string known_units_list();

@@ -19,7 +19,7 @@ std::vector<std::string> SceneReader::strings(const toml::node& n, std::string_v
   return out;
 }
 
-Quantity SceneReader::checked_quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
+Quantity SceneReader::evaluated(const toml::node& n, const Dimension& dim, std::string_view what) const {
   Quantity q;
   if (n.is_integer() || n.is_floating_point()) {
     q.si = *n.value<double>();
@@ -34,6 +34,11 @@ Quantity SceneReader::checked_quantity(const toml::node& n, const Dimension& dim
                               describe(dim))
                 : fmt::format("{} has unit {}; it needs {}", what, describe(q.dimension), describe(dim)));
   if (!std::isfinite(q.si)) fail(n, fmt::format("{} is not finite", what));
+  return q;
+}
+
+Quantity SceneReader::checked_quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
+  const Quantity q = evaluated(n, dim, what);
   // Hz is 1/s, which in a speed would be read as rad/s: 2 pi short of the revolutions it usually means.
   Dimension acceleration = angular_velocity_dimension();
   acceleration.exponent[2] -= 1;
@@ -55,6 +60,20 @@ double SceneReader::quantity(const toml::node& n, const Dimension& dim, std::str
                               value, value, value));
   }
   return q.si;
+}
+
+double SceneReader::frequency_hz(const toml::node& n, std::string_view what) const {
+  // rpm, rev, rad, deg and pi make a speed in rad/s, which as a frequency would be read as cycles per
+  // second: 60*rpm would be 2 pi Hz.
+  if (n.is_string())
+    for (const std::string& unit : referenced_units(*n.value<std::string>()))
+      if (unit == "rpm" || unit == "rev" || unit == "rad" || unit == "deg" || unit == "pi")
+        fail(n, fmt::format("{} is in cycles per second; give it in Hz or kHz, e.g. \"50*Hz\" ({} would make it an "
+                            "angular speed, 2 pi times the frequency: 3000*rpm turns at 50*Hz)",
+                            what, unit));
+  Dimension hz;
+  hz.exponent[2] = -1;
+  return evaluated(n, hz, what).si;
 }
 
 double SceneReader::coefficient(const toml::node& n, const Dimension& dim, std::string_view what,
@@ -137,9 +156,7 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
     rt::Sine s;
     s.amplitude = r.quantity(*v, torque, "sine (its amplitude)");
     if (!get("frequency")) r.fail(n, "a sine needs frequency = \"<f>*Hz\"");
-    Dimension hz;
-    hz.exponent[2] = -1;
-    s.frequency_hz = r.quantity(*get("frequency"), hz, "frequency");
+    s.frequency_hz = r.frequency_hz(*get("frequency"), "frequency");
     if (get("phase")) s.phase_rad = r.quantity(*get("phase"), Dimension{}, "phase");
     if (get("offset")) s.offset = r.quantity(*get("offset"), torque, "offset");
     return s;

@@ -27,9 +27,14 @@ struct SceneReader : TomlReader {
   // The same for a gain or a load coefficient (`example_unit` shows one): it needs a unit, and Hz is
   // refused, which per speed could mean per rev/s or per rad/s.
   double coefficient(const toml::node& n, const Dimension& dim, std::string_view what, std::string_view example_unit) const;
+  // A frequency in Hz (cycles per second): angle units are refused, which would make it an angular
+  // speed read as cycles, 2 pi off.
+  double frequency_hz(const toml::node& n, std::string_view what) const;
 
  private:
-  // The quantity, checked: its dimension when it has a unit, finite, no Hz in a speed.
+  // The quantity, checked: its dimension when it has a unit, finite.
+  Quantity evaluated(const toml::node& n, const Dimension& dim, std::string_view what) const;
+  // The same, and no Hz in a speed.
   Quantity checked_quantity(const toml::node& n, const Dimension& dim, std::string_view what) const;
 };
 

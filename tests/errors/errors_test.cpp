@@ -791,6 +791,8 @@ TEST_F(Signals, RampSlopeUnit) { expect_signal_error(R"({ ramp = "50*Nm" })",
     R"~(scene.toml:9:18: error: ramp (a slope, e.g. "50*Nm/s") has unit kg*m^2/s^2; it needs kg*m^2/s^3)~"); }
 TEST_F(Signals, SineWithoutFrequency) { expect_signal_error(R"({ sine = "10*Nm" })",
     R"~(scene.toml:9:9: error: a sine needs frequency = "<f>*Hz")~"); }
+TEST_F(Signals, SineFrequencyInRpm) { expect_signal_error(R"({ sine = "10*Nm", frequency = "60*rpm" })",
+    R"~(scene.toml:9:39: error: frequency is in cycles per second; give it in Hz or kHz, e.g. "50*Hz" (rpm would make it an angular speed, 2 pi times the frequency: 3000*rpm turns at 50*Hz))~"); }
 TEST_F(Signals, UnknownForm) { expect_signal_error(R"({ pulse = "10*Nm" })",
     R"~(scene.toml:9:9: error: a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., frequency = ... } or { table = "file.csv" })~"); }
 

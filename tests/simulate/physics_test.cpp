@@ -1,5 +1,9 @@
 // Physics along simulated trajectories: the elastic model tends to the rigid one as K grows
-// (the paper's claim), eq. (8) recovers the elastic forces, and power balances (docs/design.md §3).
+// (the paper's claim), eq. (8) recovers the elastic forces, and power balances (docs/design.md §3);
+// a sine input at its frequency.
+#include <numbers>
+#include <variant>
+
 #include "sim_support.hpp"
 
 namespace pogear::test {
@@ -39,6 +43,33 @@ Gaps elastic_rigid_gaps(const std::string& scene, const std::string& overrides, 
 // and it decays at a rate set by the mesh damping b_K, not by K. So over a x100 change of K the
 // gap falls 100x where the oscillation has died out, 10x (velocities) and 1x (forces) where it
 // has not.
+// A sine's frequency is in cycles per second: on the rigid gear pair of tests/vibration (no bearing
+// friction) a torque A sin(2 pi f t) on a turns it at A (1 - cos(2 pi f t)) / (2 pi f J), J the
+// inertia reduced to a. Given in Hz or kHz the frequency is f; an angle unit (60*rpm was read as
+// 2 pi Hz) is refused (Signals.SineFrequencyInRpm).
+TEST(SineInput, FrequencyIsInCyclesPerSecond) {
+  for (const std::string frequency : {"5*Hz", "0.005*kHz"}) {
+    SCOPED_TRACE(frequency);
+    const SpecializedScene m = scene_model(
+        "name = \"sine\"\nmodel = \"../../tests/vibration/pair.toml\"\nkeep = [\"a\"]\neffects = []\n"
+        "[inputs]\ntau_a = { sine = \"2*Nm\", frequency = \"" + frequency + "\" }\n"
+        "[simulation]\nhorizon = \"1*s\"\nsample = \"1*ms\"\nsolver = \"dopri5\"\ntolerance = 1e-12\n");
+    ASSERT_EQ(m.scene.inputs.size(), 1u);
+    ASSERT_TRUE(std::holds_alternative<rt::Sine>(m.scene.inputs[0].signal));
+    EXPECT_DOUBLE_EQ(std::get<rt::Sine>(m.scene.inputs[0].signal).frequency_hz, 5);
+    const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, rt::Solver::dopri5));
+    ASSERT_TRUE(tr.status.ok) << tr.status.message;
+    const double A = 2, f = 5, ra = 0.10, rb = 0.25, J = 0.02 + 0.3 * (ra / rb) * (ra / rb);  // pair.toml
+    const double w = 2 * std::numbers::pi * f;
+    double worst = 0;
+    for (std::size_t i = 0; i < tr.t.size(); ++i)
+      worst = std::max(worst, std::abs(tr.x[i](0) - A * (1 - std::cos(w * tr.t[i])) / (w * J)));
+    // dopri5 at 1e-12: a global error of about 1e-11 of the speed's 2A/(wJ) = 0.38 rad/s; a frequency
+    // 2 pi off would miss by the whole swing.
+    EXPECT_LE(worst, 1e-9 * 2 * A / (w * J));
+  }
+}
+
 TEST(ElasticToRigid, TwoStageGapFallsAsOneOverK) {
   // b_sp = 8 N s/cm damps the meshes within ~0.1 s: by 0.5 s only the O(1/K) part is left.
   const Gaps soft = elastic_rigid_gaps("paper_two_stage", "", 1, 0.5);

@@ -151,6 +151,20 @@ TEST(Diagnostics, UndampedFastModesAreStiff) {
       << d.reason;
 }
 
+TEST(Diagnostics, AVeryStiffPassiveGearHasNoGrowingMode) {
+  // The one-stage gear with bearing friction and undamped meshes as stiff as 1e18 and 1e20 N/m:
+  // passive, so no mode grows. Its eigenvalues computed from M unbalanced (mesh-force rows 1e20
+  // times the speed rows) had real parts of rounding's size, and up to 7 modes were called
+  // growing, the scene "unstable".
+  for (const char* K : {"1e18", "1e20"}) {
+    std::string text = with_effects(scene_text("paper_one_stage"), "\"mesh_compliance\", \"bearing_friction\"");
+    text = with_parameters(text, fmt::format("K_ps = \"{}*N/m\"\nK_pr = \"{}*N/m\"", K, K));
+    const SpecializedScene m = scene_model(text);
+    const Diagnostics d = system_diagnostics(m, m.main);
+    EXPECT_EQ(d.growing_modes, 0) << K << ": the fastest grows by e in " << 1 / d.fastest_growth_rate << " s";
+  }
+}
+
 TEST(Diagnostics, ThePaperScenesStayNotStiff) {
   // The fastest time scale of the paper's scenes (~1 ms) is that of their 1 ms sample period.
   for (const char* name : {"paper_one_stage", "paper_two_stage"}) {
