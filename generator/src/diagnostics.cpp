@@ -84,7 +84,8 @@ Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const 
                       "method's step, damped or not", number(d.fastest_time_constant), number(steps_per_sample));
   }
   d.adaptive_solver = why.empty() ? "dopri5" : "implicit";
-  d.reason = fmt::format("the scene is linear: exact stepping is exact up to rounding, or refuses the step; among "
+  d.reason = fmt::format("the scene is linear: exact stepping is exact up to rounding for piecewise-linear inputs, or "
+                         "refuses the step; among "
                          "adaptive methods use {}",
                          why.empty() ? "dopri5 (not stiff)" : fmt::format("implicit ({})", why));
   return d;

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <variant>
 
+#include "codegen.hpp"
 #include "sim_support.hpp"
 
 namespace pogear::test {
@@ -68,6 +69,31 @@ TEST(SineInput, FrequencyIsInCyclesPerSecond) {
     // 2 pi off would miss by the whole swing.
     EXPECT_LE(worst, 1e-9 * 2 * A / (w * J));
   }
+}
+
+// Exact stepping holds a sine linear over the scene's step; the summary says what that costs,
+// (w h)^2 / 12 of the sine's effect, and warns above 1e-6. On the gear pair, which integrates its
+// torque, the hold is the trapezoidal rule, whose error on a sine is that to leading order.
+TEST(SineInput, ExactSteppingStatesTheErrorOfItsHold) {
+  const SpecializedScene m = scene_model(
+      "name = \"sine\"\nmodel = \"../../tests/vibration/pair.toml\"\nkeep = [\"a\"]\neffects = []\n"
+      "[inputs]\ntau_a = { sine = \"2*Nm\", frequency = \"5*Hz\" }\n"
+      "[simulation]\nhorizon = \"1*s\"\nsample = \"10*ms\"\nsolver = \"exact\"\nstep = \"2*ms\"\n");
+  const double A = 2, f = 5, h = 2e-3, ra = 0.10, rb = 0.25, J = 0.02 + 0.3 * (ra / rb) * (ra / rb);
+  const double w = 2 * std::numbers::pi * f, estimate = (w * h) * (w * h) / 12;
+  const std::string summary = operation_summary(m);
+  EXPECT_NE(summary.find(fmt::format("warning: sine input tau_a (5 Hz): exact stepping holds it linear over steps of "
+                                     "0.002 s, an error of about {:.2g} of its effect", estimate)),
+            std::string::npos)
+      << summary;
+  const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, rt::Solver::exact));
+  ASSERT_TRUE(tr.status.ok) << tr.status.message;
+  double worst = 0;
+  for (std::size_t i = 0; i < tr.t.size(); ++i)
+    worst = std::max(worst, std::abs(tr.x[i](0) - A * (1 - std::cos(w * tr.t[i])) / (w * J)));
+  // Relative to the largest speed 2 A / (w J) (the trapezoidal rule errs by (h^2 / 12)(u'(t) - u'(0)),
+  // at most (w h)^2 / 6 of A / (w J)): the leading-order estimate, within 10 % for its higher orders.
+  EXPECT_NEAR(worst / (2 * A / (w * J)), estimate, 0.1 * estimate);
 }
 
 TEST(ElasticToRigid, TwoStageGapFallsAsOneOverK) {
