@@ -8,7 +8,6 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <numbers>
 #include <stdexcept>
 #include <variant>
 
@@ -317,82 +316,6 @@ GeneratedSources generate_sources(const SpecializedScene& model, std::vector<rt:
     throw InputError(SourceLocation{model.scene.file, 0, 0},
                      fmt::format("cannot generate the simulator: {}; report this scene as a pogear bug", e.what()));
   }
-}
-
-// What the scene's loads and controllers make of the equations, for the summary.
-std::string loads_and_controllers_note(const SpecializedScene& model) {
-  const Scene& sc = model.scene;
-  const Topology& t = model.derivation.topology;
-  std::string s;
-  for (const LoadSpec& l : sc.loads) {
-    std::vector<std::string> parts;
-    if (l.constant != 0) parts.push_back("constant (an input)");
-    if (l.linear != 0) parts.push_back("linear in speed (a damping: linear)");
-    if (l.quadratic != 0) parts.push_back("quadratic in speed (nonlinear)");
-    s += fmt::format("load on {}: {}\n", t.bodies[static_cast<std::size_t>(l.body)].name,
-                     parts.empty() ? std::string("zero") : joined(parts));
-  }
-  for (const ControllerSpec& c : sc.controllers)
-    s += fmt::format("controller {}: {} torque on {} for the speed of {}, its integral theta_{} a state{}\n",
-                     c.name, c.kp != 0 && c.ki != 0 ? "PI" : c.kp != 0 ? "P" : "I", t.bodies[static_cast<std::size_t>(c.body)].name,
-                     t.bodies[static_cast<std::size_t>(c.measured)].name, c.name,
-                     c.limited() ? fmt::format("; torque from {} to {} N m, events at the limits, where its integral "
-                                               "tracks the limit (time constant {} s)", c.torque_min, c.torque_max,
-                                               c.tracking_time)
-                                 : std::string(" (linear)"));
-  if (model.main.nonlinear)
-    s += fmt::format("nonlinear (quadratic loads): integrated by {}{}; exact stepping needs a linear scene\n",
-                     rt::solver_name(sc.solver),
-                     sc.solver == rt::Solver::rk4 ? fmt::format(", fixed step {} s", sc.step)
-                                                  : fmt::format(", adaptive steps at tolerance {}", sc.tolerance));
-  return s;
-}
-
-// What exact stepping makes of the scene's sine inputs: it holds each linear over the scene's step,
-// which errs by about (w h)^2 / 12 of the sine's effect (the hold's error, A (w h)^2 / 8 at most
-// mid-step, averaged over the step). Above 1e-6 that is a warning: no longer "exact".
-std::string sine_inputs_note(const SpecializedScene& model) {
-  const Scene& sc = model.scene;
-  if (sc.solver != rt::Solver::exact) return {};
-  std::string s;
-  const double h = std::min(sc.sample, sc.step);
-  for (const InputSpec& in : sc.inputs) {
-    const auto* sine = std::get_if<rt::Sine>(&in.signal);
-    if (!sine || sine->amplitude == 0 || sine->frequency_hz == 0) continue;
-    const double wh = 2 * std::numbers::pi * std::abs(sine->frequency_hz) * h;
-    const double error = wh * wh / 12;
-    const double step_for_1e8 = std::sqrt(12 * 1e-8) / (2 * std::numbers::pi * std::abs(sine->frequency_hz));
-    s += fmt::format("{}sine input {} ({} Hz): exact stepping holds it linear over steps of {} s, an error of about "
-                     "{:.2g} of its effect; for 1e-8 take step <= {:.2g} s, or use dopri5\n",
-                     error > 1e-6 ? "warning: " : "",
-                     variable_name(model.derivation.topology, Variable{VariableKind::torque, in.body}),
-                     sine->frequency_hz, h, error, step_for_1e8);
-  }
-  return s;
-}
-
-std::string operation_summary(const SpecializedScene& model) {
-  std::string s;
-  auto one = [&](const SpecializedSystem& sys) {
-    s += fmt::format("{} ({} states, {} inputs, {} outputs): rhs {}; outputs {}\n", kind_name(sys.kind), sys.states.size(),
-                     sys.inputs.size(), sys.outputs.size(), operation_text(sys.rhs_ops).str(), operation_text(sys.output_ops).str());
-    s += diagnostics_text(system_diagnostics(model, sys), "  ");
-  };
-  one(model.main);
-  s += initial_deflection_note(model);
-  s += loads_and_controllers_note(model);
-  s += sine_inputs_note(model);
-  if (model.rigid) one(*model.rigid);
-  if (!model.friction.empty()) {
-    std::string names;
-    for (const FrictionRun& f : model.friction) names += (names.empty() ? "" : ", ") + f.name + (f.one_way ? " (one-way)" : "");
-    const Topology& t = model.derivation.topology;
-    s += fmt::format("brakes and clutches: {} engaged ({}), {} open throughout; modes (sets of stuck elements): at "
-                     "most {}, each formed by the simulator when a run first reaches it\n",
-                     model.friction.size(), names, t.friction_elements.size() - model.friction.size(),
-                     std::size_t{1} << model.friction.size());
-  }
-  return s;
 }
 
 }  // namespace pogear

@@ -19,7 +19,4 @@ struct GeneratedSources {
 // none given: the scene's solver only.
 GeneratedSources generate_sources(const SpecializedScene& model, std::vector<rt::Solver> solvers = {});
 
-// "rhs: 38 operations (24 multiplications, 14 additions); outputs: ..." for each system.
-std::string operation_summary(const SpecializedScene& model);
-
 }  // namespace pogear

@@ -19,6 +19,7 @@
 #include "ratios_report.hpp"
 #include "pogear/run_limits.hpp"
 #include "response_report.hpp"
+#include "run_summary.hpp"
 #include "report.hpp"
 #include "simulate_scene.hpp"
 #include "simulator_cache.hpp"

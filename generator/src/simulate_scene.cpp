@@ -12,6 +12,7 @@
 
 #include "child_process.hpp"
 #include "codegen.hpp"
+#include "run_summary.hpp"
 #include "input_error.hpp"
 #include "interpreted_run.hpp"
 #include "output_file.hpp"
