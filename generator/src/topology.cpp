@@ -72,8 +72,15 @@ void check_unique_names(const Topology& t, bool meshes) {
     for (const auto& w : b.wheels)
       if (!(b.wheels.size() == 1 && w.name == b.name)) claim(w.name, w.where, "wheel");
   seen.clear();
-  if (meshes)
-    for (const auto& m : t.meshes) claim(m.name, m.where, "mesh");
+  if (!meshes) return;
+  for (const auto& m : t.meshes) {
+    claim(m.name, m.where, "mesh");
+    // A body's bearing friction and a mesh's damping are both b_<name>: one name, two parameters.
+    if (const int b = find_body(t, m.name); b >= 0)
+      throw InputError(m.where, fmt::format("mesh '{}' has the name of the body at line {}: the body's bearing friction "
+                                            "and the mesh's damping would both be b_{}; give the mesh another name",
+                                            m.name, t.bodies[static_cast<std::size_t>(b)].where.line, m.name));
+  }
 }
 
 void check_carriers(Topology& t) {

@@ -250,6 +250,11 @@ TEST_F(ModelStructure, DuplicateMeshName) {
       R"~(gear.toml:33:9: error: duplicate name 'ps' (mesh); it is already used at line 25)~");
 }
 
+TEST_F(ModelStructure, MeshNamedLikeABody) {
+  expect_model_error({{R"(second = "g")", "second = \"g\"\nname = \"c\""}},
+      R"~(gear.toml:33:9: error: mesh 'c' has the name of the body at line 6: the body's bearing friction and the mesh's damping would both be b_c; give the mesh another name)~");
+}
+
 TEST_F(ModelStructure, KeepNotAList) {
   expect_model_error({{R"(keep = ["c", "r"])", R"(keep = "c")"}},
       R"~(gear.toml:3:8: error: keep must be a list of body names, e.g. keep = ["c", "r"])~");
