@@ -115,8 +115,9 @@ std::string diagnostics_text(const Diagnostics& d, const std::string& in) {
     s += fmt::format("; for 1 % take sample <= {} s\n", number(std::acos(0.99) / (std::numbers::pi * f)));
   }
   if (d.lowest_natural_frequency_hz)
-    s += fmt::format("{}lowest natural frequency {} Hz (undamped elastic model): the rigid model holds for inputs "
-                     "well below it\n", in, fmt::format("{:.6g}", *d.lowest_natural_frequency_hz));
+    s += fmt::format("{}lowest natural frequency {} Hz (undamped elastic model{}): the rigid model holds for inputs "
+                     "well below it\n", in, fmt::format("{:.6g}", *d.lowest_natural_frequency_hz),
+                     d.natural_frequency_of.empty() ? "" : ", " + d.natural_frequency_of);
   else if (!d.natural_frequency_note.empty())
     s += fmt::format("{}lowest natural frequency not computed: {}\n", in, d.natural_frequency_note);
   return s;

@@ -33,6 +33,7 @@ struct Diagnostics {
   // rigid model holds. None, with the reason, when it cannot be computed accurately.
   std::optional<double> lowest_natural_frequency_hz;
   std::string natural_frequency_note;
+  std::string natural_frequency_of;   // the gear it is of, when not the free one: 'C1, B1 engaged'
 };
 
 // M: the system matrix of the simulated model (elastic or rigid); L1, R: numeric. sample: the

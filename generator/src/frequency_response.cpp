@@ -5,20 +5,30 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdint>
 #include <numbers>
+#include <optional>
+#include <string>
 
+#include <fmt/format.h>
+
+#include "input_error.hpp"
 #include "matrix_balancing.hpp"
+#include "pogear/hybrid_modes.hpp"
 #include "specialization.hpp"
 
 namespace pogear {
 
-HessenbergSystem hessenberg_system(const NumericSystem& s) {
+HessenbergSystem hessenberg_system(const NumericSystem& s, const MatrixErrors* errors) {
+  return hessenberg_system(s, errors, balancing_scales(s.M));
+}
+
+HessenbergSystem hessenberg_system(const NumericSystem& s, const MatrixErrors* errors, const Eigen::VectorXd& d) {
   // Balanced first: D^-1 M D with D of powers of 2 is exact and has the same H, and the rounding
   // bounds below are normwise, so they are only as good as M's rows and columns are comparable. The
   // states mix speeds (rad/s) with mesh forces (N), whose rows of M are up to 1e9 times larger: an
   // unbalanced bound of 1e-6 |H| failed at every frequency on a vehicle driveline where the
   // balanced one holds with digits to spare.
-  const Eigen::VectorXd d = balancing_scales(s.M);
   const Eigen::MatrixXd Mb = d.cwiseInverse().asDiagonal() * s.M * d.asDiagonal();
   const Eigen::HessenbergDecomposition<Eigen::MatrixXd> hd(Mb);
   const Eigen::MatrixXd Q = hd.matrixQ();
@@ -28,6 +38,17 @@ HessenbergSystem hessenberg_system(const NumericSystem& s) {
   out.C = (s.C + s.E * s.M) * d.asDiagonal() * Q;
   out.D = s.D + s.E * s.N;
   out.norm_M = Mb.norm();
+  out.error_N = Eigen::VectorXd::Zero(s.N.cols());
+  out.error_C = Eigen::VectorXd::Zero(out.C.rows());
+  out.error_D = Eigen::MatrixXd::Zero(out.D.rows(), out.D.cols());
+  if (errors) {
+    // The same balancing and unitary Q: 2-norms of columns (N) and rows (C) are Q's invariants.
+    const Eigen::MatrixXd E = s.E.cwiseAbs();
+    out.error_M = (d.cwiseInverse().asDiagonal() * errors->M * d.asDiagonal()).norm();
+    out.error_N = (d.cwiseInverse().asDiagonal() * errors->N).colwise().norm().transpose();
+    out.error_C = ((errors->C + E * errors->M) * d.asDiagonal()).rowwise().norm();
+    out.error_D = errors->D + E * errors->N;
+  }
   return out;
 }
 
@@ -70,7 +91,9 @@ TransferValues transfer_matrix(const HessenbergSystem& s, double omega) {
   out.error.resize(out.H.rows(), out.H.cols());
   for (Eigen::Index o = 0; o < out.H.rows(); ++o)
     for (Eigen::Index i = 0; i < out.H.cols(); ++i)
-      out.error(o, i) = gamma * ((norm_A + s.norm_M) * Yt.col(o).norm() * X.col(i).norm() + terms(o, i));
+      out.error(o, i) = gamma * ((norm_A + s.norm_M) * Yt.col(o).norm() * X.col(i).norm() + terms(o, i)) +
+                        Yt.col(o).norm() * (s.error_M * X.col(i).norm() + s.error_N(i)) +
+                        s.error_C(o) * X.col(i).norm() + s.error_D(o, i);
   return out;
 }
 
@@ -111,25 +134,91 @@ std::string unit_text(Variable v) {
   return u.find_first_of("/ ") == std::string::npos ? u : "(" + u + ")";
 }
 
+// The system the response is of: the specialized one, or, when it has engaged brakes and clutches
+// or torque-limited controllers, its mode with every element stuck and every controller within its
+// limits (hybrid_modes.hpp): dx/dt = A x + B u, and the elements' and controllers' torques
+// T = Kx x + Kv u folded into the outputs, which read them as inputs.
+struct AnalysedSystem {
+  NumericSystem system;
+  std::optional<MatrixErrors> errors;  // of a mode's matrices
+  Eigen::VectorXd balance;             // the scales that balance the system's M
+};
+
+AnalysedSystem analysed_system(const SpecializedScene& model, const SpecializedSystem& sys) {
+  NumericSystem ns = numeric_system(model, sys);
+  const auto nu = static_cast<Eigen::Index>(sys.input_signals.size());
+  const auto ne = static_cast<Eigen::Index>(sys.friction_elements.size() + sys.limited_controllers.size());
+  if (ne == 0) {
+    Eigen::VectorXd d = balancing_scales(ns.M);
+    return {std::move(ns), std::nullopt, std::move(d)};
+  }
+  const rt::hybrid_detail::ModeMatrices m =
+      rt::hybrid_detail::mode_matrices(hybrid_system(model, sys, ns), (std::uint32_t{1} << ne) - 1);
+  if (m.singular) {
+    std::string names;
+    for (const FrictionRun& f : model.friction) names += (names.empty() ? "" : ", ") + f.name;
+    throw InputError(SourceLocation{model.scene.file, 0, 0},
+                     fmt::format("the engaged elements {} constrain the gear more than once (their torques are "
+                                 "undetermined); engage fewer of them",
+                                 names));
+  }
+  // m.stuck lists the elements, then the controllers: the order of their torque columns.
+  const Eigen::MatrixXd Dt = ns.D.middleCols(nu, ne), Nt = ns.N.middleCols(nu, ne);
+  NumericSystem out;
+  out.M = m.A;
+  out.N = m.B.leftCols(nu);
+  out.C = ns.C + Dt * m.Kx;
+  out.D = ns.D.leftCols(nu) + Dt * m.Kv.leftCols(nu);
+  out.E = ns.E;
+  // Each entry is a sum of products of the system's entries with the torques' gains, rounded: a few
+  // ulps of the sum of their magnitudes. An entry that is zero in exact arithmetic (a locked gear's
+  // B) comes out as that rounding, and the bound keeps it from being read as a response.
+  const double gamma = 8 * static_cast<double>(ns.M.rows() + ne) * std::numeric_limits<double>::epsilon();
+  const Eigen::MatrixXd Kx = m.Kx.cwiseAbs(), Kv = m.Kv.leftCols(nu).cwiseAbs();
+  MatrixErrors e;
+  e.M = gamma * (ns.M.cwiseAbs() + Nt.cwiseAbs() * Kx);
+  e.N = gamma * (ns.N.leftCols(nu).cwiseAbs() + Nt.cwiseAbs() * Kv);
+  e.C = gamma * (ns.C.cwiseAbs() + Dt.cwiseAbs() * Kx);
+  e.D = gamma * (ns.D.leftCols(nu).cwiseAbs() + Dt.cwiseAbs() * Kv);
+  // Balanced as the system's M, not as A: a stuck body's row of A is zero in exact arithmetic, and
+  // balancing A would scale its rounding up without limit.
+  return {std::move(out), std::move(e), balancing_scales(ns.M)};
+}
+
 }  // namespace
 
-std::vector<TransferFunction> frequency_response(const Scene& scene, const std::vector<Variable>& inputs,
-                                                 const std::vector<Variable>& outputs, const FrequencyGrid& grid) {
-  // The scene's system with unit inputs on the asked bodies and the asked outputs: its
-  // specialization gives N, C, D, E for exactly these (a zero input would not be an input).
+Scene response_scene(const Scene& scene, const std::vector<Variable>& inputs, const std::vector<Variable>& outputs,
+                     const std::vector<int>& engaged) {
+  // Unit inputs on the asked bodies and the asked outputs: the specialization gives N, C, D, E for
+  // exactly these (a zero input would not be an input).
   Scene s = scene;
   s.inputs.clear();
   for (const Variable u : inputs) s.inputs.push_back(InputSpec{u.index, rt::Constant{1}, {}});
   s.outputs = outputs;
+  // The engaged elements stuck throughout, the others open (out of the equations).
+  s.engagement.clear();
+  for (const int k : engaged) s.engagement.push_back(EngagementSpec{k, rt::Constant{1}, {}});
+  return s;
+}
+
+std::vector<TransferFunction> frequency_response(const Scene& scene, const std::vector<Variable>& inputs,
+                                                 const std::vector<Variable>& outputs, const FrequencyGrid& grid,
+                                                 const std::vector<int>& engaged) {
+  Scene s = response_scene(scene, inputs, outputs, engaged);
   for (const Variable y : outputs) s.effects.mesh_forces = s.effects.mesh_forces || y.kind == VariableKind::force;
   s.compare_rigid = s.effects.mesh_compliance;
   s.tunable.clear();
   s.start = Start::given;      // the response is of the system, from any state
   s.speeds_in_rpm = false;     // transfer functions in SI
   const SpecializedScene model = specialize(s);
-  const HessenbergSystem main = hessenberg_system(numeric_system(model, model.main));
+  const AnalysedSystem main_system = analysed_system(model, model.main);
+  const HessenbergSystem main = hessenberg_system(main_system.system, main_system.errors ? &*main_system.errors : nullptr,
+                                                  main_system.balance);
   std::optional<HessenbergSystem> rigid;
-  if (model.rigid) rigid = hessenberg_system(numeric_system(model, *model.rigid));
+  if (model.rigid) {
+    const AnalysedSystem r = analysed_system(model, *model.rigid);
+    rigid = hessenberg_system(r.system, r.errors ? &*r.errors : nullptr, r.balance);
+  }
 
   const std::vector<double> f = log_grid(grid);
   const std::size_t nu = inputs.size(), ny = outputs.size();
@@ -164,7 +253,7 @@ std::vector<TransferFunction> frequency_response(const Scene& scene, const std::
     // The resonances are poles at the natural frequencies: each one a pair whose output sees it
     // shows |H| growing as 1/distance (10^4 times from 1e-3 to 1e-7 away); a mode the input does
     // not excite, or the output does not see, leaves |H| flat there.
-    const Eigen::VectorXcd poles = Eigen::EigenSolver<Eigen::MatrixXd>(balanced(numeric_system(model, model.main).M), false).eigenvalues();
+    const Eigen::VectorXcd poles = Eigen::EigenSolver<Eigen::MatrixXd>(balanced(main_system.system.M), false).eigenvalues();
     std::vector<double> natural;
     for (Eigen::Index k = 0; k < poles.size(); ++k) {
       const double fn = poles(k).imag() / (2 * std::numbers::pi);

@@ -151,6 +151,7 @@ int main(int argc, char** argv) {
   response->add_option("--output", response_outputs, "Outputs, comma-separated: omega_<body> or F_<mesh>")->required();
   response->add_option("--from", response_request.from, "Lowest frequency, e.g. 1*Hz (default)");
   response->add_option("--to", response_request.to, "Highest frequency, e.g. 10*kHz (default)");
+  response->add_option("--engaged", response_request.engaged, "Brakes and clutches stuck (the others open), e.g. B1,C2");
   response->add_option("--points", response_request.points, "Frequencies, logarithmically spaced (default 1000)")
       ->check(CLI::Range(2, 1000000));
   response->add_option("-o,--output-dir", response_dir, "Directory for the CSV files and figures (default out)")
@@ -220,13 +221,16 @@ int main(int argc, char** argv) {
         if (modes_output) refuse_same_file(*campbell_file, *modes_output, "the report (-o)");
       }
       if (!campbell_file) {
-        emit(pogear::modes_report(pogear::modes_of_file(modes_file, modes_engaged), modes_format), modes_output);
+        const pogear::VibrationModes modes = pogear::modes_of_file(modes_file, modes_engaged);
+        std::cerr << pogear::open_elements_warning(modes.open_in_scene, "modes");
+        emit(pogear::modes_report(modes, modes_format), modes_output);
         return 0;
       }
       if (campbell_request.input.empty())
         throw pogear::InputError(where, "--campbell needs the input body whose speed is the axis, e.g. --input s");
       if (modes->count("--hold")) campbell_request.hold = campbell_held;
       const pogear::ModesWithCampbell mc = pogear::campbell_of_file(modes_file, modes_engaged, campbell_request);
+      std::cerr << pogear::open_elements_warning(mc.modes.open_in_scene, "modes");
       const std::string text = pogear::modes_report(mc.modes, modes_format, &mc.campbell);
       const std::optional<std::string> gnuplot = pogear::gnuplot_program();
       if (!gnuplot)
@@ -263,6 +267,7 @@ int main(int argc, char** argv) {
       response_request.inputs = split_list(response_inputs);
       response_request.outputs = split_list(response_outputs);
       const pogear::SceneResponse h = pogear::response_of(response_request);
+      std::cerr << pogear::open_elements_warning(h.open_in_scene, "responses");
       std::cout << pogear::response_summary(h.pairs);
       pogear::ensure_directory(response_dir);
       for (const std::string& path : pogear::write_response_files(h.scene_name, h.pairs, response_dir))

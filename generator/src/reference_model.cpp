@@ -239,6 +239,21 @@ Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSys
   return evaluate_matrix(sys.implicit->L, values).llt().solve(evaluate_matrix(sys.implicit->A, values));
 }
 
+rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedSystem& system, const NumericSystem& ns) {
+  rt::HybridSystem hs;
+  hs.M = ns.M;
+  hs.N = ns.N;
+  hs.S = ns.S;
+  hs.inputs = system.input_signals;
+  for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
+  for (std::size_t l = 0; l < system.limited_controllers.size(); ++l) {
+    const ControllerSpec& c = model.scene.controllers[static_cast<std::size_t>(system.limited_controllers[l])];
+    hs.limits.push_back({c.name, c.torque_min, c.torque_max, ns.limit_x.row(static_cast<Eigen::Index>(l)),
+                         ns.limit_u.row(static_cast<Eigen::Index>(l))});
+  }
+  return hs;
+}
+
 Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedSystem& sys) {
   const Derivation& d = model.derivation;
   const GiNaC::exmap values = parameter_folding(model.scene, d, false);
@@ -249,7 +264,7 @@ Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedS
                              evaluate_matrix(d.elastic.R, values), model.scene.sample);
   // At the derivation's values (the scene's overrides), not the folded ones: a rigid scene folds
   // the stiffnesses away, yet the frequency below which it holds is that of its gear.
-  add_natural_frequency(out, d, d.values);
+  add_natural_frequency(out, d, d.values, !model.friction.empty());
   if (sys.nonlinear) {
     out.suggested_solver = out.adaptive_solver;
     out.reason = fmt::format("the scene is nonlinear (a quadratic load), which exact stepping does not integrate; its "

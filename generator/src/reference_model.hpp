@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "diagnostics.hpp"
+#include "pogear/hybrid_modes.hpp"
 
 namespace pogear {
 
@@ -32,6 +33,10 @@ struct NumericSystem {
   Eigen::VectorXd x0;
 };
 NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& system);
+
+// The system as the runtime's hybrid engine takes it: M, N, S, the input signals, the engaged brakes
+// and clutches, and the torque-limited controllers with their laws.
+rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedSystem& system, const NumericSystem& ns);
 
 // The state matrix M of a system at the scene's values (every tunable at its value).
 Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSystem& system);

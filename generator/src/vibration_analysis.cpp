@@ -34,7 +34,18 @@ struct ModesInput {
   GiNaC::exmap values;
   std::string damping;
   std::vector<int> engaged;
+  std::vector<std::string> open_in_scene;  // the scene's brakes and clutches left open (no --engaged)
 };
+
+// The brakes and clutches a scene commands, when no --engaged says which of them to hold: the
+// modes and responses are then of the gear with all of them open.
+std::vector<std::string> scene_elements_left_open(const Scene& scene, bool engaged_given) {
+  std::vector<std::string> names;
+  if (engaged_given) return names;
+  for (const EngagementSpec& e : scene.engagement)
+    names.push_back(scene.model.friction_elements[static_cast<std::size_t>(e.element)].name);
+  return names;
+}
 
 ModesInput modes_input(const std::string& path, const std::optional<std::string>& engaged) {
   const SourceLocation where{path, 0, 0};
@@ -45,7 +56,7 @@ ModesInput modes_input(const std::string& path, const std::optional<std::string>
     Derivation d = derive_model(path, std::nullopt, where);
     GiNaC::exmap values = d.values;
     std::vector<int> e = stuck(d.topology);
-    return {std::move(d), std::move(values), "mesh damping and bearing friction, as the model defines them", std::move(e)};
+    return {std::move(d), std::move(values), "mesh damping and bearing friction, as the model defines them", std::move(e), {}};
   }
   const Scene scene = parse_scene(path);
   if (!scene.effects.mesh_compliance)
@@ -62,7 +73,7 @@ ModesInput modes_input(const std::string& path, const std::optional<std::string>
                                                   : damping[0] + " and " + damping[1] + ", as the scene calls for";
   GiNaC::exmap values = parameter_folding(scene, d, false);
   std::vector<int> e = stuck(d.topology);
-  return {std::move(d), std::move(values), which, std::move(e)};
+  return {std::move(d), std::move(values), which, std::move(e), scene_elements_left_open(scene, engaged.has_value())};
 }
 
 // An input speed from the command line in rpm: a quantity with a unit of angular velocity, above 0
@@ -94,7 +105,9 @@ double input_speed_rpm(const std::string& text, const Topology& t, const SourceL
 VibrationModes modes_of_file(const std::string& path, const std::optional<std::string>& engaged) {
   try {
     const ModesInput in = modes_input(path, engaged);
-    return vibration_modes(in.d, in.values, in.damping, in.engaged);
+    VibrationModes out = vibration_modes(in.d, in.values, in.damping, in.engaged);
+    out.open_in_scene = in.open_in_scene;
+    return out;
   } catch (const std::domain_error& e) {
     throw InputError(SourceLocation{path, 0, 0}, e.what());
   }
@@ -135,6 +148,7 @@ ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<
     const double max_rpm = request.to ? input_speed_rpm(*request.to, t, where) : 0.0;
     ModesWithCampbell out;
     out.modes = vibration_modes(in.d, in.values, in.damping, in.engaged);
+    out.modes.open_in_scene = in.open_in_scene;
     out.campbell = campbell_diagram(in.d, in.values, out.modes, in.engaged, input, held, max_rpm, request.harmonics);
     return out;
   } catch (const std::domain_error& e) {
@@ -162,6 +176,15 @@ double frequency(const std::string& text, const std::string& option, const Topol
 }
 
 }  // namespace
+
+std::string open_elements_warning(const std::vector<std::string>& open, std::string_view what) {
+  if (open.empty()) return {};
+  std::string names;
+  for (const std::string& n : open) names += (names.empty() ? "" : ", ") + n;
+  return fmt::format("warning: the scene's brakes and clutches ({}) are open in these {}: they are of the free gear, "
+                     "not of a gear the scene engages{}\n",
+                     names, what, what == "modes" ? "; give --engaged with the elements that hold, e.g. --engaged " + open.front() : "");
+}
 
 SceneResponse response_of(const ResponseRequest& request) {
   const SourceLocation where{request.scene_file, 0, 0};
@@ -203,7 +226,10 @@ SceneResponse response_of(const ResponseRequest& request) {
                                           name, scene.model.bodies.front().name));
     if (std::find(outputs.begin(), outputs.end(), *v) == outputs.end()) outputs.push_back(*v);
   }
-  return SceneResponse{scene.name, frequency_response(scene, inputs, outputs, grid)};
+  const std::vector<int> engaged =
+      request.engaged ? parse_engaged(scene.model, *request.engaged, where) : std::vector<int>{};
+  return SceneResponse{scene.name, frequency_response(scene, inputs, outputs, grid, engaged),
+                       scene_elements_left_open(scene, request.engaged.has_value())};
 }
 
 }  // namespace pogear

@@ -41,11 +41,17 @@ struct ResponseRequest {
   std::vector<std::string> inputs, outputs;  // tau_<body>; omega_<body> or F_<mesh>
   std::string from = "1*Hz", to = "10*kHz";   // quantities with units
   int points = 1000;
+  std::optional<std::string> engaged;         // brakes and clutches stuck, comma-separated
 };
 struct SceneResponse {
   std::string scene_name;
   std::vector<TransferFunction> pairs;  // input-major
+  std::vector<std::string> open_in_scene;  // the scene's brakes and clutches, open in the response
 };
 SceneResponse response_of(const ResponseRequest& request);
+
+// "warning: the scene's brakes and clutches (...) are open in these modes: ..." for the elements a
+// scene commands that an analysis leaves open ("" when none); `what` is "modes" or "responses".
+std::string open_elements_warning(const std::vector<std::string>& open, std::string_view what);
 
 }  // namespace pogear

@@ -44,6 +44,7 @@ struct VibrationModes {
   std::vector<VibrationMode> modes;  // ascending frequency; a degenerate cluster is one entry per mode
   std::string damping;               // which damping the ratios are of, e.g. "none", "mesh damping"
   std::string damping_note;          // why damping ratios are missing, when they are
+  std::vector<std::string> open_in_scene;  // a scene's brakes and clutches left open (no --engaged)
   std::vector<DampedMode> damped;    // every oscillating eigenvalue of M, by ascending |s|; empty undamped
   // det(R^T K R - lambda J) / lambda^(n - rank R) = sum_k characteristic[k] lambda^k when rank R <= 3
   // (three elastic modes), and its roots in closed form, ascending at the model's values, when
@@ -69,9 +70,13 @@ inline constexpr double max_eigenvalue_spread = 1e8;
 VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, std::string damping,
                                const std::vector<int>& engaged = {});
 
-// The lowest nonzero natural frequency [Hz] at `values`, by the same computation.
+// The lowest nonzero natural frequency [Hz] at `values`, by the same computation, with the
+// derivation's engaged elements stuck.
 double lowest_natural_frequency(const Derivation& d, const GiNaC::exmap& values);
-// Sets the diagnostics' lowest natural frequency, or the reason it has none.
-void add_natural_frequency(Diagnostics& diagnostics, const Derivation& d, const GiNaC::exmap& values);
+// Sets the diagnostics' lowest natural frequency, or the reason it has none, and says of which gear:
+// the derivation's engaged elements stuck, or, when a scene's brakes and clutches switch
+// (`elements_switch`), all of them open.
+void add_natural_frequency(Diagnostics& diagnostics, const Derivation& d, const GiNaC::exmap& values,
+                           bool elements_switch = false);
 
 }  // namespace pogear

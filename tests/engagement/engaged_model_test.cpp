@@ -1,6 +1,7 @@
 // The rigid model of a mode with brakes and clutches stuck (pogear derive --engaged): its mesh
 // forces and element torques satisfy every body's equation of motion, and at rest under balanced
 // torques they are those of statics (a clutch carries the input torque, the brake the rest).
+#include <algorithm>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include "../support/files.hpp"
 #include "derivation.hpp"
 #include "engagement.hpp"
+#include "vibration_modes.hpp"
 #include "exact_algebra.hpp"
 
 namespace pogear::test {
@@ -95,13 +97,24 @@ TEST(EngagedModel, FirstGearAtRestHasTheTorquesOfStatics) {
   EXPECT_NEAR(by_name.at("T_B2"), 1.0 - 1 / ratio, 1e-13);
 }
 
-// Stuck elements change the rigid model, not the elastic gear the report and its diagnostics show.
+// Stuck elements change the rigid model, not the elastic gear the report and its time scales show;
+// the lowest natural frequency, below which that rigid model holds, is the engaged gear's (the one
+// pogear modes --engaged gives), and the summary says so.
 TEST(EngagedModel, ElasticDiagnosticsAreTheGears) {
   const std::string path = source_path("models/simpson_3speed.toml");
   const Derivation gear = derive_topology(parse_topology(path), std::nullopt, SourceLocation{path, 0, 0});
   const Derivation first = simpson_in("C1,B2");
+  EXPECT_EQ(first.diagnostics.stiffness_ratio, gear.diagnostics.stiffness_ratio);
+  EXPECT_EQ(first.diagnostics.fastest_time_constant, gear.diagnostics.fastest_time_constant);
   ASSERT_TRUE(gear.diagnostics.lowest_natural_frequency_hz);
-  EXPECT_EQ(first.diagnostics.lowest_natural_frequency_hz, gear.diagnostics.lowest_natural_frequency_hz);
+  ASSERT_TRUE(first.diagnostics.lowest_natural_frequency_hz);
+  const VibrationModes modes = vibration_modes(gear, gear.values, "as defined", first.engaged);
+  const auto elastic = std::find_if(modes.modes.begin(), modes.modes.end(),
+                                    [](const VibrationMode& m) { return m.kind != ModeKind::rigid; });
+  ASSERT_NE(elastic, modes.modes.end());
+  EXPECT_EQ(*first.diagnostics.lowest_natural_frequency_hz, elastic->frequency_hz);
+  EXPECT_NE(*first.diagnostics.lowest_natural_frequency_hz, *gear.diagnostics.lowest_natural_frequency_hz);
+  EXPECT_EQ(first.diagnostics.natural_frequency_of, "C1, B2 engaged");
   EXPECT_EQ(first.rigid.rank, gear.rigid.rank + 2);
 }
 

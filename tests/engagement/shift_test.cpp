@@ -24,16 +24,6 @@ SpecializedScene shipped(const std::string& name) {
   return specialize(parse_scene(source_path("models/scenes/" + name + ".toml")));
 }
 
-rt::HybridSystem hybrid_system(const SpecializedScene& model, const NumericSystem& ns, const SpecializedSystem& sys) {
-  rt::HybridSystem hs;
-  hs.M = ns.M;
-  hs.N = ns.N;
-  hs.S = ns.S;
-  hs.inputs = sys.input_signals;
-  for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
-  return hs;
-}
-
 struct Recorded {
   std::vector<double> t;
   std::vector<Eigen::VectorXd> x, w, energy;
@@ -74,7 +64,7 @@ TEST(Shift, EnergyBalanceHoldsAlongEveryShippedShift) {
     for (const SpecializedSystem* sys : {&model.main, &*model.rigid}) {
       SCOPED_TRACE(name + " " + std::string(kind_name(sys->kind)) + " " + std::string(rt::solver_name(method.solver)));
       const NumericSystem ns = numeric_system(model, *sys);
-      const rt::HybridSystem hs = hybrid_system(model, ns, *sys);
+      const rt::HybridSystem hs = hybrid_system(model, *sys, ns);
       const double h = 2e-5;
       const Recorded r = run(hs, ns.x0, model.scene.horizon, h, method);
       ASSERT_TRUE(r.status.ok) << r.status.message;
@@ -130,7 +120,7 @@ TEST(Shift, EveryMethodLocatesTheSameEvents) {
     const SpecializedScene model = shipped(name);
     for (const SpecializedSystem* sys : {&model.main, &*model.rigid}) {
       const NumericSystem ns = numeric_system(model, *sys);
-      const rt::HybridSystem hs = hybrid_system(model, ns, *sys);
+      const rt::HybridSystem hs = hybrid_system(model, *sys, ns);
       const Recorded exact = run(hs, ns.x0, model.scene.horizon, 1e-3);
       ASSERT_TRUE(exact.status.ok) << exact.status.message;
       int on_sample = 0;
@@ -183,8 +173,8 @@ TEST(Shift, EveryMethodLocatesTheSameEvents) {
 TEST(Shift, ElasticAndRigidModelsAgreeAfterTheTransient) {
   const SpecializedScene model = shipped("gearshift_planetary");
   const NumericSystem elastic = numeric_system(model, model.main), rigid = numeric_system(model, *model.rigid);
-  const Recorded e = run(hybrid_system(model, elastic, model.main), elastic.x0, model.scene.horizon, 1e-3);
-  const Recorded r = run(hybrid_system(model, rigid, *model.rigid), rigid.x0, model.scene.horizon, 1e-3);
+  const Recorded e = run(hybrid_system(model, model.main, elastic), elastic.x0, model.scene.horizon, 1e-3);
+  const Recorded r = run(hybrid_system(model, *model.rigid, rigid), rigid.x0, model.scene.horizon, 1e-3);
   ASSERT_TRUE(e.status.ok) << e.status.message;
   ASSERT_TRUE(r.status.ok) << r.status.message;
   ASSERT_EQ(e.events.size(), r.events.size());
@@ -218,7 +208,7 @@ TEST(Shift, ElasticAndRigidModelsAgreeAfterTheTransient) {
 TEST(Shift, SimpsonUpshiftIsAClutchToClutchShift) {
   const SpecializedScene model = shipped("simpson_1_2_upshift");
   const NumericSystem ns = numeric_system(model, *model.rigid);
-  const Recorded r = run(hybrid_system(model, ns, *model.rigid), ns.x0, model.scene.horizon, 1e-3);
+  const Recorded r = run(hybrid_system(model, *model.rigid, ns), ns.x0, model.scene.horizon, 1e-3);
   ASSERT_TRUE(r.status.ok) << r.status.message;
   // Elements in the model's order: C1 (0), B1 (2), B2 (3); the scene engages all three.
   ASSERT_EQ(model.friction.size(), 3u);

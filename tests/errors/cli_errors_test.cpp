@@ -227,6 +227,14 @@ TEST_F(Cli, ResponseFrequencyNotInHz) {
       R"~(scene.toml: error: --to '100*rpm' is not a frequency in Hz; give it in Hz or kHz, e.g. --to 10*Hz)~");
 }
 
+TEST_F(Cli, ResponseEngagedOverconstrained) {
+  write_text("shift.toml", read_text(source_path("models/simpson_3speed.toml")));
+  write_text("scene.toml", "name = \"shift\"\nmodel = \"shift.toml\"\neffects = [\"mesh_compliance\"]\n"
+                           "compare_rigid = true\n");
+  expect_pogear_error("response scene.toml --input tau_i --output omega_o --engaged C1,C2,B1,B2", 2,
+      R"~(scene.toml: error: the engaged elements C1, C2, B1, B2 constrain the gear more than once (their torques are undetermined); engage fewer of them)~");
+}
+
 TEST_F(Cli, ResponseOfAModelFile) {
   expect_pogear_error("response gear.toml --input tau_c --output omega_r", 2,
       R"~(gear.toml: error: this is a model file; response needs a scene, which says the effects and parameters to analyse: write one that names this model (docs/scene-format.md))~");

@@ -14,6 +14,7 @@
 #include "../support/commands.hpp"
 #include "../support/files.hpp"
 #include "diagnostics.hpp"
+#include "engagement.hpp"
 #include "frequency_response.hpp"
 #include "reference_model.hpp"
 #include "specialization.hpp"
@@ -231,6 +232,137 @@ TEST(Response, StiffDrivelineWithAHeavyVehicleIsWrittenAtEveryFrequency) {
       // As in EveryWrittenValueIsAccurate: within the accuracy the written values promise.
       EXPECT_LE(std::abs(t.value[k] - r), response_accuracy * std::abs(r)) << t.output_name << " at " << t.frequency_hz[k];
     }
+}
+
+// With brakes and clutches engaged, the response is of the mode in which they are stuck. The
+// reference solves the constrained system directly, bordered: (jw I - M) X - N_f T = N_u, S X = 0,
+// in long double, and reads y = C X + D_u + D_f T + jw E X; pogear eliminates the stuck torques
+// first (the hybrid engine's mode matrices). Every written value of the Simpson gear in 1st and in
+// 2nd agrees, elastic and rigid, and the rigid model's values are written too.
+TEST(Response, EngagedGearMatchesTheBorderedSolveOfItsConstraints) {
+  using cld = std::complex<long double>;
+  using MatrixCld = Eigen::Matrix<cld, Eigen::Dynamic, Eigen::Dynamic>;
+  const Scene scene = parse_scene(source_path("models/scenes/simpson_1_2_upshift.toml"));
+  const std::vector<Variable> inputs{*find_variable(scene.model, "tau_i"), *find_variable(scene.model, "tau_o")};
+  const std::vector<Variable> outputs{*find_variable(scene.model, "omega_o"), *find_variable(scene.model, "omega_s"),
+                                      *find_variable(scene.model, "F_p1s")};
+  const FrequencyGrid grid{1, 3000, 60};
+  for (const std::string gear : {"C1,B2", "C1,B1"}) {
+    const std::vector<int> engaged = parse_engaged(scene.model, gear, SourceLocation{});
+    const std::vector<TransferFunction> h = frequency_response(scene, inputs, outputs, grid, engaged);
+    const SpecializedScene model = specialize(response_scene(scene, inputs, outputs, engaged));
+    for (const SpecializedSystem* sys : {&model.main, &*model.rigid}) {
+      SCOPED_TRACE(gear + " " + std::string(kind_name(sys->kind)));
+      const NumericSystem ns = numeric_system(model, *sys);
+      const Eigen::Index n = ns.M.rows(), nu = 2, nf = static_cast<Eigen::Index>(engaged.size());
+      ASSERT_EQ(ns.N.cols(), nu + nf);
+      std::size_t checked = 0;
+      for (std::size_t k = 0; k < h[0].frequency_hz.size(); ++k) {
+        const long double w = 2 * std::numbers::pi_v<long double> * h[0].frequency_hz[k];
+        MatrixCld K = MatrixCld::Zero(n + nf, n + nf), R = MatrixCld::Zero(n + nf, nu);
+        K.topLeftCorner(n, n) = -ns.M.cast<long double>().cast<cld>();
+        K.topLeftCorner(n, n).diagonal().array() += cld(0, w);
+        K.topRightCorner(n, nf) = -ns.N.rightCols(nf).cast<long double>().cast<cld>();
+        K.bottomLeftCorner(nf, n) = ns.S.cast<long double>().cast<cld>();
+        R.topRows(n) = ns.N.leftCols(nu).cast<long double>().cast<cld>();
+        const MatrixCld XT = Eigen::PartialPivLU<MatrixCld>(K).solve(R);
+        const MatrixCld X = XT.topRows(n), T = XT.bottomRows(nf);
+        const MatrixCld Y = ns.C.cast<long double>().cast<cld>() * X + ns.D.leftCols(nu).cast<long double>().cast<cld>() +
+                            ns.D.rightCols(nf).cast<long double>().cast<cld>() * T +
+                            cld(0, w) * (ns.E.cast<long double>().cast<cld>() * X);
+        for (std::size_t i = 0; i < inputs.size(); ++i)
+          for (std::size_t o = 0; o < outputs.size(); ++o) {
+            const TransferFunction& t = h[i * outputs.size() + o];
+            const bool elastic = sys->kind == SystemKind::elastic;
+            const bool written = elastic ? t.accurate[k] : t.rigid_accurate[k];
+            // In 2nd gear B1 holds the sun: its speed does not respond, and no rounding of it is written.
+            if (gear == "C1,B1" && o == 1) {
+              EXPECT_FALSE(written) << t.input_name << " at " << t.frequency_hz[k] << " Hz";
+              continue;
+            }
+            if (!written) continue;
+            ++checked;
+            const cld ref = Y(static_cast<Eigen::Index>(o), static_cast<Eigen::Index>(i));
+            const std::complex<double> r(static_cast<double>(ref.real()), static_cast<double>(ref.imag()));
+            const std::complex<double> v = elastic ? t.value[k] : t.rigid[k];
+            // Within the accuracy the written values promise (the reference's own error is far below).
+            EXPECT_LE(std::abs(v - r), response_accuracy * std::abs(r))
+                << t.input_name << " to " << t.output_name << " at " << t.frequency_hz[k] << " Hz";
+          }
+      }
+      // Most values are written: 2 inputs x 3 outputs (2 in 2nd gear) x 60 frequencies.
+      EXPECT_GT(checked, gear == "C1,B1" ? 200u : 300u);
+    }
+  }
+}
+
+// Undamped, the engaged gear's resonances are poles at its natural frequencies, which pogear modes
+// computes from another formulation (the groups of bodies the elements tie, P^T J P and R P): the
+// peaks the response lists are those frequencies. With C1, B1 and B2 the rigid gear is locked: its
+// response is zero in exact arithmetic and none of its rounding is written.
+TEST(Response, UndampedEngagedGearResonatesAtItsEngagedModes) {
+  std::string text = read_text(source_path("models/scenes/simpson_1_2_upshift.toml"));
+  const std::string from = "effects = [\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\", \"mesh_forces\"]";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "effects = [\"mesh_compliance\"]");
+  const Scene scene = parse_scene_text(text, source_path("models/scenes/simpson_undamped.toml"));
+  const std::vector<Variable> inputs{*find_variable(scene.model, "tau_i")};
+  const std::vector<Variable> outputs{*find_variable(scene.model, "omega_o")};
+  const std::vector<int> first = parse_engaged(scene.model, "C1,B2", SourceLocation{});
+  const std::vector<TransferFunction> h = frequency_response(scene, inputs, outputs, FrequencyGrid{1, 1e4, 100}, first);
+  const Derivation d = derive_topology(scene.model, std::nullopt, SourceLocation{}, false);
+  const VibrationModes modes = vibration_modes(d, d.values, "none", first);
+  std::vector<double> expected;
+  for (const VibrationMode& m : modes.modes)
+    if (m.kind != ModeKind::rigid && m.frequency_hz >= 1 && m.frequency_hz <= 1e4) expected.push_back(m.frequency_hz);
+  ASSERT_FALSE(expected.empty());
+  ASSERT_EQ(h[0].peaks.size(), expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k)
+    EXPECT_NEAR(h[0].peaks[k].frequency_hz, expected[k], 1e-9 * expected[k]) << k;
+
+  const std::vector<int> locked = parse_engaged(scene.model, "C1,B1,B2", SourceLocation{});
+  const std::vector<TransferFunction> l = frequency_response(scene, inputs, outputs, FrequencyGrid{1, 1e4, 100}, locked);
+  ASSERT_FALSE(l[0].rigid_accurate.empty());
+  for (std::size_t k = 0; k < l[0].rigid_accurate.size(); ++k)
+    EXPECT_FALSE(l[0].rigid_accurate[k]) << l[0].frequency_hz[k] << " Hz: " << std::abs(l[0].rigid[k]);
+}
+
+// A controller with torque limits is a switching element of the hybrid runs; its response is that
+// of the loop within its limits, the same as the controller without limits, which the
+// specialization closes by substitution. (The limited loop's torque was an open input, left out.)
+TEST(Response, ALimitedControllerRespondsAsItsLinearLoop) {
+  auto scene = [](const std::string& limits) {
+    return parse_scene_text("name = \"loop\"\nmodel = \"pair.toml\"\nkeep = [\"a\"]\n"
+                            "effects = [\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\"]\n"
+                            "[controllers]\nspeed = { body = \"a\", set_point = \"100*rad/s\", kp = \"0.5*N*m*s/rad\", "
+                            "ki = \"20*N*m/rad\"" + limits + " }\n",
+                            source_path("tests/vibration/loop.toml"));
+  };
+  const Scene limited = scene(", torque_min = \"-100*N*m\", torque_max = \"100*N*m\""), linear = scene("");
+  const std::vector<Variable> inputs{*find_variable(linear.model, "tau_b")};
+  const std::vector<Variable> outputs{*find_variable(linear.model, "omega_a"), *find_variable(linear.model, "omega_b")};
+  const FrequencyGrid grid{0.1, 1e3, 80};
+  const std::vector<TransferFunction> a = frequency_response(limited, inputs, outputs, grid);
+  const std::vector<TransferFunction> b = frequency_response(linear, inputs, outputs, grid);
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t checked = 0;
+  for (std::size_t p = 0; p < a.size(); ++p)
+    for (std::size_t k = 0; k < a[p].value.size(); ++k) {
+      ASSERT_EQ(a[p].accurate[k], b[p].accurate[k]) << a[p].output_name << " at " << a[p].frequency_hz[k];
+      if (!b[p].accurate[k]) continue;
+      ++checked;
+      // Two formulations of one system: they differ by rounding, within the accuracy promised.
+      EXPECT_LE(std::abs(a[p].value[k] - b[p].value[k]), response_accuracy * std::abs(b[p].value[k]))
+          << a[p].output_name << " at " << a[p].frequency_hz[k] << " Hz";
+    }
+  EXPECT_GT(checked, 150u);
+  // And it is the loop's: at 0.1 Hz the PI controller holds a's speed against a torque on b, far
+  // below the free gear's response.
+  const Scene free_gear = parse_scene_text("name = \"free\"\nmodel = \"pair.toml\"\nkeep = [\"a\"]\n"
+                                           "effects = [\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\"]\n",
+                                           source_path("tests/vibration/free.toml"));
+  const std::vector<TransferFunction> f = frequency_response(free_gear, inputs, outputs, grid);
+  EXPECT_LT(std::abs(a[0].value[0]), 0.01 * std::abs(f[0].value[0]));
 }
 
 TEST(Response, UndampedSceneHasUnboundedPeaksAtItsNaturalFrequencies) {
