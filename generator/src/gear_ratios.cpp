@@ -13,6 +13,7 @@
 #include "engagement.hpp"
 #include "exact_algebra.hpp"
 #include "numeric_rank.hpp"
+#include "tooth_counts.hpp"
 
 namespace pogear {
 
@@ -67,6 +68,7 @@ GearRatios gear_ratios(const Derivation& d, const std::string& input, const std:
   const int gear_rank = numeric_rank(Rn);
   g.gear_freedoms = n - gear_rank;
   const GiNaC::exmap geometry = geometry_substitutions(d.radius, d.symbols);
+  const GiNaC::exmap teeth = tooth_count_substitutions(t, d.symbols);
   // One rotation sense for both: omega times its arrow.
   const int sense = t.bodies[in].arrow * t.bodies[out].arrow;
 
@@ -108,7 +110,8 @@ GearRatios gear_ratios(const Derivation& d, const std::string& input, const std:
             throw std::logic_error(fmt::format("the closed-form ratio with {} engaged, {}, disagrees with R at the "
                                                "model's values, {}", engaged_names(t, S, ","), r.value, direct));
           r.status = value.is_zero() ? EngagementStatus::output_held : EngagementStatus::ratio;
-          r.ratio = closed;
+          // Written in tooth counts when the model gives them, as the reports write the rigid model.
+          r.ratio = teeth.empty() ? closed : closed.subs(teeth).normal();
         }
       }
       g.engagements.push_back(std::move(r));

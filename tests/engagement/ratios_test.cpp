@@ -159,6 +159,46 @@ TEST(Ratios, GearshiftPlanetaryIsAReductionWithTheBrakeAndDirectWithTheClutch) {
   EXPECT_EQ(by_name[""]->status, EngagementStatus::free);
 }
 
+// A model given by tooth counts gets its ratios in tooth counts, as its reports write the rigid
+// model: the gear shift's set with a 100-tooth sun, 25-tooth planets and a 150-tooth ring.
+TEST(Ratios, AModelGivenByTeethHasItsRatiosInToothCounts) {
+  std::string text = read_text(source_path("models/gearshift_planetary.toml"));
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"name = \"s\"                        # sun, with the engine's inertia\naxis = \"central\"",
+                                            "name = \"s\"\naxis = \"central\"\nteeth = 100\nmodule = \"1*mm\""},
+        {"axis = { carrier = \"c\", distance = \"r_c\" }", "axis = { carrier = \"c\", distance = \"r_c\" }\nteeth = 25\nmodule = \"1*mm\""},
+        {"wheels = [ { name = \"r\", radius = \"r_r\", internal = true } ]",
+         "wheels = [ { name = \"r\", teeth = 150, module = \"1*mm\", internal = true } ]"},
+        {"r_s = \"50*mm\"", ""}, {"r_p = \"12.5*mm\"", ""}, {"r_r = \"75*mm\"", ""}}) {
+    const std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  const Derivation d = derive_topology(parse_topology_text(text, "teeth.toml"), std::nullopt, SourceLocation{"teeth.toml", 0, 0});
+  const GearRatios g = gear_ratios(d, "s", "c", SourceLocation{"test", 0, 0});
+  const double zs = 100, zp = 25;
+  bool brake_seen = false;
+  for (const EngagementRatio& e : g.engagements) {
+    if (engaged_names(d.topology, e.engaged, ",") != "brake") continue;
+    brake_seen = true;
+    ASSERT_TRUE(e.ratio);
+    // Z_s / (2 (Z_p + Z_s)) = 1 / (1 + Z_r / Z_s) with Z_r = Z_s + 2 Z_p: 0.4. The tooth counts are
+    // symbols of their own (not parameters): found in the form by name.
+    GiNaC::exmap counts;
+    std::set<std::string> names;
+    for (GiNaC::const_preorder_iterator it = e.ratio->preorder_begin(); it != e.ratio->preorder_end(); ++it)
+      if (GiNaC::is_a<GiNaC::symbol>(*it)) {
+        const std::string name = GiNaC::ex_to<GiNaC::symbol>(*it).get_name();
+        names.insert(name);
+        counts[*it] = name == "Z_s" ? zs : name == "Z_p" ? zp : 0;
+      }
+    EXPECT_EQ(names, (std::set<std::string>{"Z_p", "Z_s"})) << *e.ratio;
+    EXPECT_DOUBLE_EQ(GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(e.ratio->subs(counts))).to_double(), zs / (2 * (zp + zs)));
+    EXPECT_NEAR(e.value, zs / (2 * (zp + zs)), 1e-16);
+  }
+  EXPECT_TRUE(brake_seen);
+}
+
 TEST(Ratios, JsonListsEveryEngagementWithStatusClosedFormAndValue) {
   const std::filesystem::path dir = test_dir("ratios_json");
   const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " ratios " + source_path("models/simpson_3speed.toml") +
