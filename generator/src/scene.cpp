@@ -86,9 +86,12 @@ void check_loads_and_controllers(Scene& s, bool engaged) {
   if (!s.tunable.empty())
     throw InputError(s.tunable_where, "a scene with [loads] or [controllers] has no tunable parameters yet; set the "
                                       "values in [parameters] and generate one simulator per value");
-  if (s.start != Start::given)
-    throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [loads] or "
-                                    "[controllers]; give the initial speeds in [initial]");
+  if (s.start != Start::given && !s.controllers.empty())
+    throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [controllers]; give the "
+                                    "initial speeds in [initial]");
+  if (s.start == Start::steady && nonlinear(s))
+    throw InputError(s.start_where, "start = \"steady\" solves a linear equilibrium, which a quadratic load does not "
+                                    "have; start from given speeds, or with start = \"rigid\"");
   const bool limited = std::any_of(s.controllers.begin(), s.controllers.end(), [](const ControllerSpec& c) { return c.limited(); });
   if (limited && s.solver == Solver::rk4)
     throw InputError(s.solver_where, "a controller with torque limits switches at events, which rk4 does not locate "

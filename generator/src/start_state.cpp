@@ -19,6 +19,15 @@ std::vector<GiNaC::numeric> torques_at_start(const Scene& sc, std::size_t bodies
   return tau;
 }
 
+// The loads' torques -(c0 + c1 omega + c2 omega |omega|) added to tau at the body speeds omega.
+void add_load_torques(const Scene& sc, const GiNaC::matrix& omega, std::vector<GiNaC::numeric>& tau) {
+  for (const LoadSpec& l : sc.loads) {
+    const auto b = static_cast<std::size_t>(l.body);
+    const GiNaC::numeric w = GiNaC::ex_to<GiNaC::numeric>(omega(static_cast<unsigned>(b), 0));
+    tau[b] -= exact_number(l.constant) + exact_number(l.linear) * w + exact_number(l.quadratic) * w * abs(w);
+  }
+}
+
 // The states on the rigid model's trajectory at x1 (exact, in the kept order) moving at dx1: the rigid
 // system's x1 and the elastic one's speeds Q1 x1 with eq. (8)'s mesh forces (the split by stiffness
 // for redundant meshes).
@@ -57,25 +66,43 @@ void start_on_rigid_trajectory(SpecializedScene& model, const GiNaC::exmap& valu
 void start_from_rigid_model(SpecializedScene& model, const GiNaC::exmap& values) {
   const Derivation& d = model.derivation;
   const RigidValues rv = exact_rigid_values(d.rigid, d.elastic, values);
-  const std::vector<GiNaC::numeric> tau = torques_at_start(model.scene, d.topology.bodies.size());
+  const Scene& sc = model.scene;
+  std::vector<GiNaC::numeric> tau = torques_at_start(sc, d.topology.bodies.size());
   const unsigned k = rv.Q1.cols();
-  GiNaC::matrix tau_m(tau.size(), 1);
-  for (std::size_t b = 0; b < tau.size(); ++b) tau_m(b, 0) = tau[b];
-  const GiNaC::matrix driving = exact_product(rv.Q1.transpose(), tau_m);
+  auto as_column = [](const std::vector<GiNaC::numeric>& v) {
+    GiNaC::matrix m(static_cast<unsigned>(v.size()), 1);
+    for (std::size_t b = 0; b < v.size(); ++b) m(static_cast<unsigned>(b), 0) = v[b];
+    return m;
+  };
   GiNaC::matrix x(k, 1), dx(k, 1);
-  if (model.scene.start == Start::rigid) {
-    const std::vector<double> x1 = rigid_initial_state(model.scene, d, values);
+  if (sc.start == Start::rigid) {
+    const std::vector<double> x1 = rigid_initial_state(sc, d, values);
     for (unsigned j = 0; j < k; ++j) x(j, 0) = exact_number(x1[j]);
-    dx = exact_solve(rv.L1, exact_product(rv.A1, x).add(driving));
+    add_load_torques(sc, exact_product(rv.Q1, x), tau);  // at the given speeds
+    dx = exact_solve(rv.L1, exact_product(rv.A1, x).add(exact_product(rv.Q1.transpose(), as_column(tau))));
   } else {
+    // The loads' constant parts drive, their linear parts damp: A1 - Q1^T diag(c1) Q1 (a quadratic
+    // part is refused when the scene is read: the equilibrium would not be linear).
+    std::vector<GiNaC::numeric> driving_tau = tau, c1(tau.size(), 0);
+    for (const LoadSpec& l : sc.loads) {
+      driving_tau[static_cast<std::size_t>(l.body)] -= exact_number(l.constant);
+      c1[static_cast<std::size_t>(l.body)] += exact_number(l.linear);
+    }
+    GiNaC::matrix damped = rv.A1;
+    for (unsigned i = 0; i < k; ++i)
+      for (unsigned j = 0; j < k; ++j)
+        for (std::size_t b = 0; b < c1.size(); ++b)
+          if (!c1[b].is_zero())
+            damped(i, j) = damped(i, j) - rv.Q1(static_cast<unsigned>(b), i) * c1[b] * rv.Q1(static_cast<unsigned>(b), j);
     try {
-      x = exact_solve(rv.A1, driving.mul_scalar(-1));
+      x = exact_solve(damped, exact_product(rv.Q1.transpose(), as_column(driving_tau)).mul_scalar(-1));
     } catch (const std::domain_error&) {
-      throw InputError(model.scene.start_where,
+      throw InputError(sc.start_where,
                        "start = \"steady\": the gear has no equilibrium (a rigid motion meets no bearing friction, so "
                        "a constant torque accelerates it for ever); add bearing_friction to the effects, or start "
                        "from given speeds");
     }
+    add_load_torques(sc, exact_product(rv.Q1, x), tau);  // at the equilibrium speeds
   }
   start_on_rigid_trajectory(model, values, rv, tau, x, dx);
 }

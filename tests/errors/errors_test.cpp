@@ -1236,9 +1236,15 @@ TEST_F(LoadsAndControllers, NotWithTunables) {
 }
 
 TEST_F(LoadsAndControllers, NotWithRigidStart) {
-  expect_error("[loads]\nr = { linear = \"0.5*N*m*s\" }\n",
-               R"~(scene.toml:12:9: error: start = "rigid" and "steady" are not available with [loads] or [controllers]; give the initial speeds in [initial])~",
+  expect_error("[controllers]\nspeed = { body = \"c\", set_point = \"100*rpm\", kp = \"1*N*m*s/rad\" }\n",
+               R"~(scene.toml:12:9: error: start = "rigid" and "steady" are not available with [controllers]; give the initial speeds in [initial])~",
                {{"omega_c = \"0*rpm\"", "start = \"rigid\""}});
+}
+
+TEST_F(LoadsAndControllers, SteadyStartWithAQuadraticLoad) {
+  expect_error("[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n",
+               R"~(scene.toml:12:9: error: start = "steady" solves a linear equilibrium, which a quadratic load does not have; start from given speeds, or with start = "rigid")~",
+               {{"omega_c = \"0*rpm\"", "start = \"steady\""}, {R"(solver = "exact")", R"(solver = "dopri5")"}});
 }
 
 TEST_F(LoadsAndControllers, QuadraticLoadWithExactSolver) {

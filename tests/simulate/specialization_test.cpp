@@ -236,6 +236,50 @@ TEST(InitialState, SteadyStartStaysAtTheEquilibrium) {
   }
 }
 
+// Loads start with the gear. Steady: the constant and linear parts of a road load on the ring
+// enter the rigid equilibrium, M x0 + N u0 = 0 with the specialized M (the loads' damping) and N
+// (the constant part, the input TL_r), and the run stays there; also without bearing friction,
+// where the loads alone give the equilibrium. Rigid: the loads' torques at the given speeds, a
+// quadratic one included, enter eq. (8), and the elastic start meets the rigid run's forces at t = 0.
+TEST(InitialState, LoadsStartSteadyAndRigid) {
+  // Loads on both kept bodies: the gear has 2 degrees of freedom, which the loads alone then damp.
+  const std::string loads =
+      "\n[loads]\nr = { constant = \"20*N*m\", linear = \"0.5*N*m*s\" }\nc = { linear = \"0.2*N*m*s\" }\n";
+  for (const std::string effects : {"\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\", \"mesh_forces\"",
+                                    "\"mesh_compliance\", \"mesh_damping\", \"mesh_forces\""}) {
+    const SpecializedScene m = scene_model(
+        with_effects(with_line(scene_text("paper_one_stage"), "omega_c = \"0*rpm\"", "start = \"steady\""), effects) + loads);
+    for (const SpecializedSystem* sys : {&m.main, &*m.rigid}) {
+      SCOPED_TRACE(effects + " " + std::string(kind_name(sys->kind)));
+      const NumericSystem ref = numeric_system(m, *sys);
+      Eigen::VectorXd u(static_cast<Eigen::Index>(sys->input_signals.size()));
+      rt::input_values(sys->input_signals, 0.0, u);
+      const Eigen::VectorXd dx = ref.M * ref.x0 + ref.N * u;
+      const double scale = (ref.M.cwiseAbs() * ref.x0.cwiseAbs()).maxCoeff();
+      EXPECT_LT(dx.cwiseAbs().maxCoeff(), 1e-13 * scale);
+      EXPECT_GT(ref.x0.cwiseAbs().maxCoeff(), 1);  // not the rest state
+      const Trajectory tr = interpret_trajectory(m, *sys, run_settings(m));
+      ASSERT_TRUE(tr.status.ok) << tr.status.message;
+      double drift = 0;
+      for (const Eigen::VectorXd& x : tr.x) drift = std::max(drift, (x - ref.x0).cwiseAbs().maxCoeff());
+      EXPECT_LT(drift, 1e-9 * ref.x0.cwiseAbs().maxCoeff());
+    }
+  }
+  const std::string rigid_start =
+      with_lines(scene_text("paper_one_stage"), {{"omega_c = \"0*rpm\"", "omega_s = \"3600*rpm\"\nstart = \"rigid\""},
+                                                  {"solver = \"exact\"", "solver = \"dopri5\""},
+                                                  {"tolerance = 1e-9", "tolerance = 1e-12"}}) +
+      "\n[loads]\nr = { constant = \"20*N*m\", linear = \"0.5*N*m*s\", quadratic = \"0.01*N*m*s^2\" }\n";
+  const SpecializedScene m = scene_model(rigid_start);
+  const Trajectory r = interpret_trajectory(m, *m.rigid, run_settings(m, rt::Solver::dopri5));
+  const Trajectory e = interpret_trajectory(m, m.main, run_settings(m, rt::Solver::dopri5));
+  ASSERT_TRUE(r.status.ok && e.status.ok) << r.status.message << e.status.message;
+  // As in RigidStartMeetsTheRigidModelAtTheStart: the rigid run's first sample is the reference
+  // model's eq. (8), loads included; the start's is exact and rounded once.
+  const Eigen::VectorXd& y0 = r.y.front();
+  EXPECT_LT((e.y.front() - y0).cwiseAbs().maxCoeff(), 1e-12 * y0.cwiseAbs().maxCoeff());
+}
+
 // speed_unit = "rpm": every speed output is the rad/s one times 60 / 2 pi, labelled rpm; forces and
 // states are unchanged.
 TEST(Specialization, SpeedsInRpm) {
