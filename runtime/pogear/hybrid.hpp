@@ -75,6 +75,7 @@ class HybridEngine {
 
   int modes_met() const;
   long steps() const;
+  long rhs_evals() const;  // of dopri5 and implicit (exact stepping has none)
 
  private:
   std::unique_ptr<HybridEngineCore> core_;

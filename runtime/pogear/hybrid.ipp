@@ -88,6 +88,7 @@ class HybridEngineCore {
 
   int modes_met() const { return static_cast<int>(modes_.size()); }
   long steps() const { return steps_; }
+  long rhs_evals() const { return rhs_.evaluations; }
 
  private:
   using Modes = std::map<std::uint32_t, hybrid_detail::ModeMatrices>;
@@ -600,7 +601,9 @@ class HybridEngineCore {
     const HybridEngineCore* engine = nullptr;
     const hybrid_detail::ModeMatrices* mode = nullptr;
     Eigen::VectorXd v;
+    long evaluations = 0;
     void operator()(double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
+      ++evaluations;
       engine->known_inputs(t, false, v);
       dx.noalias() = mode->A * x;
       dx.noalias() += mode->B * v;
@@ -923,6 +926,8 @@ POGEAR_RT_API RunStatus HybridEngine::run(const Eigen::VectorXd& x0, double samp
 POGEAR_RT_API int HybridEngine::modes_met() const { return core_->modes_met(); }
 
 POGEAR_RT_API long HybridEngine::steps() const { return core_->steps(); }
+
+POGEAR_RT_API long HybridEngine::rhs_evals() const { return core_->rhs_evals(); }
 
 POGEAR_RT_ABI_END
 

@@ -137,6 +137,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
     };
     st = engine.run(Eigen::VectorXd(x0), run.sample, obs, [&](const HybridEvent& e) { events.push_back(e); });
     st.steps = engine.steps();
+    st.rhs_evals = engine.rhs_evals();
     modes = engine.modes_met();
     if (!log.end(st)) return 3;
     if (run.csv && !write_events(run, suffix, events, elements, hs.limits, st.ok ? "" : st.message)) return 3;

@@ -30,6 +30,7 @@ struct Recorded {
   std::vector<std::uint32_t> mode;
   std::vector<rt::HybridEvent> events;
   rt::RunStatus status;
+  long rhs_evals = 0;
 };
 
 Recorded run(const rt::HybridSystem& hs, const Eigen::VectorXd& x0, double horizon, double sample,
@@ -47,6 +48,7 @@ Recorded run(const rt::HybridSystem& hs, const Eigen::VectorXd& x0, double horiz
         return true;
       },
       [&](const rt::HybridEvent& e) { r.events.push_back(e); });
+  r.rhs_evals = engine.rhs_evals();
   return r;
 }
 
@@ -151,6 +153,9 @@ TEST(Shift, EveryMethodLocatesTheSameEvents) {
         const double scale = exact.x.back().cwiseAbs().maxCoeff();
         EXPECT_LE((r.x.back() - exact.x.back()).cwiseAbs().maxCoeff(), state_tol * scale);
         EXPECT_EQ(r.mode.back(), exact.mode.back());
+        // Exact stepping evaluates no right-hand side; the adaptive methods count theirs.
+        EXPECT_EQ(exact.rhs_evals, 0);
+        EXPECT_GT(r.rhs_evals, static_cast<long>(r.events.size()));
         ASSERT_EQ(r.t.size(), exact.t.size());
         double torque_scale = 0;
         for (const Eigen::VectorXd& w : exact.w) torque_scale = std::max(torque_scale, w.cwiseAbs().maxCoeff());
