@@ -51,6 +51,40 @@ void subsets_of_size(int m, int k, int from, std::vector<int>& current, std::vec
   }
 }
 
+// The one-way elements of a gear (status ratio), and which way each holds. With the output held by
+// its load's reaction tau_out and a unit torque on the input, the gear is static:
+//   a_in e_in + e_out tau_out + R^T F - E_S^T T = 0
+// (the elements' torques act as -E_S^T T, E_S their slip rows). The constraints [R; E_S; e_out]
+// leave nothing free, so T is unique (each element adds a constraint, and so does holding a
+// turning output). A one-way element carries T <= 0 only: it holds in drive where T <= 0 and in
+// coast, where every torque changes sign, where T >= 0.
+std::vector<OneWayHold> one_way_holds(const Topology& t, const Eigen::MatrixXd& Rn, const std::vector<int>& S,
+                                      int in, int out) {
+  std::vector<OneWayHold> holds;
+  if (std::none_of(S.begin(), S.end(), [&](int k) { return t.friction_elements[static_cast<std::size_t>(k)].one_way; }))
+    return holds;
+  const GiNaC::matrix E = engagement_rows(t, S);
+  const Eigen::Index n = Rn.cols(), m = Rn.rows(), ns = static_cast<Eigen::Index>(S.size());
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, m + ns + 1);
+  A.leftCols(m) = Rn.transpose();
+  for (Eigen::Index k = 0; k < ns; ++k)
+    for (Eigen::Index b = 0; b < n; ++b)
+      A(b, m + k) = -GiNaC::ex_to<GiNaC::numeric>(E(static_cast<unsigned>(k), static_cast<unsigned>(b))).to_double();
+  A(out, m + ns) = 1;
+  Eigen::VectorXd drive = Eigen::VectorXd::Zero(n);
+  drive(in) = -t.bodies[static_cast<std::size_t>(in)].arrow;
+  const Eigen::VectorXd y = A.completeOrthogonalDecomposition().solve(drive);
+  const Eigen::VectorXd T = y.segment(m, ns);
+  // A torque below rounding of the others is none: the element holds either way.
+  const double floor = 1e-9 * std::max(1.0, y.cwiseAbs().maxCoeff());
+  for (Eigen::Index k = 0; k < ns; ++k) {
+    const int element = S[static_cast<std::size_t>(k)];
+    if (!t.friction_elements[static_cast<std::size_t>(element)].one_way) continue;
+    holds.push_back({element, T(k) <= floor, T(k) >= -floor});
+  }
+  return holds;
+}
+
 }  // namespace
 
 GearRatios gear_ratios(const Derivation& d, const std::string& input, const std::string& output,
@@ -112,6 +146,7 @@ GearRatios gear_ratios(const Derivation& d, const std::string& input, const std:
           r.status = value.is_zero() ? EngagementStatus::output_held : EngagementStatus::ratio;
           // Written in tooth counts when the model gives them, as the reports write the rigid model.
           r.ratio = teeth.empty() ? closed : closed.subs(teeth).normal();
+          if (r.status == EngagementStatus::ratio) r.one_way = one_way_holds(t, Rn, S, in, out);
         }
       }
       g.engagements.push_back(std::move(r));

@@ -21,12 +21,21 @@ enum class EngagementStatus {
 };
 const char* status_name(EngagementStatus s);  // "ratio", "output held", ..., as the reports write it
 
+// Which way a one-way element of a gear holds. In drive (a positive torque on the input, in the
+// common rotation sense, against the output's load) and in coast (a negative one: the load drives
+// the input) its torque has opposite signs, and it holds one of them only.
+struct OneWayHold {
+  int element = -1;
+  bool drive = false, coast = false;  // both when it carries no torque in either
+};
+
 struct EngagementRatio {
   std::vector<int> engaged;  // friction element indices, ascending
   int freedoms = 0;          // n - rank [R; E_S]
   EngagementStatus status = EngagementStatus::free;
   std::optional<GiNaC::ex> ratio;  // ratio or output_held: omega_out/omega_in in the independent radii
   double value = 0;                // the ratio at the model's values, correctly rounded
+  std::vector<OneWayHold> one_way; // of a ratio's one-way elements, in the order of `engaged`
 };
 
 struct GearRatios {

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -38,6 +40,23 @@ std::string footer(const GearRatios& g) {
   return s;
 }
 
+// Which way each one-way element of a gear holds, a line per element; "" without any.
+std::string one_way_lines(const GearRatios& g, const Topology& t, const std::string& bullet) {
+  std::string s;
+  for (const EngagementRatio& e : g.engagements)
+    for (const OneWayHold& h : e.one_way) {
+      const std::string& name = t.friction_elements[static_cast<std::size_t>(h.element)].name;
+      const std::string set = engaged_names(t, e.engaged, " ");
+      s += bullet + (h.drive && h.coast ? fmt::format("{}: {} carries no torque", set, name)
+                     : h.drive          ? fmt::format("{}: {} holds in drive and freewheels in coast", set, name)
+                                        : fmt::format("{}: {} holds in coast only; in drive it freewheels, and the set "
+                                                      "is no gear", set, name)) +
+           "\n";
+    }
+  if (s.empty()) return s;
+  return fmt::format("One-way elements (drive: a positive torque on {}, against the load on {}; coast: the load "
+                     "driving):\n", g.input, g.output) + s;
+}
 
 }  // namespace
 
@@ -55,7 +74,8 @@ std::string ratios_text(const GearRatios& g, const Topology& t) {
     while (!line.empty() && line.back() == ' ') line.pop_back();
     s += line + "\n";
   }
-  return s + "\n" + footer(g) + "\n";
+  const std::string one_way = one_way_lines(g, t, "  ");
+  return s + "\n" + (one_way.empty() ? "" : one_way + "\n") + footer(g) + "\n";
 }
 
 std::string ratios_markdown(const GearRatios& g, const Topology& t) {
@@ -65,7 +85,8 @@ std::string ratios_markdown(const GearRatios& g, const Topology& t) {
   for (const EngagementRatio& e : g.engagements)
     s += fmt::format("| {} | {} | {} | {} |\n", engaged_or_none(t, e, ", "), status_text(e),
                      e.ratio ? fmt::format("`{}`", print_expression(*e.ratio, Notation::text)) : "", e.ratio ? six_digits(e.value) : "");
-  return s + "\n" + footer(g) + "\n";
+  const std::string one_way = one_way_lines(g, t, "- ");
+  return s + "\n" + (one_way.empty() ? "" : one_way + "\n") + footer(g) + "\n";
 }
 
 std::string ratios_latex(const GearRatios& g, const Topology& t) {
@@ -81,7 +102,17 @@ std::string ratios_latex(const GearRatios& g, const Topology& t) {
     s += fmt::format("{} & {} & {} & {} \\\\\n", latex_text(engaged_or_none(t, e, ", ")), status_text(e),
                      e.ratio ? fmt::format("$\\displaystyle {}$", print_expression(*e.ratio, Notation::latex)) : "",
                      e.ratio ? fmt::format("${}$", six_digits(e.value)) : "");
-  s += "\\end{tabular}\n\n" + footer(g) + "\n";
+  s += "\\end{tabular}\n\n";
+  const std::string one_way = one_way_lines(g, t, "");
+  if (!one_way.empty()) {
+    std::vector<std::string> lines;
+    for (std::size_t from = 0, end; (end = one_way.find('\n', from)) != std::string::npos; from = end + 1)
+      lines.push_back(one_way.substr(from, end - from));
+    s += latex_text(lines.front()) + "\n\\begin{itemize}\n";
+    for (std::size_t i = 1; i < lines.size(); ++i) s += "\\item " + latex_text(lines[i]) + "\n";
+    s += "\\end{itemize}\n\n";
+  }
+  s += footer(g) + "\n";
   return s + "\\end{document}\n";
 }
 
@@ -96,10 +127,16 @@ std::string ratios_json(const GearRatios& g, const Topology& t) {
     std::string names;
     for (std::size_t k = 0; k < e.engaged.size(); ++k)
       names += (k ? ", " : "") + json_string(t.friction_elements[e.engaged[k]].name);
-    j += fmt::format("    {{\"engaged\": [{}], \"status\": {}, \"degrees_of_freedom\": {}, \"ratio\": {}, \"value\": {}}}{}\n",
+    std::string one_way;
+    for (std::size_t k = 0; k < e.one_way.size(); ++k)
+      one_way += fmt::format("{}{{\"element\": {}, \"drive\": {}, \"coast\": {}}}", k ? ", " : "",
+                             json_string(t.friction_elements[static_cast<std::size_t>(e.one_way[k].element)].name),
+                             e.one_way[k].drive, e.one_way[k].coast);
+    j += fmt::format("    {{\"engaged\": [{}], \"status\": {}, \"degrees_of_freedom\": {}, \"ratio\": {}, \"value\": {}, "
+                     "\"one_way\": [{}]}}{}\n",
                      names, json_string(status_name(e.status)), e.freedoms,
                      e.ratio ? json_string(print_expression(*e.ratio, Notation::ginac)) : std::string("null"),
-                     e.ratio ? json_number(e.value) : std::string("null"), i + 1 < g.engagements.size() ? "," : "");
+                     e.ratio ? json_number(e.value) : std::string("null"), one_way, i + 1 < g.engagements.size() ? "," : "");
   }
   return j + "  ]\n}\n";
 }

@@ -1,6 +1,7 @@
 // Gear ratios of every engagement against an independent reference: Willis' equation per
 // planetary set, written in the test from tooth counts, solved with the engaged elements' equations.
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <set>
 
@@ -12,6 +13,10 @@
 #include "../support/json.hpp"
 #include "engagement.hpp"
 #include "gear_ratios.hpp"
+#include "pogear/hybrid.hpp"
+#include "reference_model.hpp"
+#include "scene.hpp"
+#include "specialization.hpp"
 
 namespace pogear::test {
 namespace {
@@ -197,6 +202,51 @@ TEST(Ratios, AModelGivenByTeethHasItsRatiosInToothCounts) {
     EXPECT_NEAR(e.value, zs / (2 * (zp + zs)), 1e-16);
   }
   EXPECT_TRUE(brake_seen);
+}
+
+// With B2 a one-way brake (a low sprag on the rear carrier, holding it against turning back), the
+// Simpson gear's 1st (C1 B2) holds in drive and freewheels in coast, the textbook "no engine
+// braking in 1st"; its reverse (C2 B2) would need the sprag to hold the other way: no drive, which
+// is why reverse takes a band. The hybrid engine agrees: under a driving torque on i against a load
+// on o, B2 stays stuck with C1 and slips with C2.
+TEST(Ratios, OneWayElementsHoldInDriveOrInCoast) {
+  std::string text = read_text(source_path("models/simpson_3speed.toml"));
+  const std::string b2 = "body = \"c2\"\nstatic_ratio = \"1.2\"";
+  ASSERT_NE(text.find(b2), std::string::npos);
+  text.replace(text.find(b2), b2.size(), "body = \"c2\"\nstatic_ratio = \"1.2\"\none_way = true");
+  const std::filesystem::path dir = test_dir("ratios_one_way");
+  write_text(dir / "sprag.toml", text);
+  const Derivation d = derive_topology(parse_topology((dir / "sprag.toml").string()), std::nullopt, SourceLocation{});
+  const GearRatios g = gear_ratios(d, "i", "o", SourceLocation{"test", 0, 0});
+  std::map<std::string, const EngagementRatio*> by_name;
+  for (const EngagementRatio& e : g.engagements) by_name[engaged_names(d.topology, e.engaged, ",")] = &e;
+  ASSERT_TRUE(by_name.count("C1,B2") && by_name.count("C2,B2") && by_name.count("C1,B1"));
+  ASSERT_EQ(by_name["C1,B2"]->one_way.size(), 1u);
+  EXPECT_TRUE(by_name["C1,B2"]->one_way[0].drive);
+  EXPECT_FALSE(by_name["C1,B2"]->one_way[0].coast);
+  ASSERT_EQ(by_name["C2,B2"]->one_way.size(), 1u);
+  EXPECT_FALSE(by_name["C2,B2"]->one_way[0].drive);
+  EXPECT_TRUE(by_name["C2,B2"]->one_way[0].coast);
+  EXPECT_TRUE(by_name["C1,B1"]->one_way.empty());
+
+  for (const std::string clutch : {"C1", "C2"}) {
+    SCOPED_TRACE(clutch);
+    const SpecializedScene m = specialize(parse_scene_text(
+        "name = \"sprag\"\nmodel = \"sprag.toml\"\neffects = [\"bearing_friction\"]\n"
+        "[inputs]\ntau_i = \"50*N*m\"\ntau_o = \"-20*N*m\"\n[engagement]\n" + clutch + " = \"1\"\nB2 = \"1\"\n"
+        "[simulation]\nhorizon = \"0.2*s\"\nsample = \"1*ms\"\n",
+        (dir / "sprag_scene.toml").string()));
+    const NumericSystem ns = numeric_system(m, m.main);
+    const rt::HybridSystem hs = hybrid_system(m, m.main, ns);  // the engine keeps a reference
+    rt::HybridEngine engine(hs, m.scene.horizon, rt::HybridMethod{});
+    std::uint32_t mode = 0;
+    const rt::RunStatus st = engine.run(
+        ns.x0, m.scene.sample, [&](double, const rt::HybridSample& sample) { mode = sample.mode; return true; },
+        [](const rt::HybridEvent&) {});
+    ASSERT_TRUE(st.ok) << st.message;
+    // Elements in the scene's order: the clutch (bit 0), then B2 (bit 1).
+    EXPECT_EQ((mode >> 1) & 1u, clutch == "C1" ? 1u : 0u) << "mode " << mode;
+  }
 }
 
 TEST(Ratios, JsonListsEveryEngagementWithStatusClosedFormAndValue) {
