@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "pogear/balancing.hpp"
 #include "pogear/exact_kernel.hpp"
 
 namespace pogear::rt {
@@ -169,27 +170,7 @@ Mat small_exp(const Mat& A, int extra_squarings = 0) {
 template <class Mat>
 Mat balanced_exp(Mat C, double* rounding = nullptr, Eigen::Index measured_rows = -1) {
   const Eigen::Index n = C.rows();
-  Eigen::Matrix<double, Mat::RowsAtCompileTime, 1> d = Eigen::Matrix<double, Mat::RowsAtCompileTime, 1>::Ones(n);
-  // Bounded passes and factors (2^-64 ... 2^64 per pass): balancing converges in a few passes, and
-  // the bounds keep non-finite or extreme entries from looping or overflowing.
-  bool done = false;
-  for (int pass = 0; pass < 50 && !done; ++pass) {
-    done = true;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double c = C.col(i).cwiseAbs().sum() - std::abs(C(i, i));
-      const double r = C.row(i).cwiseAbs().sum() - std::abs(C(i, i));
-      if (!(c > 0) || !(r > 0) || !std::isfinite(c) || !std::isfinite(r)) continue;  // nothing to balance
-      double f = 1, cs = c;
-      for (int k = 0; k < 64 && cs < r / 2; ++k) f *= 2, cs *= 4;
-      for (int k = 0; k < 64 && cs > 2 * r; ++k) f /= 2, cs /= 4;
-      if ((cs + r) / f < 0.95 * (c + r)) {  // row i scaled by 1/f, column i by f
-        done = false;
-        d(i) *= f;
-        C.row(i) /= f;
-        C.col(i) *= f;
-      }
-    }
-  }
+  const auto d = balance(C);
   Mat E = detail::small_exp(C);
   if (rounding) {
     const Eigen::Index r = measured_rows < 0 ? n : std::min(measured_rows, n);

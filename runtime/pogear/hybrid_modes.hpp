@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pogear/balancing.hpp"
 #include "pogear/run_support.hpp"
 #include "pogear/signals.hpp"
 
@@ -147,37 +148,8 @@ inline ModeMatrices mode_matrices(const HybridSystem& sys, std::uint32_t mask) {
   m.augmented_A.block(nx + ne, nx, ne, ne) = Eigen::MatrixXd::Identity(ne, ne);
   m.augmented_B = Eigen::MatrixXd::Zero(na, nw);
   m.augmented_B.topRows(nx) = m.B;
-  // Osborne's iteration with powers of 2, as LAPACK's gebal: column i times f, row i over f, until
-  // each row and column have about the same absolute sum.
-  m.balance = Eigen::VectorXd::Ones(na);
   m.balanced_A = m.augmented_A;
-  for (int sweep = 0; sweep < 30; ++sweep) {
-    bool done = true;
-    for (Eigen::Index i = 0; i < na; ++i) {
-      const double diag = std::abs(m.balanced_A(i, i));
-      double c = m.balanced_A.col(i).cwiseAbs().sum() - diag, r = m.balanced_A.row(i).cwiseAbs().sum() - diag;
-      if (!(c > 0 && r > 0)) continue;
-      const double s = c + r;
-      double f = 1;
-      while (c < r / 2) {
-        c *= 2;
-        r /= 2;
-        f *= 2;
-      }
-      while (c >= 2 * r) {
-        c /= 2;
-        r *= 2;
-        f /= 2;
-      }
-      if (c + r < 0.95 * s) {
-        done = false;
-        m.balance(i) *= f;
-        m.balanced_A.col(i) *= f;
-        m.balanced_A.row(i) /= f;
-      }
-    }
-    if (done) break;
-  }
+  m.balance = balance(m.balanced_A, 30);
   m.balanced_B = m.balance.cwiseInverse().asDiagonal() * m.augmented_B;
   m.balanced_norm = na ? m.balanced_A.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
   return m;
