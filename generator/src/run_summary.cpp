@@ -100,7 +100,7 @@ std::string rk4_step_note(const SpecializedScene& model, const SpecializedSystem
   if (sc.solver != rt::Solver::rk4 || !(sc.step > 0) || !(sc.sample > 0)) return {};
   // The step the run takes: the sample cut into the fewest equal steps no longer than `step`.
   const double h = sc.sample / std::ceil(sc.sample / std::min(sc.step, sc.sample) * (1 - 1e-12));
-  const Eigen::MatrixXd M = numeric_system(model, system).M;
+  const Eigen::MatrixXd M = state_matrix(model, system);
   if (M.rows() == 0) return {};
   const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(balanced(M), false).eigenvalues();
   // A mode e^(lambda t) advances by e^z per step, z = lambda h; rk4 by its polynomial R(z). Their
