@@ -2,7 +2,7 @@
 // the system structs of codegen_system, Eigen alone) and the main (input signals and runs, with the
 // runtime). Every piece is a CppText: user text (names, paths, titles, units) enters only through
 // cpp_text's escaping and checking functions, never as a raw string.
-#include "codegen.hpp"
+#include "codegen/codegen.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,11 +14,11 @@
 #include <fmt/format.h>
 
 #include "build_config.hpp"
-#include "codegen_system.hpp"
-#include "cpp_text.hpp"
-#include "initial_state.hpp"
+#include "codegen/codegen_system.hpp"
+#include "common/cpp_text.hpp"
+#include "specialize/initial_state.hpp"
 #include "pogear/command_line.hpp"
-#include "printer.hpp"
+#include "common/printer.hpp"
 
 namespace pogear {
 namespace {

@@ -1,11 +1,11 @@
 // A system struct is deterministic (every expression goes through expression_code) and readable:
 // states, inputs and tunables get their names as local constants, each function reads only
 // what it uses, and every function of x and u also has its linear form as matrices.
-#include "codegen_system.hpp"
+#include "codegen/codegen_system.hpp"
 
 #include <set>
 
-#include "output_form.hpp"
+#include "specialize/output_form.hpp"
 
 namespace pogear {
 namespace {

@@ -2,8 +2,8 @@
 // units, tunable parameters, rhs, outputs, and their linear forms (M, N) and (C, D).
 #pragma once
 
-#include "cpp_text.hpp"
-#include "specialization.hpp"
+#include "common/cpp_text.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

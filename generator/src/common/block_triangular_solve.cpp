@@ -1,6 +1,6 @@
 // See block_triangular_solve.hpp: a maximum matching and Tarjan's strongly connected components
 // order the equations; each small diagonal block is inverted symbolically.
-#include "block_triangular_solve.hpp"
+#include "common/block_triangular_solve.hpp"
 
 #include <algorithm>
 #include <stdexcept>

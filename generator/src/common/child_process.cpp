@@ -1,6 +1,6 @@
 // Children are started with fork and exec rather than std::system, so that arguments need no
 // quoting, their process group and death signal can be set, and their input and output go through pipes.
-#include "child_process.hpp"
+#include "common/child_process.hpp"
 
 #include <cerrno>
 #include <csignal>
@@ -20,7 +20,7 @@
 
 #include <fmt/format.h>
 
-#include "interrupts.hpp"
+#include "common/interrupts.hpp"
 
 namespace pogear {
 namespace {

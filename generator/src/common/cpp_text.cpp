@@ -1,14 +1,14 @@
 // Escaping and checking of everything a user wrote that ends up in generated C++: scene and file
 // names, paths, titles, parameter and body names, units, and the numbers of expressions.
-#include "cpp_text.hpp"
+#include "common/cpp_text.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <stdexcept>
 
-#include "exact_algebra.hpp"
-#include "printer.hpp"
+#include "common/exact_algebra.hpp"
+#include "common/printer.hpp"
 
 namespace pogear {
 namespace {

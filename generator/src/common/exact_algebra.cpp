@@ -1,6 +1,6 @@
 // Exact rational numbers and matrices: the products, solutions and evaluations at parameter
 // values that every stage uses on R, L and the closed forms.
-#include "exact_algebra.hpp"
+#include "common/exact_algebra.hpp"
 
 #include <optional>
 #include <stdexcept>

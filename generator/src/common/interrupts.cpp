@@ -1,6 +1,6 @@
 // The signal handler may only touch lock-free atomics and plain memory: each temporary's path is a
 // fixed buffer published by a flag, and the child's process group one sig_atomic_t.
-#include "interrupts.hpp"
+#include "common/interrupts.hpp"
 
 #include <array>
 #include <csignal>

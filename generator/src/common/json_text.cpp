@@ -1,5 +1,5 @@
 // See json_text.hpp.
-#include "json_text.hpp"
+#include "common/json_text.hpp"
 
 #include <cmath>
 

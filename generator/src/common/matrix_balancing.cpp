@@ -1,5 +1,5 @@
 // See matrix_balancing.hpp.
-#include "matrix_balancing.hpp"
+#include "common/matrix_balancing.hpp"
 
 #include "pogear/balancing.hpp"
 

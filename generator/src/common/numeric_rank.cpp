@@ -1,5 +1,5 @@
 // See numeric_rank.hpp: column-pivoted QR with a fixed relative threshold.
-#include "numeric_rank.hpp"
+#include "common/numeric_rank.hpp"
 
 namespace pogear {
 

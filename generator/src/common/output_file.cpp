@@ -1,11 +1,11 @@
 // See output_file.hpp; the rules for what stands at a path are rt::OutputFile's, shared with the
 // simulators' CSV writer.
-#include "output_file.hpp"
+#include "common/output_file.hpp"
 
 #include <filesystem>
 #include <stdexcept>
 
-#include "interrupts.hpp"
+#include "common/interrupts.hpp"
 #include "pogear/output_file.hpp"
 
 namespace pogear {

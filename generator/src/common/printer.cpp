@@ -1,6 +1,6 @@
 // Sums print in the paper's order (fewest symbols first, then alphabetically: J_c before
 // J_p r_c^2/r_p^2); products print their coefficient first, then factors by name.
-#include "printer.hpp"
+#include "common/printer.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -12,7 +12,7 @@
 
 #include <fmt/format.h>
 
-#include "exact_algebra.hpp"
+#include "common/exact_algebra.hpp"
 
 namespace pogear {
 namespace {

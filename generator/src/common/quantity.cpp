@@ -1,6 +1,6 @@
 // A small recursive-descent parser for parameter expressions. GiNaC's own parser reports every
 // syntax error at line 0, column 0; this one knows the column of each token and bounds depth.
-#include "quantity.hpp"
+#include "common/quantity.hpp"
 
 #include <charconv>
 #include <cmath>

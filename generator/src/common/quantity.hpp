@@ -9,7 +9,7 @@
 
 #include <ginac/ginac.h>
 
-#include "input_error.hpp"
+#include "common/input_error.hpp"
 
 namespace pogear {
 

@@ -1,12 +1,12 @@
 // Composes the derive stages; each stage only sees the plain results of the ones before it.
-#include "derivation.hpp"
+#include "derive/derivation.hpp"
 
 #include <fmt/format.h>
 
-#include "engagement.hpp"
-#include "exact_algebra.hpp"
-#include "numeric_rank.hpp"
-#include "vibration_modes.hpp"
+#include "derive/engagement.hpp"
+#include "common/exact_algebra.hpp"
+#include "common/numeric_rank.hpp"
+#include "vibrate/vibration_modes.hpp"
 
 namespace pogear {
 

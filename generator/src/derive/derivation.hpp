@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "diagnostics.hpp"
-#include "rigid_model.hpp"
+#include "vibrate/diagnostics.hpp"
+#include "derive/rigid_model.hpp"
 
 namespace pogear {
 

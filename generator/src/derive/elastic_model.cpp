@@ -1,5 +1,5 @@
 // L = diag(J, K^-1), A = [-B_J - R^T B_K R, -R^T; R, 0], B = [I; 0].
-#include "elastic_model.hpp"
+#include "derive/elastic_model.hpp"
 
 namespace pogear {
 

@@ -6,7 +6,7 @@
 
 #include <ginac/ginac.h>
 
-#include "radius_matrix.hpp"
+#include "derive/radius_matrix.hpp"
 
 namespace pogear {
 

@@ -1,5 +1,5 @@
 // See engagement.hpp.
-#include "engagement.hpp"
+#include "derive/engagement.hpp"
 
 #include <algorithm>
 #include <sstream>

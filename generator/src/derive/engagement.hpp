@@ -8,7 +8,7 @@
 #include <Eigen/Dense>
 #include <ginac/ginac.h>
 
-#include "topology.hpp"
+#include "read/topology.hpp"
 
 namespace pogear {
 

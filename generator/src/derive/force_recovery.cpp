@@ -1,13 +1,13 @@
 // See force_recovery.hpp: eq. (8) through the sparsest bodies S, or F = K R (R^T K R)^+ g with
 // its weights as numbers (docs/design.md §4).
-#include "force_recovery.hpp"
+#include "derive/force_recovery.hpp"
 
 #include <algorithm>
 #include <numeric>
 
-#include "block_triangular_solve.hpp"
-#include "exact_algebra.hpp"
-#include "numeric_rank.hpp"
+#include "common/block_triangular_solve.hpp"
+#include "common/exact_algebra.hpp"
+#include "common/numeric_rank.hpp"
 
 namespace pogear {
 

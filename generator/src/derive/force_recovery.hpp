@@ -7,7 +7,7 @@
 #include <Eigen/Dense>
 #include <ginac/ginac.h>
 
-#include "elastic_model.hpp"
+#include "derive/elastic_model.hpp"
 
 namespace pogear {
 

@@ -1,14 +1,14 @@
 // See kept_velocities.hpp: the valid sets by a depth-first walk over the bodies, pruned by ranks.
-#include "kept_velocities.hpp"
+#include "derive/kept_velocities.hpp"
 
 #include <algorithm>
 
 #include <fmt/format.h>
 
-#include "block_triangular_solve.hpp"
-#include "exact_algebra.hpp"
-#include "numeric_rank.hpp"
-#include "printer.hpp"
+#include "common/block_triangular_solve.hpp"
+#include "common/exact_algebra.hpp"
+#include "common/numeric_rank.hpp"
+#include "common/printer.hpp"
 
 namespace pogear {
 namespace {

@@ -8,8 +8,8 @@
 #include <Eigen/Dense>
 #include <ginac/ginac.h>
 
-#include "symbols.hpp"
-#include "topology.hpp"
+#include "names/symbols.hpp"
+#include "read/topology.hpp"
 
 namespace pogear {
 

@@ -1,5 +1,5 @@
 // Values print to 6 significant digits, as the other report numbers; the text as given is exact.
-#include "parameter_table.hpp"
+#include "derive/parameter_table.hpp"
 
 #include <fmt/format.h>
 

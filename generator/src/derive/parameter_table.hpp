@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "derivation.hpp"
+#include "derive/derivation.hpp"
 
 namespace pogear {
 

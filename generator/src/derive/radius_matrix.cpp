@@ -1,6 +1,6 @@
 // R is read off the velocity of each body at each contact point in the side view:
 // u_k(y) = s_k omega_k (y - a_k) + u_carrier(a_k); a mesh's spring elongates at u_i - u_j.
-#include "radius_matrix.hpp"
+#include "derive/radius_matrix.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,9 +9,9 @@
 
 #include <fmt/format.h>
 
-#include "exact_algebra.hpp"
-#include "model_parameters.hpp"
-#include "printer.hpp"
+#include "common/exact_algebra.hpp"
+#include "read/model_parameters.hpp"
+#include "common/printer.hpp"
 
 namespace pogear {
 namespace {

@@ -1,6 +1,6 @@
 // Reduction to the rigid model. Ranks and row choices are taken numerically at the model's
 // parameter values (which satisfy the geometry relations); the algebra itself is symbolic.
-#include "rigid_model.hpp"
+#include "derive/rigid_model.hpp"
 
 #include <stdexcept>
 #include <utility>
@@ -8,11 +8,11 @@
 #include <cln/integer.h>
 #include <cln/rational.h>
 
-#include "block_triangular_solve.hpp"
-#include "exact_algebra.hpp"
-#include "force_recovery.hpp"
-#include "kept_velocities.hpp"
-#include "numeric_rank.hpp"
+#include "common/block_triangular_solve.hpp"
+#include "common/exact_algebra.hpp"
+#include "derive/force_recovery.hpp"
+#include "derive/kept_velocities.hpp"
+#include "common/numeric_rank.hpp"
 
 namespace pogear {
 namespace {

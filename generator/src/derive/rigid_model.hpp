@@ -7,9 +7,9 @@
 
 #include <ginac/ginac.h>
 
-#include "elastic_model.hpp"
-#include "force_recovery.hpp"
-#include "kept_velocities.hpp"
+#include "derive/elastic_model.hpp"
+#include "derive/force_recovery.hpp"
+#include "derive/kept_velocities.hpp"
 
 namespace pogear {
 

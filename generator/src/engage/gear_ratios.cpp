@@ -1,7 +1,7 @@
 // See gear_ratios.hpp. Ranks are numeric at the model's values, as for the rigid model. Each ratio's
 // number is its closed form evaluated exactly; a second, exact solve with R at the file's radii
 // checks the closed form's algebra.
-#include "gear_ratios.hpp"
+#include "engage/gear_ratios.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,11 +9,11 @@
 
 #include <fmt/format.h>
 
-#include "block_triangular_solve.hpp"
-#include "engagement.hpp"
-#include "exact_algebra.hpp"
-#include "numeric_rank.hpp"
-#include "tooth_counts.hpp"
+#include "common/block_triangular_solve.hpp"
+#include "derive/engagement.hpp"
+#include "common/exact_algebra.hpp"
+#include "common/numeric_rank.hpp"
+#include "read/tooth_counts.hpp"
 
 namespace pogear {
 

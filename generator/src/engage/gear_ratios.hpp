@@ -8,7 +8,7 @@
 
 #include <ginac/ginac.h>
 
-#include "derivation.hpp"
+#include "derive/derivation.hpp"
 
 namespace pogear {
 

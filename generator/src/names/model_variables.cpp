@@ -1,6 +1,6 @@
 // Variable names are a prefix and a body or mesh name; recognizing one compares it with the
 // names the model has, so `omega_` of a body named `x_y` and a mesh `y` can never be confused.
-#include "model_variables.hpp"
+#include "names/model_variables.hpp"
 
 #include <array>
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "topology.hpp"
+#include "read/topology.hpp"
 
 namespace pogear {
 

@@ -1,5 +1,5 @@
 // The symbol table: one symbol per parameter name and per variable, made in a fixed order.
-#include "symbols.hpp"
+#include "names/symbols.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -7,8 +7,8 @@
 
 #include <ginac/ginac.h>
 
-#include "exact_algebra.hpp"
-#include "model_variables.hpp"
+#include "common/exact_algebra.hpp"
+#include "names/model_variables.hpp"
 
 namespace pogear {
 

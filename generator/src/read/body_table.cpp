@@ -1,5 +1,5 @@
 // Reads one [[body]] table of a model file, each complaint located at the value it concerns.
-#include "body_table.hpp"
+#include "read/body_table.hpp"
 
 #include <cmath>
 

@@ -6,8 +6,8 @@
 
 #include <toml++/toml.h>
 
-#include "toml_reader.hpp"
-#include "topology.hpp"
+#include "read/toml_reader.hpp"
+#include "read/topology.hpp"
 
 namespace pogear {
 

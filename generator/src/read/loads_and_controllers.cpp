@@ -1,13 +1,13 @@
 // Loads and controllers as a scene file writes them: every value with its unit, every name checked
 // against the model and against the names the generated code gives their variables.
-#include "loads_and_controllers.hpp"
+#include "read/loads_and_controllers.hpp"
 
 #include <algorithm>
 
 #include <fmt/format.h>
 
-#include "model_parameters.hpp"
-#include "model_variables.hpp"
+#include "read/model_parameters.hpp"
+#include "names/model_variables.hpp"
 
 namespace pogear {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <toml++/toml.h>
 
-#include "scene.hpp"
-#include "scene_reader.hpp"
+#include "read/scene.hpp"
+#include "read/scene_reader.hpp"
 
 namespace pogear {
 

@@ -1,6 +1,6 @@
 // The model's parameter table: every parameter's text, SI value and unit and where it was
 // defined, evaluated once (parameters may refer to each other) and checked against its roles.
-#include "model_parameters.hpp"
+#include "read/model_parameters.hpp"
 
 #include <functional>
 #include <map>

@@ -1,6 +1,6 @@
 // Reads scene files. Every name a scene uses is checked against its model here, so the later
 // stages can assume a consistent scene.
-#include "scene.hpp"
+#include "read/scene.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -15,13 +15,13 @@
 #include <toml++/toml.h>
 
 #include "pogear/run_limits.hpp"
-#include "cpp_text.hpp"
+#include "common/cpp_text.hpp"
 #include "pogear/signal_table.hpp"
-#include "model_parameters.hpp"
-#include "model_variables.hpp"
-#include "loads_and_controllers.hpp"
-#include "scene_reader.hpp"
-#include "toml_reader.hpp"
+#include "read/model_parameters.hpp"
+#include "names/model_variables.hpp"
+#include "read/loads_and_controllers.hpp"
+#include "read/scene_reader.hpp"
+#include "read/toml_reader.hpp"
 
 namespace pogear {
 namespace {

@@ -10,8 +10,8 @@
 
 #include "pogear/signals.hpp"
 #include "pogear/solver.hpp"
-#include "model_variables.hpp"
-#include "topology.hpp"
+#include "names/model_variables.hpp"
+#include "read/topology.hpp"
 
 namespace pogear {
 

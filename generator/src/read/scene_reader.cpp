@@ -1,11 +1,11 @@
 // The scene file's quantities and signals; every complaint located at the value it concerns.
-#include "scene_reader.hpp"
+#include "read/scene_reader.hpp"
 
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "model_parameters.hpp"
+#include "read/model_parameters.hpp"
 #include "pogear/signal_table.hpp"
 
 namespace pogear {

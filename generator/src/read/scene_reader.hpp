@@ -10,9 +10,9 @@
 #include <toml++/toml.h>
 
 #include "pogear/signals.hpp"
-#include "quantity.hpp"
-#include "toml_reader.hpp"
-#include "topology.hpp"
+#include "common/quantity.hpp"
+#include "read/toml_reader.hpp"
+#include "read/topology.hpp"
 
 namespace pogear {
 

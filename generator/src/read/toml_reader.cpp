@@ -1,5 +1,5 @@
 // Shared TOML reading for models and scenes; see toml_reader.hpp.
-#include "toml_reader.hpp"
+#include "read/toml_reader.hpp"
 
 #include <algorithm>
 #include <cctype>

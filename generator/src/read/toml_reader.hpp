@@ -9,7 +9,7 @@
 
 #include <toml++/toml.h>
 
-#include "input_error.hpp"
+#include "common/input_error.hpp"
 
 namespace pogear {
 

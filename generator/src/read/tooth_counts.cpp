@@ -1,6 +1,6 @@
 // Pitch radii from tooth counts and modules. A pitch radius is an ordinary radius parameter from
 // here on: R, the geometry checks and the code see radii; only the reports write ratios in Z.
-#include "tooth_counts.hpp"
+#include "read/tooth_counts.hpp"
 
 #include <cmath>
 #include <map>
@@ -9,8 +9,8 @@
 
 #include <fmt/format.h>
 
-#include "model_parameters.hpp"
-#include "quantity.hpp"
+#include "read/model_parameters.hpp"
+#include "common/quantity.hpp"
 
 namespace pogear {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <ginac/ginac.h>
 
-#include "symbols.hpp"
-#include "topology.hpp"
+#include "names/symbols.hpp"
+#include "read/topology.hpp"
 
 namespace pogear {
 

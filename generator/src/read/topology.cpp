@@ -1,6 +1,6 @@
 // Reads model files (TOML) into a Topology, checking names, references, units and signs, and
 // locating every complaint at the value it concerns.
-#include "topology.hpp"
+#include "read/topology.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -16,10 +16,10 @@
 #include <toml++/toml.h>
 
 #include "pogear/input_file.hpp"
-#include "model_parameters.hpp"
-#include "body_table.hpp"
-#include "toml_reader.hpp"
-#include "tooth_counts.hpp"
+#include "read/model_parameters.hpp"
+#include "read/body_table.hpp"
+#include "read/toml_reader.hpp"
+#include "read/tooth_counts.hpp"
 
 namespace pogear {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "input_error.hpp"
-#include "quantity.hpp"
+#include "common/input_error.hpp"
+#include "common/quantity.hpp"
 
 namespace pogear {
 

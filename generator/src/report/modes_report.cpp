@@ -1,11 +1,11 @@
 // Numbers are printed to 6 significant digits in text, Markdown and LaTeX (the eigenproblem is
 // accurate to ~8, vibration_modes.hpp) and in shortest round-trip form in JSON.
-#include "modes_report.hpp"
+#include "report/modes_report.hpp"
 
 #include <fmt/format.h>
 
-#include "json_text.hpp"
-#include "printer.hpp"
+#include "common/json_text.hpp"
+#include "common/printer.hpp"
 
 namespace pogear {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 #include <string_view>
 
-#include "campbell.hpp"
-#include "vibration_modes.hpp"
+#include "vibrate/campbell.hpp"
+#include "vibrate/vibration_modes.hpp"
 
 namespace pogear {
 

@@ -1,6 +1,6 @@
 // Ratios are exact values of their closed forms; text, Markdown and LaTeX round them to 6 significant
 // digits, JSON gives the shortest form that reads back as the same double.
-#include "ratios_report.hpp"
+#include "report/ratios_report.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,9 +9,9 @@
 
 #include <fmt/format.h>
 
-#include "engagement.hpp"
-#include "json_text.hpp"
-#include "printer.hpp"
+#include "derive/engagement.hpp"
+#include "common/json_text.hpp"
+#include "common/printer.hpp"
 
 namespace pogear {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "gear_ratios.hpp"
+#include "engage/gear_ratios.hpp"
 
 namespace pogear {
 

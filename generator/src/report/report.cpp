@@ -1,5 +1,5 @@
 // Every expression is printed by print_expression, so reports are identical from run to run.
-#include "report.hpp"
+#include "report/report.hpp"
 
 #include <algorithm>
 #include <numbers>
@@ -7,12 +7,12 @@
 
 #include <fmt/format.h>
 
-#include "block_triangular_solve.hpp"
-#include "exact_algebra.hpp"
-#include "json_text.hpp"
-#include "parameter_table.hpp"
-#include "printer.hpp"
-#include "tooth_counts.hpp"
+#include "common/block_triangular_solve.hpp"
+#include "common/exact_algebra.hpp"
+#include "common/json_text.hpp"
+#include "derive/parameter_table.hpp"
+#include "common/printer.hpp"
+#include "read/tooth_counts.hpp"
 
 namespace pogear {
 namespace {

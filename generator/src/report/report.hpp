@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "derivation.hpp"
+#include "derive/derivation.hpp"
 
 namespace pogear {
 

@@ -1,6 +1,6 @@
 // See response_report.hpp. The figure's data are numbers and its words pogear's own or validated
 // identifiers (scene, body and mesh names), so nothing a user writes becomes gnuplot syntax.
-#include "response_report.hpp"
+#include "report/response_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,8 @@
 
 #include <fmt/format.h>
 
-#include "output_file.hpp"
-#include "plot.hpp"
+#include "common/output_file.hpp"
+#include "run/plot.hpp"
 
 namespace pogear {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "frequency_response.hpp"
+#include "vibrate/frequency_response.hpp"
 
 namespace pogear {
 

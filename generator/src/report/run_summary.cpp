@@ -1,5 +1,5 @@
 // See run_summary.hpp.
-#include "run_summary.hpp"
+#include "report/run_summary.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,12 +9,12 @@
 
 #include <fmt/format.h>
 
-#include "codegen_system.hpp"
-#include "diagnostics.hpp"
-#include "initial_state.hpp"
-#include "matrix_balancing.hpp"
-#include "printer.hpp"
-#include "reference_model.hpp"
+#include "codegen/codegen_system.hpp"
+#include "vibrate/diagnostics.hpp"
+#include "specialize/initial_state.hpp"
+#include "common/matrix_balancing.hpp"
+#include "common/printer.hpp"
+#include "specialize/reference_model.hpp"
 
 namespace pogear {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "specialization.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

@@ -1,6 +1,6 @@
 // The interpreted path: the numeric model's matrices wrapped in the members run_system and
 // simulate_system expect of a generated system.
-#include "interpreted_run.hpp"
+#include "run/interpreted_run.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <Eigen/SparseCore>
 
 #include "pogear/hybrid_run.hpp"
-#include "reference_model.hpp"
+#include "specialize/reference_model.hpp"
 
 namespace pogear {
 namespace {

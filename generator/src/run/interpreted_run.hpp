@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 
 #include "pogear/run_system.hpp"
-#include "specialization.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

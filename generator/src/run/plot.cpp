@@ -1,7 +1,7 @@
 // gnuplot reads the script, data included, from a memory file on its standard input and writes
 // the SVG to its standard output; pogear checks its exit status and that the SVG is whole before
 // the file is written, so a failed or cut-short drawing never replaces a good figure.
-#include "plot.hpp"
+#include "run/plot.hpp"
 
 #include <charconv>
 #include <filesystem>
@@ -11,8 +11,8 @@
 #include <fmt/format.h>
 #include <sys/stat.h>
 
-#include "child_process.hpp"
-#include "output_file.hpp"
+#include "common/child_process.hpp"
+#include "common/output_file.hpp"
 
 namespace pogear {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "specialization.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

@@ -1,6 +1,6 @@
 // From a specialized scene to CSV files and figures: everything `pogear simulate` does after
 // reading its options, so that the command line stays a thin shell over the library.
-#include "simulate_scene.hpp"
+#include "run/simulate_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,14 +10,14 @@
 
 #include <fmt/format.h>
 
-#include "child_process.hpp"
-#include "codegen.hpp"
-#include "run_summary.hpp"
-#include "input_error.hpp"
-#include "interpreted_run.hpp"
-#include "output_file.hpp"
-#include "plot.hpp"
-#include "simulator_cache.hpp"
+#include "common/child_process.hpp"
+#include "codegen/codegen.hpp"
+#include "report/run_summary.hpp"
+#include "common/input_error.hpp"
+#include "run/interpreted_run.hpp"
+#include "common/output_file.hpp"
+#include "run/plot.hpp"
+#include "run/simulator_cache.hpp"
 
 namespace pogear {
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "pogear/command_line.hpp"
-#include "specialization.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

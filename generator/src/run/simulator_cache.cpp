@@ -1,7 +1,7 @@
 // A cached binary is run by pogear, so the cache is as private as the user's own programs: every
 // directory and binary on the way is checked to be this user's and writable by nobody else, and a
 // binary is never taken from a place another user could have planted it.
-#include "simulator_cache.hpp"
+#include "run/simulator_cache.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -17,9 +17,9 @@
 #include <unistd.h>
 
 #include "build_config.hpp"
-#include "child_process.hpp"
-#include "interrupts.hpp"
-#include "output_file.hpp"
+#include "common/child_process.hpp"
+#include "common/interrupts.hpp"
+#include "common/output_file.hpp"
 #include "pogear/input_file.hpp"
 
 namespace pogear {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "codegen.hpp"
+#include "codegen/codegen.hpp"
 
 namespace pogear {
 

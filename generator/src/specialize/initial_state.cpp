@@ -1,7 +1,7 @@
 // See initial_state.hpp. The named speeds are conditions on x1 (rows of Q1); their consistency is
 // judged on the least-squares residual, which lies in the left null space of those rows: its
 // direction is the kinematic relation the named speeds violate.
-#include "initial_state.hpp"
+#include "specialize/initial_state.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,9 +9,9 @@
 #include <Eigen/QR>
 #include <fmt/format.h>
 
-#include "exact_algebra.hpp"
-#include "numeric_rank.hpp"
-#include "parameter_folding.hpp"
+#include "common/exact_algebra.hpp"
+#include "common/numeric_rank.hpp"
+#include "specialize/parameter_folding.hpp"
 
 namespace pogear {
 

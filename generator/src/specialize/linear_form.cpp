@@ -1,5 +1,5 @@
 // See linear_form.hpp: each term of an expanded row is matched to the one variable it holds.
-#include "linear_form.hpp"
+#include "specialize/linear_form.hpp"
 
 #include <map>
 

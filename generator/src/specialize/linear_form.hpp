@@ -1,7 +1,7 @@
 // Reading a specialized system's linear right-hand side as matrices: dx/dt = M x + N u.
 #pragma once
 
-#include "specialization.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

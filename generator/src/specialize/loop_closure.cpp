@@ -1,11 +1,11 @@
 // See loop_closure.hpp: substitutions into the built equations, exact.
-#include "loop_closure.hpp"
+#include "specialize/loop_closure.hpp"
 
 #include <fmt/format.h>
 
-#include "exact_algebra.hpp"
-#include "linear_form.hpp"
-#include "model_parameters.hpp"
+#include "common/exact_algebra.hpp"
+#include "specialize/linear_form.hpp"
+#include "read/model_parameters.hpp"
 
 namespace pogear {
 

@@ -6,9 +6,9 @@
 
 #include <ginac/ginac.h>
 
-#include "derivation.hpp"
-#include "scene.hpp"
-#include "specialization.hpp"
+#include "derive/derivation.hpp"
+#include "read/scene.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

@@ -1,10 +1,10 @@
 // See operation_count.hpp: counted on the expression trees as printed, signs not counted.
-#include "operation_count.hpp"
+#include "specialize/operation_count.hpp"
 
 #include <algorithm>
 #include <cstdlib>
 
-#include "specialization.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

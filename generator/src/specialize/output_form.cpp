@@ -1,11 +1,11 @@
 // The outputs' matrices come from the same expressions outputs() prints, with dx/dt = M x + N u put
 // in exactly where M and N are exact numbers, so that C x + D u and outputs() differ by rounding only.
-#include "output_form.hpp"
+#include "specialize/output_form.hpp"
 
 #include <vector>
 
-#include "exact_algebra.hpp"
-#include "linear_form.hpp"
+#include "common/exact_algebra.hpp"
+#include "specialize/linear_form.hpp"
 
 namespace pogear {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <ginac/ginac.h>
 
-#include "specialization.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

@@ -1,12 +1,12 @@
 // See parameter_folding.hpp: the model's values, the tunables' dependents and the effects left out.
-#include "parameter_folding.hpp"
+#include "specialize/parameter_folding.hpp"
 
 #include <algorithm>
 #include <map>
 #include <set>
 
-#include "exact_algebra.hpp"
-#include "tunable_parameters.hpp"
+#include "common/exact_algebra.hpp"
+#include "specialize/tunable_parameters.hpp"
 
 namespace pogear {
 

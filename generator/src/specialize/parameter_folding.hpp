@@ -4,8 +4,8 @@
 
 #include <ginac/ginac.h>
 
-#include "derivation.hpp"
-#include "scene.hpp"
+#include "derive/derivation.hpp"
+#include "read/scene.hpp"
 
 namespace pogear {
 

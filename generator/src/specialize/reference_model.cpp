@@ -1,15 +1,15 @@
 // See reference_model.hpp: exact rational arithmetic on the assembled matrices, rounded once.
-#include "reference_model.hpp"
+#include "specialize/reference_model.hpp"
 
 #include <algorithm>
 
 #include <fmt/format.h>
 
-#include "engagement.hpp"
-#include "exact_algebra.hpp"
-#include "parameter_folding.hpp"
-#include "vibration_modes.hpp"
-#include "specialization.hpp"
+#include "derive/engagement.hpp"
+#include "common/exact_algebra.hpp"
+#include "specialize/parameter_folding.hpp"
+#include "vibrate/vibration_modes.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

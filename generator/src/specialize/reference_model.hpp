@@ -6,7 +6,7 @@
 
 #include <Eigen/Dense>
 
-#include "diagnostics.hpp"
+#include "vibrate/diagnostics.hpp"
 #include "pogear/hybrid_modes.hpp"
 
 namespace pogear {

@@ -1,22 +1,22 @@
 // Specialized equations are built as GiNaC expressions in the scene's own variables, with the
 // mesh velocities v = R omega (and damped forces w = F + B_K v) as the shared temporaries.
-#include "specialization.hpp"
-#include "start_state.hpp"
+#include "specialize/specialization.hpp"
+#include "specialize/start_state.hpp"
 
 #include <algorithm>
 
 #include <fmt/format.h>
 
-#include "engagement.hpp"
-#include "exact_algebra.hpp"
-#include "initial_state.hpp"
-#include "linear_form.hpp"
-#include "loop_closure.hpp"
-#include "model_parameters.hpp"
-#include "operation_count.hpp"
-#include "parameter_folding.hpp"
-#include "printer.hpp"
-#include "tunable_parameters.hpp"
+#include "derive/engagement.hpp"
+#include "common/exact_algebra.hpp"
+#include "specialize/initial_state.hpp"
+#include "specialize/linear_form.hpp"
+#include "specialize/loop_closure.hpp"
+#include "read/model_parameters.hpp"
+#include "specialize/operation_count.hpp"
+#include "specialize/parameter_folding.hpp"
+#include "common/printer.hpp"
+#include "specialize/tunable_parameters.hpp"
 
 namespace pogear {
 namespace {

@@ -9,10 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "derivation.hpp"
-#include "operation_count.hpp"
-#include "reference_model.hpp"
-#include "scene.hpp"
+#include "derive/derivation.hpp"
+#include "specialize/operation_count.hpp"
+#include "specialize/reference_model.hpp"
+#include "read/scene.hpp"
 
 namespace pogear {
 

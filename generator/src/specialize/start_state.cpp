@@ -1,13 +1,13 @@
 // Both starts are solved in exact rationals on the rigid model and rounded once, so a run that
 // starts steady stays there to rounding, and one that starts rigid meets eq. (8) at t = 0 to rounding.
-#include "start_state.hpp"
+#include "specialize/start_state.hpp"
 
 #include <fmt/format.h>
 
-#include "exact_algebra.hpp"
-#include "initial_state.hpp"
-#include "parameter_folding.hpp"
-#include "symbols.hpp"
+#include "common/exact_algebra.hpp"
+#include "specialize/initial_state.hpp"
+#include "specialize/parameter_folding.hpp"
+#include "names/symbols.hpp"
 
 namespace pogear {
 namespace {

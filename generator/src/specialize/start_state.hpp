@@ -3,7 +3,7 @@
 // equilibrium of the inputs' values at t = 0), computed exactly at the scene's values.
 #pragma once
 
-#include "specialization.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

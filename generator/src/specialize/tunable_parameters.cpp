@@ -1,6 +1,6 @@
 // See tunable_parameters.hpp: the parameters' texts are parsed again symbolically, with the
 // tunables as symbols, and each result checked against the number the model's evaluation gave.
-#include "tunable_parameters.hpp"
+#include "specialize/tunable_parameters.hpp"
 
 #include <cmath>
 #include <functional>
@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "exact_algebra.hpp"
+#include "common/exact_algebra.hpp"
 
 namespace pogear {
 

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "symbols.hpp"
-#include "topology.hpp"
+#include "names/symbols.hpp"
+#include "read/topology.hpp"
 
 namespace pogear {
 

@@ -1,5 +1,5 @@
 // The operating line is solved exactly (rationals at the model's values); frequencies are doubles.
-#include "campbell.hpp"
+#include "vibrate/campbell.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,11 +7,11 @@
 
 #include <fmt/format.h>
 
-#include "engagement.hpp"
-#include "exact_algebra.hpp"
-#include "json_text.hpp"
-#include "plot.hpp"
-#include "printer.hpp"
+#include "derive/engagement.hpp"
+#include "common/exact_algebra.hpp"
+#include "common/json_text.hpp"
+#include "run/plot.hpp"
+#include "common/printer.hpp"
 
 namespace pogear {
 namespace {

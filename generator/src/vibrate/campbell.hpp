@@ -9,8 +9,8 @@
 
 #include <Eigen/Dense>
 
-#include "derivation.hpp"
-#include "vibration_modes.hpp"
+#include "derive/derivation.hpp"
+#include "vibrate/vibration_modes.hpp"
 
 namespace pogear {
 

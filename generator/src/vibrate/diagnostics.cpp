@@ -1,6 +1,6 @@
 // Eigenvalues of M give the time scales; a mode whose decay rate is below rounding of the
 // fastest one counts as not decaying (a free rotation without friction, an undamped mesh).
-#include "diagnostics.hpp"
+#include "vibrate/diagnostics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "matrix_balancing.hpp"
+#include "common/matrix_balancing.hpp"
 #include "pogear/stability_limit.hpp"
 
 namespace pogear {

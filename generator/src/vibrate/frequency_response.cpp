@@ -1,6 +1,6 @@
 // See frequency_response.hpp. jw I - H is upper Hessenberg, so Givens rotations make it upper
 // triangular in O(n^2): unitary, hence backward stable, with no pivoting decision to get wrong.
-#include "frequency_response.hpp"
+#include "vibrate/frequency_response.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,10 +12,10 @@
 
 #include <fmt/format.h>
 
-#include "input_error.hpp"
-#include "matrix_balancing.hpp"
+#include "common/input_error.hpp"
+#include "common/matrix_balancing.hpp"
 #include "pogear/hybrid_modes.hpp"
-#include "specialization.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear {
 

@@ -9,8 +9,8 @@
 
 #include <Eigen/Dense>
 
-#include "reference_model.hpp"
-#include "scene.hpp"
+#include "specialize/reference_model.hpp"
+#include "read/scene.hpp"
 
 namespace pogear {
 

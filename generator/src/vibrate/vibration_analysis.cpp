@@ -1,6 +1,6 @@
 // See vibration_analysis.hpp. Errors of the command line are located at the scene file, as the
 // other commands' option errors are (`pogear derive --keep`).
-#include "vibration_analysis.hpp"
+#include "vibrate/vibration_analysis.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,13 +9,13 @@
 
 #include <fmt/format.h>
 
-#include "engagement.hpp"
-#include "model_parameters.hpp"
-#include "parameter_folding.hpp"
-#include "printer.hpp"
-#include "quantity.hpp"
-#include "scene.hpp"
-#include "toml_reader.hpp"
+#include "derive/engagement.hpp"
+#include "read/model_parameters.hpp"
+#include "specialize/parameter_folding.hpp"
+#include "common/printer.hpp"
+#include "common/quantity.hpp"
+#include "read/scene.hpp"
+#include "read/toml_reader.hpp"
 
 namespace pogear {
 

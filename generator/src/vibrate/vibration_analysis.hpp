@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "campbell.hpp"
-#include "frequency_response.hpp"
-#include "vibration_modes.hpp"
+#include "vibrate/campbell.hpp"
+#include "vibrate/frequency_response.hpp"
+#include "vibrate/vibration_modes.hpp"
 
 namespace pogear {
 

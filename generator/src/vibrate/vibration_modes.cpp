@@ -1,7 +1,7 @@
 // See vibration_modes.hpp. J is diagonal and positive, so the generalized problem is the ordinary
 // symmetric one of J^-1/2 R^T K R J^-1/2: orthogonal eigenvectors, real eigenvalues, no pairing
 // of complex conjugates, and rounding of order eps * lambda_max.
-#include "vibration_modes.hpp"
+#include "vibrate/vibration_modes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,9 +12,9 @@
 
 #include <fmt/format.h>
 
-#include "engagement.hpp"
-#include "exact_algebra.hpp"
-#include "numeric_rank.hpp"
+#include "derive/engagement.hpp"
+#include "common/exact_algebra.hpp"
+#include "common/numeric_rank.hpp"
 
 namespace pogear {
 namespace {

@@ -10,7 +10,7 @@
 #include <Eigen/Dense>
 #include <ginac/ginac.h>
 
-#include "derivation.hpp"
+#include "derive/derivation.hpp"
 
 namespace pogear {
 
