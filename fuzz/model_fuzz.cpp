@@ -1,12 +1,15 @@
-// libFuzzer target for model files: any bytes must end in a derivation or an InputError. Any other
-// exception, a crash, a leak, undefined behaviour or a hang is a finding.
+// libFuzzer target for model files: any bytes must end in a derivation, an InputError or a
+// derivation's typed error (formatted as the command line does). Any other exception, a crash, a
+// leak, undefined behaviour or a hang is a finding.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
 
 #include "derive/derivation.hpp"
+#include "report/model_errors.hpp"
 #include "report/report.hpp"
+#include "vibrate/diagnostics.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -15,10 +18,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // Past the parser, the geometry, rank and symbolic stages see the accepted model, and the
     // JSON report prints every expression and number they made.
     const pogear::Derivation d = pogear::derive_topology(std::move(t), std::nullopt, {"fuzz.toml", 0, 0});
-    const std::string report = pogear::report_json(d);
+    const std::string report = pogear::report_json(d, pogear::derivation_diagnostics(d));
     if (report.empty()) __builtin_trap();  // a derivation always has something to say
   } catch (const pogear::InputError&) {
     // The expected answer to bad input.
+  } catch (const pogear::GeometryConflict& e) {
+    // The derivation's answers to bad input, formatted as the command line does.
+    if (pogear::input_error_of(e).message().empty()) __builtin_trap();
+  } catch (const pogear::TiedVelocities& e) {
+    if (pogear::input_error_of(e).message().empty()) __builtin_trap();
   }
   return 0;
 }

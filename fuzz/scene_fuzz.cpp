@@ -1,11 +1,12 @@
 // libFuzzer target for scene files, on a fixed valid model (the paper's one-stage gear): any scene
-// text must end in generated sources or an InputError. Any other exception, a crash, a leak,
-// undefined behaviour or a hang is a finding.
+// text must end in generated sources, an InputError or a derivation's typed error (formatted as the
+// command line does). Any other exception, a crash, a leak, undefined behaviour or a hang is a finding.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
 #include "codegen/codegen.hpp"
+#include "report/model_errors.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   // The model line comes first and is fixed, so the fuzzer spends its time on the scene's own keys
@@ -21,6 +22,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (sources.header.empty() || sources.main.empty()) __builtin_trap();
   } catch (const pogear::InputError&) {
     // The expected answer to bad input.
+  } catch (const pogear::GeometryConflict& e) {
+    // The derivation's answers to bad input, formatted as the command line does.
+    if (pogear::input_error_of(e).message().empty()) __builtin_trap();
+  } catch (const pogear::TiedVelocities& e) {
+    if (pogear::input_error_of(e).message().empty()) __builtin_trap();
   }
   return 0;
 }

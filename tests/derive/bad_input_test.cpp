@@ -1,5 +1,6 @@
 // Bad model files: one test per class of mistake, each checking the message and the position
 // it points at (FILE:LINE:COL).
+#include "report/model_errors.hpp"
 #include "test_support.hpp"
 
 namespace pogear::test {
@@ -34,6 +35,10 @@ InputError error_of(const std::string& text, const std::vector<std::string>& kee
     derive_topology(parse_topology_text(text, "bad.toml"), k, SourceLocation{"bad.toml", 0, 0});
   } catch (const InputError& e) {
     return e;
+  } catch (const GeometryConflict& e) {  // the derivation's typed errors, as the command line prints them
+    return input_error_of(e);
+  } catch (const TiedVelocities& e) {
+    return input_error_of(e);
   }
   ADD_FAILURE() << "no error";
   return InputError({}, "");

@@ -84,7 +84,7 @@ TEST(LatexText, TitleAndNamesOfALatexReportAreEscaped) {
   replace("K_ps = \"1000*Newton/mm\"", "K_p_s = \"1000*Newton/mm\"\nK_ps = \"K_p_s\"");
   replace("b_ps = \"0.4*Newton*s/cm\"", "b_p_s = \"0.4*Newton*s/cm\"\nb_ps = \"b_p_s\"");
   const Derivation d = derive_topology(parse_topology_text(model, "gear.toml"), std::nullopt, SourceLocation{"gear.toml", 0, 0});
-  const std::string tex = report_latex(d);
+  const std::string tex = report_latex(d, derivation_diagnostics(d));
   EXPECT_NE(tex.find("\\section*{gear: inertias in kg*m\\textasciicircum{}2, 50\\% \\& more}"), std::string::npos) << tex;
   EXPECT_NE(tex.find("\\text{(mesh p\\_s)}"), std::string::npos) << tex;
 }

@@ -44,7 +44,7 @@ TEST(ToothCounts, GearByTeethIsTheGearOfItsPitchRadii) {
 
 // The entry (i, j) of the report's Q1 as an expression in the given symbols.
 ex printed_q1(const Derivation& d, unsigned i, unsigned j, const GiNaC::symtab& symbols) {
-  const Json report = parse_json(report_json(d));
+  const Json report = parse_json(report_json(d, derivation_diagnostics(d)));
   GiNaC::parser reader(symbols, true);  // strict: no symbol outside `symbols`
   return reader(report["Q1"][i][j].str);
 }
@@ -71,7 +71,7 @@ TEST(ToothCounts, ReportsWriteRatiosInToothCounts) {
 
 TEST(ToothCounts, ModelsWithoutTeethPrintTheirRadii) {
   const Derivation d = derive_paper("paper_one_stage", {"c", "r"});
-  const Json report = parse_json(report_json(d));
+  const Json report = parse_json(report_json(d, derivation_diagnostics(d)));
   EXPECT_EQ(report["Q1"][1][0].str, "-r_c/r_p");  // the paper's T1 block, as printed there
 }
 

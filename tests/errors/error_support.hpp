@@ -13,6 +13,7 @@
 #include "../support/commands.hpp"
 #include "../support/files.hpp"
 #include "codegen/codegen.hpp"
+#include "report/model_errors.hpp"
 
 namespace pogear::test {
 
@@ -85,6 +86,10 @@ class ErrorTest : public ::testing::Test {
       derive_topology(parse_topology_text(text, "gear.toml"), keep, SourceLocation{"gear.toml", 0, 0});
     } catch (const InputError& e) {
       return e.what();
+    } catch (const GeometryConflict& e) {  // the derivation's typed errors, as the command line prints them
+      return input_error_of(e).what();
+    } catch (const TiedVelocities& e) {
+      return input_error_of(e).what();
     }
     ADD_FAILURE() << "no error";
     return "";
@@ -107,6 +112,10 @@ class ErrorTest : public ::testing::Test {
       generate_sources(specialize(parse_scene("scene.toml")));
     } catch (const InputError& e) {
       return e.what();
+    } catch (const GeometryConflict& e) {  // the derivation's typed errors, as the command line prints them
+      return input_error_of(e).what();
+    } catch (const TiedVelocities& e) {
+      return input_error_of(e).what();
     }
     ADD_FAILURE() << "no error";
     return "";

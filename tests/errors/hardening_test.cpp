@@ -11,9 +11,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "build_config.hpp"
+#include "build_config/build_config.hpp"
 #include "error_support.hpp"
-#include "run/plot.hpp"
+#include "common/gnuplot.hpp"
 #include "run/simulator_cache.hpp"
 #include "run/simulate_scene.hpp"
 

@@ -6,7 +6,7 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "build_config.hpp"
+#include "build_config/build_config.hpp"
 #include "sim_support.hpp"
 #include "run/simulator_cache.hpp"
 

@@ -16,6 +16,7 @@
 #include "../support/json.hpp"
 #include "run/interpreted_run.hpp"
 #include "run/simulate_scene.hpp"
+#include "vibrate/diagnostics.hpp"
 
 namespace pogear::test {
 

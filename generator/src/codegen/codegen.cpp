@@ -13,7 +13,7 @@
 
 #include <fmt/format.h>
 
-#include "build_config.hpp"
+#include "build_config/build_config.hpp"
 #include "codegen/codegen_system.hpp"
 #include "common/cpp_text.hpp"
 #include "specialize/initial_state.hpp"

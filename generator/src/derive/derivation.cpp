@@ -6,7 +6,6 @@
 #include "derive/engagement.hpp"
 #include "common/exact_algebra.hpp"
 #include "common/numeric_rank.hpp"
-#include "vibrate/vibration_modes.hpp"
 
 namespace pogear {
 
@@ -69,12 +68,7 @@ Derivation derive_topology(Topology topology, const std::optional<std::vector<st
       for (int b : valid[0]) d.keep.push_back(d.topology.bodies[b].name);
   }
   d.rigid = reduce_to_rigid(d.topology, constrained, d.values, d.keep, where, d.symbols, closed_forms);
-  const GiNaC::exmap& at = d.values;
-  const Eigen::MatrixXd L = evaluate_matrix(d.elastic.L, at);
-  const Eigen::MatrixXd M = L.diagonal().cwiseInverse().asDiagonal() * evaluate_matrix(d.elastic.A, at);
-  d.rigid_values = exact_rigid_values(d.rigid, d.elastic, at);
-  d.diagnostics = diagnose(M, evaluate_matrix(d.rigid_values.L1, {}), evaluate_matrix(d.elastic.R, at));
-  add_natural_frequency(d.diagnostics, d, at);
+  d.rigid_values = exact_rigid_values(d.rigid, d.elastic, d.values);
   return d;
 }
 

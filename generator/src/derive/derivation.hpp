@@ -5,7 +5,6 @@
 #include <string>
 #include <vector>
 
-#include "vibrate/diagnostics.hpp"
 #include "derive/rigid_model.hpp"
 
 namespace pogear {
@@ -21,7 +20,6 @@ struct Derivation {
   GiNaC::matrix constraints;     // the rigid model's: R, or [R; E_S] with elements S engaged
   std::vector<std::string> keep;
   RigidValues rigid_values;  // Q1, L1, A1 at the model's values, exact
-  Diagnostics diagnostics;  // of the elastic model with every effect, at the model's values
 };
 
 // `keep` overrides the model's default; `keep_where` locates it in messages. Without

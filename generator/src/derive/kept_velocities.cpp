@@ -8,7 +8,7 @@
 #include "common/block_triangular_solve.hpp"
 #include "common/exact_algebra.hpp"
 #include "common/numeric_rank.hpp"
-#include "common/printer.hpp"
+#include "derive/derivation_errors.hpp"
 
 namespace pogear {
 namespace {
@@ -21,12 +21,18 @@ std::string names_of(const Topology& t, const std::vector<int>& bodies, const ch
   return s;
 }
 
+std::vector<std::string> body_names(const Topology& t, const std::vector<int>& bodies) {
+  std::vector<std::string> names;
+  for (int b : bodies) names.push_back(t.bodies[b].name);
+  return names;
+}
+
 [[noreturn]] void fail_tied(const Topology& t, const GiNaC::matrix& R, const Eigen::MatrixXd& Rn,
                             const std::vector<int>& kept, const std::vector<std::vector<int>>& valid,
                             const SourceLocation& where, const GiNaC::exmap& values, const SymbolTable& s) {
-  std::string valid_list;
-  for (const auto& v : valid) valid_list += (valid_list.empty() ? "" : "; ") + names_of(t, v);
-  std::string tie = names_of(t, kept, ", ") + " are tied together";
+  TiedVelocities::Details tied;
+  tied.kept = body_names(t, kept);
+  for (const auto& v : valid) tied.valid.push_back(body_names(t, v));
   if (!valid.empty()) {
     // Name the smallest group of kept velocities that every rigid motion ties together.
     std::vector<int> other;
@@ -43,21 +49,19 @@ std::string names_of(const Topology& t, const std::vector<int>& bodies, const ch
         found = true;
         int j = 0;
         while (j < Qn.cols() && Qn(kept[a], j) == 0.0) ++j;
-        const std::string na = t.bodies[kept[a]].name, nb = t.bodies[kept[b]].name;
+        tied.first = t.bodies[kept[a]].name;
         if (j == Qn.cols()) {
-          tie = fmt::format("omega_{} is 0 in every rigid motion", na);
+          tied.tie = TiedVelocities::Tie::at_rest;
         } else {
           const ex ratio = (Q(kept[b], j) / Q(kept[a], j)).normal();
-          tie = fmt::format("{} and {} are tied: {} in every rigid motion", na, nb,
-                            print_expression(variable_symbol(s, {VariableKind::velocity, kept[b]}) ==
-                                                 ratio * variable_symbol(s, {VariableKind::velocity, kept[a]}),
-                                             Notation::text));
+          tied.tie = TiedVelocities::Tie::in_ratio;
+          tied.second = t.bodies[kept[b]].name;
+          tied.relation = variable_symbol(s, {VariableKind::velocity, kept[b]}) ==
+                          ratio * variable_symbol(s, {VariableKind::velocity, kept[a]});
         }
       }
   }
-  throw InputError(where, fmt::format("the kept velocities {} do not parametrize the rigid motions: {}; valid "
-                                      "choices are {}",
-                                      names_of(t, kept), tie, valid_list));
+  throw TiedVelocities(where, std::move(tied));
 }
 
 }  // namespace

@@ -10,8 +10,8 @@
 #include <fmt/format.h>
 
 #include "common/exact_algebra.hpp"
+#include "derive/derivation_errors.hpp"
 #include "read/model_parameters.hpp"
-#include "common/printer.hpp"
 
 namespace pogear {
 namespace {
@@ -212,7 +212,7 @@ double pinion_angle(const Topology& t, const SymbolTable& s, int mi, const Radiu
   if (!d || !ai || !aj) return 0;  // a missing value is reported where it is missing
   auto origin = [&](const std::string& parameter) {
     for (const auto& g : rm.relations)
-      if (g.parameter == parameter) return fmt::format(" (from mesh {})", t.meshes[g.mesh].name);
+      if (g.parameter == parameter) return t.meshes[g.mesh].name;
     return std::string{};
   };
   const double lo = std::abs(*ai - *aj);
@@ -220,13 +220,11 @@ double pinion_angle(const Topology& t, const SymbolTable& s, int mi, const Radiu
   // Tolerance as for the relations: values typed to a few digits close a collinear layout to ~1e-15.
   const double tol = 1e-9 * hi;
   if (*d < lo - tol || *d > hi + tol || !(*d > 0))
-    throw InputError(mesh.where,
-                     fmt::format("{}: pinions {} and {} of carrier {} cannot mesh: their axes are {} = {:.6g} m{} "
-                                 "and {} = {:.6g} m{} from the central axis, so the centre distance {} = {:.6g} m "
-                                 "must lie between {:.6g} m and {:.6g} m; correct the radii or the axis distances",
-                                 describe_mesh(t, mi), bi.name, bj.name, bi.carrier, bi.distance_parameter, *ai,
-                                 origin(bi.distance_parameter), bj.distance_parameter, *aj,
-                                 origin(bj.distance_parameter), print_expression(centre, Notation::ginac), *d, lo, hi));
+    throw GeometryConflict(mesh.where,
+                           PinionsOutOfReach{describe_mesh(t, mi), bi.carrier,
+                                             {bi.name, bi.distance_parameter, *ai, origin(bi.distance_parameter)},
+                                             {bj.name, bj.distance_parameter, *aj, origin(bj.distance_parameter)},
+                                             centre, *d, lo, hi});
   if (!(*ai > 0) || !(*aj > 0)) return 0;
   const double c = (*ai * *ai + *aj * *aj - *d * *d) / (2 * *ai * *aj);
   return std::acos(std::clamp(c, -1.0, 1.0));
@@ -380,13 +378,9 @@ RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
     const double gap = std::abs(given - *implied);
     // The relations are exact identities of the drawing; values typed to a few digits still
     // reproduce them to ~1e-15 relative, so 1e-9 only catches real inconsistencies.
-    if (gap > 1e-9 * std::max(std::abs(given), std::abs(*implied))) {
-      throw InputError(p->where,
-                       fmt::format("'{}' = {} ({:.6g} m) contradicts the geometry: {} implies {} = {} = {:.6g} m; "
-                                   "correct the value, or the layout if the drawing differs",
-                                   g.parameter, p->text, given, describe_mesh(t, g.mesh), g.parameter, print_expression(g.rhs, Notation::ginac),
-                                   *implied));
-    }
+    if (gap > 1e-9 * std::max(std::abs(given), std::abs(*implied)))
+      throw GeometryConflict(p->where, ContradictedLength{g.parameter, p->text, given, describe_mesh(t, g.mesh), g.rhs,
+                                                          *implied});
   }
   for (int mi : angled) rm.angled.push_back({mi, pinion_angle(t, s, mi, rm, known)});
   // With pinions at an angle, axis distances no longer describe the layout: every row is taken in

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "read/topology.hpp"
+#include "names/model.hpp"
 
 namespace pogear {
 

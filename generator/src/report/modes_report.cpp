@@ -211,10 +211,13 @@ std::string modes_json(const VibrationModes& m, const std::string& extra_member)
   return j + "\n}\n";
 }
 
-std::string modes_report(const VibrationModes& m, std::string_view format, const CampbellDiagram* campbell) {
-  if (format == "json") return modes_json(m, campbell ? campbell_json_member(*campbell) : "");
-  if (format == "latex") return modes_latex(m, campbell ? campbell_latex(*campbell) : "");
-  if (format == "markdown") return modes_markdown(m) + (campbell ? campbell_markdown(*campbell) : "");
+std::string modes_report(const VibrationModes& m, ReportFormat format, const CampbellDiagram* campbell) {
+  switch (format) {
+    case ReportFormat::json: return modes_json(m, campbell ? campbell_json_member(*campbell) : "");
+    case ReportFormat::latex: return modes_latex(m, campbell ? campbell_latex(*campbell) : "");
+    case ReportFormat::markdown: return modes_markdown(m) + (campbell ? campbell_markdown(*campbell) : "");
+    case ReportFormat::text: break;
+  }
   return modes_text(m) + (campbell ? campbell_text(*campbell) : "");
 }
 

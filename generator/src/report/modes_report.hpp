@@ -4,6 +4,7 @@
 #include <string>
 #include <string_view>
 
+#include "report/report_format.hpp"
 #include "vibrate/campbell.hpp"
 #include "vibrate/vibration_modes.hpp"
 
@@ -16,8 +17,8 @@ std::string modes_latex(const VibrationModes& m, const std::string& extra = "");
 // `extra_member`: one more member of the top-level object, e.g. "campbell": {...}.
 std::string modes_json(const VibrationModes& m, const std::string& extra_member = "");
 
-// The report in `format` ("text", "markdown", "latex", "json"), with the Campbell diagram's section
+// The report in `format`, with the Campbell diagram's section
 // when one is given.
-std::string modes_report(const VibrationModes& m, std::string_view format, const CampbellDiagram* campbell = nullptr);
+std::string modes_report(const VibrationModes& m, ReportFormat format, const CampbellDiagram* campbell = nullptr);
 
 }  // namespace pogear

@@ -141,4 +141,14 @@ std::string ratios_json(const GearRatios& g, const Topology& t) {
   return j + "  ]\n}\n";
 }
 
+std::string ratios_report(const GearRatios& g, const Topology& t, ReportFormat format) {
+  switch (format) {
+    case ReportFormat::json: return ratios_json(g, t);
+    case ReportFormat::latex: return ratios_latex(g, t);
+    case ReportFormat::markdown: return ratios_markdown(g, t);
+    case ReportFormat::text: break;
+  }
+  return ratios_text(g, t);
+}
+
 }  // namespace pogear

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "engage/gear_ratios.hpp"
+#include "report/report_format.hpp"
 
 namespace pogear {
 
@@ -11,5 +12,7 @@ std::string ratios_text(const GearRatios& g, const Topology& t);
 std::string ratios_markdown(const GearRatios& g, const Topology& t);
 std::string ratios_latex(const GearRatios& g, const Topology& t);
 std::string ratios_json(const GearRatios& g, const Topology& t);
+// The one of the four that `format` names.
+std::string ratios_report(const GearRatios& g, const Topology& t, ReportFormat format);
 
 }  // namespace pogear

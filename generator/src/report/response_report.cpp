@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include "common/output_file.hpp"
-#include "run/plot.hpp"
+#include "common/gnuplot.hpp"
 
 namespace pogear {
 namespace {

@@ -16,7 +16,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "build_config.hpp"
+#include "build_config/build_config.hpp"
 #include "common/child_process.hpp"
 #include "common/interrupts.hpp"
 #include "common/output_file.hpp"

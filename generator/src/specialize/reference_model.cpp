@@ -8,7 +8,6 @@
 #include "derive/engagement.hpp"
 #include "common/exact_algebra.hpp"
 #include "specialize/parameter_folding.hpp"
-#include "vibrate/vibration_modes.hpp"
 #include "specialize/specialization.hpp"
 
 namespace pogear {
@@ -252,25 +251,6 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedS
                          ns.limit_u.row(static_cast<Eigen::Index>(l))});
   }
   return hs;
-}
-
-Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedSystem& sys) {
-  const Derivation& d = model.derivation;
-  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
-  // The specialized system's own M, exact in the tunable parameters, at their values: the numbers
-  // numeric_system computes by another formula (the tests compare them), without solving again.
-  // L1 holds inertias and radii only, which the folding leaves at the model's values.
-  Diagnostics out = diagnose(state_matrix(model, sys), evaluate_matrix(d.rigid_values.L1, {}),
-                             evaluate_matrix(d.elastic.R, values), model.scene.sample);
-  // At the derivation's values (the scene's overrides), not the folded ones: a rigid scene folds
-  // the stiffnesses away, yet the frequency below which it holds is that of its gear.
-  add_natural_frequency(out, d, d.values, !model.friction.empty());
-  if (sys.nonlinear) {
-    out.suggested_solver = out.adaptive_solver;
-    out.reason = fmt::format("the scene is nonlinear (a quadratic load), which exact stepping does not integrate; its "
-                             "linear part is {}", out.adaptive_solver == "implicit" ? "stiff" : "not stiff");
-  }
-  return out;
 }
 
 }  // namespace pogear

@@ -6,7 +6,6 @@
 
 #include <Eigen/Dense>
 
-#include "vibrate/diagnostics.hpp"
 #include "pogear/hybrid_modes.hpp"
 
 namespace pogear {
@@ -40,8 +39,5 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedS
 
 // The state matrix M of a system at the scene's values (every tunable at its value).
 Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSystem& system);
-
-// Diagnostics of a specialized system (its own M, the scene's values and effects).
-Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedSystem& system);
 
 }  // namespace pogear

@@ -10,7 +10,7 @@
 #include "derive/engagement.hpp"
 #include "common/exact_algebra.hpp"
 #include "common/json_text.hpp"
-#include "run/plot.hpp"
+#include "common/gnuplot.hpp"
 #include "common/printer.hpp"
 
 namespace pogear {

@@ -9,7 +9,13 @@
 
 #include <fmt/format.h>
 
+#include "common/exact_algebra.hpp"
 #include "common/matrix_balancing.hpp"
+#include "derive/engagement.hpp"
+#include "specialize/parameter_folding.hpp"
+#include "specialize/reference_model.hpp"
+#include "specialize/specialization.hpp"
+#include "vibrate/vibration_modes.hpp"
 #include "pogear/stability_limit.hpp"
 
 namespace pogear {
@@ -139,6 +145,54 @@ std::string diagnostics_json(const Diagnostics& d, const std::string& in) {
   s += fmt::format("{}  \"lowest_natural_frequency_hz\": {}\n", in,
                    d.lowest_natural_frequency_hz ? num(*d.lowest_natural_frequency_hz) : "null");
   return s + in + "}";
+}
+
+namespace {
+
+// Sets the diagnostics' lowest natural frequency, or the reason it has none, and says of which gear:
+// the derivation's engaged elements stuck, or, when a scene's brakes and clutches switch
+// (`elements_switch`), all of them open.
+void add_natural_frequency(Diagnostics& diagnostics, const Derivation& d, const GiNaC::exmap& values,
+                           bool elements_switch) {
+  try {
+    diagnostics.lowest_natural_frequency_hz = lowest_natural_frequency(d, values);
+  } catch (const std::domain_error& e) {
+    diagnostics.natural_frequency_note = e.what();
+  }
+  if (!d.engaged.empty())
+    diagnostics.natural_frequency_of = engaged_names(d.topology, d.engaged, ", ") + " engaged";
+  else if (elements_switch)
+    diagnostics.natural_frequency_of = "every brake and clutch open; each gear's with pogear modes --engaged";
+}
+
+}  // namespace
+
+Diagnostics derivation_diagnostics(const Derivation& d) {
+  const GiNaC::exmap& at = d.values;
+  const Eigen::MatrixXd L = evaluate_matrix(d.elastic.L, at);
+  const Eigen::MatrixXd M = L.diagonal().cwiseInverse().asDiagonal() * evaluate_matrix(d.elastic.A, at);
+  Diagnostics out = diagnose(M, evaluate_matrix(d.rigid_values.L1, {}), evaluate_matrix(d.elastic.R, at));
+  add_natural_frequency(out, d, at, false);
+  return out;
+}
+
+Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedSystem& sys) {
+  const Derivation& d = model.derivation;
+  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  // The specialized system's own M, exact in the tunable parameters, at their values: the numbers
+  // numeric_system computes by another formula (the tests compare them), without solving again.
+  // L1 holds inertias and radii only, which the folding leaves at the model's values.
+  Diagnostics out = diagnose(state_matrix(model, sys), evaluate_matrix(d.rigid_values.L1, {}),
+                             evaluate_matrix(d.elastic.R, values), model.scene.sample);
+  // At the derivation's values (the scene's overrides), not the folded ones: a rigid scene folds
+  // the stiffnesses away, yet the frequency below which it holds is that of its gear.
+  add_natural_frequency(out, d, d.values, !model.friction.empty());
+  if (sys.nonlinear) {
+    out.suggested_solver = out.adaptive_solver;
+    out.reason = fmt::format("the scene is nonlinear (a quadratic load), which exact stepping does not integrate; its "
+                             "linear part is {}", out.adaptive_solver == "implicit" ? "stiff" : "not stiff");
+  }
+  return out;
 }
 
 }  // namespace pogear

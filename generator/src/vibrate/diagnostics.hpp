@@ -10,6 +10,10 @@
 
 namespace pogear {
 
+struct Derivation;         // derive/derivation.hpp
+struct SpecializedScene;   // specialize/specialization.hpp
+struct SpecializedSystem;  // specialize/specialization.hpp
+
 struct Diagnostics {
   double fastest_rate = 0;            // largest |lambda| of M [1/s]
   double fastest_time_constant = 0;   // 1 / fastest_rate [s]
@@ -41,6 +45,12 @@ struct Diagnostics {
 // scene (derive), and only the stiffness ratio decides.
 Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R,
                      double sample = 0);
+
+// Of a derivation's elastic model with every effect, at the model's values, with the lowest natural
+// frequency of its gear (the derivation's engaged elements stuck): what `pogear derive` prints.
+Diagnostics derivation_diagnostics(const Derivation& d);
+// Of a specialized system: its own M, the scene's values and effects.
+Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedSystem& system);
 
 std::string diagnostics_text(const Diagnostics& d, const std::string& indent);
 std::string diagnostics_json(const Diagnostics& d, const std::string& indent);

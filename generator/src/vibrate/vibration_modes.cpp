@@ -269,19 +269,6 @@ double lowest_natural_frequency(const Derivation& d, const GiNaC::exmap& values)
   return frequency_hz(p.lambda(p.rigid));
 }
 
-void add_natural_frequency(Diagnostics& diagnostics, const Derivation& d, const GiNaC::exmap& values,
-                           bool elements_switch) {
-  try {
-    diagnostics.lowest_natural_frequency_hz = lowest_natural_frequency(d, values);
-  } catch (const std::domain_error& e) {
-    diagnostics.natural_frequency_note = e.what();
-  }
-  if (!d.engaged.empty())
-    diagnostics.natural_frequency_of = engaged_names(d.topology, d.engaged, ", ") + " engaged";
-  else if (elements_switch)
-    diagnostics.natural_frequency_of = "every brake and clutch open; each gear's with pogear modes --engaged";
-}
-
 VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, std::string damping,
                                const std::vector<int>& engaged) {
   const ModalModel mm = modal_model(d, engaged);

@@ -73,10 +73,5 @@ VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, 
 // The lowest nonzero natural frequency [Hz] at `values`, by the same computation, with the
 // derivation's engaged elements stuck.
 double lowest_natural_frequency(const Derivation& d, const GiNaC::exmap& values);
-// Sets the diagnostics' lowest natural frequency, or the reason it has none, and says of which gear:
-// the derivation's engaged elements stuck, or, when a scene's brakes and clutches switch
-// (`elements_switch`), all of them open.
-void add_natural_frequency(Diagnostics& diagnostics, const Derivation& d, const GiNaC::exmap& values,
-                           bool elements_switch = false);
 
 }  // namespace pogear

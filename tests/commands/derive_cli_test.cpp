@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "../support/commands.hpp"
-#include "test_support.hpp"
+#include "../derive/test_support.hpp"
 
 namespace pogear::test {
 namespace {

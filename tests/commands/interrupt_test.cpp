@@ -11,7 +11,7 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 
-#include "error_support.hpp"
+#include "../errors/error_support.hpp"
 #include "common/interrupts.hpp"
 
 namespace pogear::test {

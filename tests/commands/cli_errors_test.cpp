@@ -1,7 +1,7 @@
 // Errors of the command lines: pogear's own (usage, output files, the compiler and gnuplot it
 // calls) and those of a generated simulator. Each is an entry of docs/errors.md, checked to the
 // character, with the exit status.
-#include "error_support.hpp"
+#include "../errors/error_support.hpp"
 
 namespace pogear::test {
 namespace {
