@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
-#include "derivation.hpp"
-#include "report.hpp"
+#include "derive/derivation.hpp"
+#include "report/report.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -6,7 +6,7 @@
 #include <map>
 #include <string>
 
-#include "quantity.hpp"
+#include "common/quantity.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "codegen.hpp"
+#include "codegen/codegen.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   // The model line comes first and is fixed, so the fuzzer spends its time on the scene's own keys

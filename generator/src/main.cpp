@@ -10,20 +10,20 @@
 #include <fmt/format.h>
 
 #include "build_config.hpp"
-#include "derivation.hpp"
-#include "engagement.hpp"
-#include "interrupts.hpp"
-#include "modes_report.hpp"
-#include "plot.hpp"
-#include "output_file.hpp"
-#include "ratios_report.hpp"
+#include "derive/derivation.hpp"
+#include "derive/engagement.hpp"
+#include "common/interrupts.hpp"
+#include "report/modes_report.hpp"
+#include "run/plot.hpp"
+#include "common/output_file.hpp"
+#include "report/ratios_report.hpp"
 #include "pogear/run_limits.hpp"
-#include "response_report.hpp"
-#include "run_summary.hpp"
-#include "report.hpp"
-#include "simulate_scene.hpp"
-#include "simulator_cache.hpp"
-#include "vibration_analysis.hpp"
+#include "report/response_report.hpp"
+#include "report/run_summary.hpp"
+#include "report/report.hpp"
+#include "run/simulate_scene.hpp"
+#include "run/simulator_cache.hpp"
+#include "vibrate/vibration_analysis.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 
 #include <Eigen/Dense>
 
-#include "exact_algebra.hpp"
+#include "common/exact_algebra.hpp"
 #include "test_support.hpp"
 
 namespace pogear::test {

@@ -1,11 +1,11 @@
 // The printer: the paper's term order, stable signs whatever form GiNaC returns, and notations.
-#include "printer.hpp"
+#include "common/printer.hpp"
 
 #include <gtest/gtest.h>
 
 #include "../support/files.hpp"
-#include "derivation.hpp"
-#include "report.hpp"
+#include "derive/derivation.hpp"
+#include "report/report.hpp"
 
 namespace pogear::test {
 namespace {

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "../support/files.hpp"
-#include "derivation.hpp"
-#include "printer.hpp"
+#include "derive/derivation.hpp"
+#include "common/printer.hpp"
 
 namespace pogear::test {
 

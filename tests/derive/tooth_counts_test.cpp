@@ -1,8 +1,8 @@
 // Wheels given by tooth count and module: the same gear as by its pitch radii, and the reports'
 // ratios in tooth counts against the Willis equations written here.
 #include "../support/json.hpp"
-#include "exact_algebra.hpp"
-#include "report.hpp"
+#include "common/exact_algebra.hpp"
+#include "report/report.hpp"
 #include "test_support.hpp"
 
 namespace pogear::test {

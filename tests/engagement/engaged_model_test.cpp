@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 
 #include "../support/files.hpp"
-#include "derivation.hpp"
-#include "engagement.hpp"
-#include "vibration_modes.hpp"
-#include "exact_algebra.hpp"
+#include "derive/derivation.hpp"
+#include "derive/engagement.hpp"
+#include "vibrate/vibration_modes.hpp"
+#include "common/exact_algebra.hpp"
 
 namespace pogear::test {
 namespace {

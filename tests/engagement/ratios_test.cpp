@@ -11,12 +11,12 @@
 #include "../support/commands.hpp"
 #include "../support/files.hpp"
 #include "../support/json.hpp"
-#include "engagement.hpp"
-#include "gear_ratios.hpp"
+#include "derive/engagement.hpp"
+#include "engage/gear_ratios.hpp"
 #include "pogear/hybrid.hpp"
-#include "reference_model.hpp"
-#include "scene.hpp"
-#include "specialization.hpp"
+#include "specialize/reference_model.hpp"
+#include "read/scene.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear::test {
 namespace {

@@ -14,8 +14,8 @@
 #include "../support/csv.hpp"
 #include "../support/files.hpp"
 #include "pogear/hybrid.hpp"
-#include "reference_model.hpp"
-#include "specialization.hpp"
+#include "specialize/reference_model.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear::test {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "../support/commands.hpp"
 #include "../support/files.hpp"
-#include "codegen.hpp"
+#include "codegen/codegen.hpp"
 
 namespace pogear::test {
 

@@ -13,9 +13,9 @@
 
 #include "build_config.hpp"
 #include "error_support.hpp"
-#include "plot.hpp"
-#include "simulator_cache.hpp"
-#include "simulate_scene.hpp"
+#include "run/plot.hpp"
+#include "run/simulator_cache.hpp"
+#include "run/simulate_scene.hpp"
 
 namespace pogear::test {
 namespace {

@@ -12,7 +12,7 @@
 #include <sys/stat.h>
 
 #include "error_support.hpp"
-#include "interrupts.hpp"
+#include "common/interrupts.hpp"
 
 namespace pogear::test {
 namespace {

@@ -2,7 +2,7 @@
 // the scene's [simulation] table enforce them, and the runs that stop instead of reporting wrong
 // numbers. Each message is an entry of docs/errors.md, checked to the character.
 #include "error_support.hpp"
-#include "interpreted_run.hpp"
+#include "run/interpreted_run.hpp"
 
 namespace pogear::test {
 namespace {

@@ -11,8 +11,8 @@
 #include "../support/files.hpp"
 #include "../support/gaps.hpp"
 #include "generated_scene.hpp"
-#include "reference_model.hpp"
-#include "specialization.hpp"
+#include "specialize/reference_model.hpp"
+#include "specialize/specialization.hpp"
 
 namespace pogear::test {
 

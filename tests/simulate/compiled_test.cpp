@@ -8,7 +8,7 @@
 
 #include "build_config.hpp"
 #include "sim_support.hpp"
-#include "simulator_cache.hpp"
+#include "run/simulator_cache.hpp"
 
 namespace pogear::test {
 namespace {

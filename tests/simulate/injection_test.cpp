@@ -3,8 +3,8 @@
 #include <fstream>
 #include <regex>
 
-#include "codegen.hpp"
-#include "cpp_text.hpp"
+#include "codegen/codegen.hpp"
+#include "common/cpp_text.hpp"
 #include "sim_support.hpp"
 
 namespace pogear::test {

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "reference_model.hpp"
+#include "specialize/reference_model.hpp"
 #include "sim_support.hpp"
 
 namespace pogear::test {

@@ -4,7 +4,7 @@
 #include <numbers>
 #include <variant>
 
-#include "run_summary.hpp"
+#include "report/run_summary.hpp"
 #include "sim_support.hpp"
 
 namespace pogear::test {

@@ -14,8 +14,8 @@
 #include "../support/csv.hpp"
 #include "../support/gaps.hpp"
 #include "../support/json.hpp"
-#include "interpreted_run.hpp"
-#include "simulate_scene.hpp"
+#include "run/interpreted_run.hpp"
+#include "run/simulate_scene.hpp"
 
 namespace pogear::test {
 

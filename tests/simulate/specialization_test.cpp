@@ -3,9 +3,9 @@
 // leave nothing behind.
 #include <numbers>
 
-#include "codegen.hpp"
-#include "exact_algebra.hpp"
-#include "initial_state.hpp"
+#include "codegen/codegen.hpp"
+#include "common/exact_algebra.hpp"
+#include "specialize/initial_state.hpp"
 #include "sim_support.hpp"
 
 namespace pogear::test {

@@ -3,7 +3,7 @@
 #include <regex>
 #include <sstream>
 
-#include "simulator_cache.hpp"
+#include "run/simulator_cache.hpp"
 #include "sim_support.hpp"
 
 namespace pogear::test {

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "../simulate/sim_support.hpp"
-#include "run_summary.hpp"
+#include "report/run_summary.hpp"
 
 namespace pogear::test {
 namespace {

@@ -9,8 +9,8 @@
 #include "../support/files.hpp"
 #include "../support/json.hpp"
 #include "../derive/test_support.hpp"
-#include "campbell.hpp"
-#include "engagement.hpp"
+#include "vibrate/campbell.hpp"
+#include "derive/engagement.hpp"
 
 namespace pogear::test {
 namespace {

@@ -17,10 +17,10 @@
 
 #include <fmt/format.h>
 #include "../derive/test_support.hpp"
-#include "engagement.hpp"
-#include "exact_algebra.hpp"
-#include "numeric_rank.hpp"
-#include "vibration_modes.hpp"
+#include "derive/engagement.hpp"
+#include "common/exact_algebra.hpp"
+#include "common/numeric_rank.hpp"
+#include "vibrate/vibration_modes.hpp"
 
 namespace pogear::test {
 namespace {

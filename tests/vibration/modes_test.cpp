@@ -14,8 +14,8 @@
 #include "../support/files.hpp"
 #include "../support/json.hpp"
 #include "../derive/test_support.hpp"
-#include "exact_algebra.hpp"
-#include "vibration_modes.hpp"
+#include "common/exact_algebra.hpp"
+#include "vibrate/vibration_modes.hpp"
 
 namespace pogear::test {
 namespace {

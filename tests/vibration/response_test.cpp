@@ -13,12 +13,12 @@
 
 #include "../support/commands.hpp"
 #include "../support/files.hpp"
-#include "diagnostics.hpp"
-#include "engagement.hpp"
-#include "frequency_response.hpp"
-#include "reference_model.hpp"
-#include "specialization.hpp"
-#include "vibration_modes.hpp"
+#include "vibrate/diagnostics.hpp"
+#include "derive/engagement.hpp"
+#include "vibrate/frequency_response.hpp"
+#include "specialize/reference_model.hpp"
+#include "specialize/specialization.hpp"
+#include "vibrate/vibration_modes.hpp"
 
 namespace pogear::test {
 namespace {

@@ -1,0 +1,321 @@
+// The two generated files: the header (provenance, the scene's settings, the parameter table and
+// the system structs of codegen_system, Eigen alone) and the main (input signals and runs, with the
+// runtime). Every piece is a CppText: user text (names, paths, titles, units) enters only through
+// cpp_text's escaping and checking functions, never as a raw string.
+#include "codegen/codegen.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <variant>
+
+#include <fmt/format.h>
+
+#include "build_config.hpp"
+#include "codegen/codegen_system.hpp"
+#include "common/cpp_text.hpp"
+#include "specialize/initial_state.hpp"
+#include "pogear/command_line.hpp"
+#include "common/printer.hpp"
+
+namespace pogear {
+namespace {
+
+CppText effects_list(const Effects& e) {
+  std::vector<CppText> on;
+  if (e.mesh_compliance) on.push_back(code("mesh_compliance"));
+  if (e.mesh_damping) on.push_back(code("mesh_damping"));
+  if (e.bearing_friction) on.push_back(code("bearing_friction"));
+  if (e.mesh_forces) on.push_back(code("mesh_forces"));
+  return on.empty() ? code("none (rigid, frictionless)") : join(on, code(", "));
+}
+
+CppText numbers(const std::vector<double>& v) {
+  std::vector<CppText> parts;
+  for (double x : v) parts.push_back(number_code(x));
+  return join(parts, code(", "));
+}
+
+CppText signal_code(const rt::Signal& signal) {
+  struct Code {
+    CppText operator()(const rt::Constant& c) const { return code("pogear::rt::Constant{{{}}}", number_code(c.v)); }
+    CppText operator()(const rt::Step& s) const {
+      return code("pogear::rt::Step{{{}, {}, {}}}", number_code(s.before), number_code(s.after), number_code(s.time));
+    }
+    CppText operator()(const rt::Ramp& r) const {
+      return code("pogear::rt::Ramp{{{}, {}, {}}}", number_code(r.start_time), number_code(r.slope),
+                  number_code(r.initial));
+    }
+    CppText operator()(const rt::Sine& s) const {
+      return code("pogear::rt::Sine{{{}, {}, {}, {}}}", number_code(s.amplitude), number_code(s.frequency_hz),
+                  number_code(s.phase_rad), number_code(s.offset));
+    }
+    CppText operator()(const rt::Table& t) const {
+      return code("pogear::rt::Table{{{{{}}}, {{{}}}}}", numbers(t.t), numbers(t.v));
+    }
+  };
+  return std::visit(Code{}, signal);
+}
+
+CppText signals_function(const SpecializedSystem& sys, const CppText& name) {
+  CppText s = code("// Input signals of {}, in the order of its inputs.\n", name);
+  s += code("std::vector<pogear::rt::Signal> {}_signals() {{\n  return {{", name);
+  for (std::size_t i = 0; i < sys.input_signals.size(); ++i)
+    s += (i ? code(",\n          ") : CppText{}) + code("/* {} */ ", comment_text(sys.inputs[i])) +
+         signal_code(sys.input_signals[i]);
+  s += code("}};\n}}\n");
+  return s;
+}
+
+// The engaged brakes and clutches as the runtime takes them: name, capacity [N m], static ratio,
+// command p(t).
+CppText friction_function(const SpecializedScene& model) {
+  CppText s = code("// Brakes and clutches engaged by the scene, in the order of the systems' friction torque inputs:\n"
+                   "// name, kinetic torque capacity [N m], static / kinetic friction, engagement command p(t), one-way.\n");
+  s += code("std::vector<pogear::rt::FrictionElementData> friction_elements() {{\n  return {{");
+  for (std::size_t i = 0; i < model.friction.size(); ++i) {
+    const FrictionRun& f = model.friction[i];
+    s += (i ? code(",\n          ") : CppText{}) +
+         code("{{{}, {}, {}, {}, {}}}", string_literal(f.name), number_code(f.capacity), number_code(f.static_ratio),
+              signal_code(f.command), f.one_way ? code("true") : code("false"));
+  }
+  s += code("}};\n}}\n");
+  return s;
+}
+
+// A torque limit as generated code writes it (an absent limit is infinite).
+CppText limit_code(double v) {
+  if (std::isfinite(v)) return number_code(v);
+  return v > 0 ? code("std::numeric_limits<double>::infinity()") : code("-std::numeric_limits<double>::infinity()");
+}
+
+// The controllers with torque limits as the runtime takes them: name and limits [N m] (their laws
+// come from the system's torque_limit_laws).
+CppText torque_limits_function(const SpecializedScene& model, const SpecializedSystem& sys, const CppText& name) {
+  CppText s = code("// Controllers with torque limits of {}, in the order of its last inputs: name, torque_min and\n"
+                   "// torque_max [N m].\n", name);
+  s += code("std::vector<pogear::rt::TorqueLimitData> {}_torque_limits() {{\n  return {{", name);
+  for (std::size_t i = 0; i < sys.limited_controllers.size(); ++i) {
+    const ControllerSpec& k = model.scene.controllers[static_cast<std::size_t>(sys.limited_controllers[i])];
+    s += (i ? code(",\n          ") : CppText{}) +
+         code("{{{}, {}, {}, {{}}, {{}}}}", string_literal(k.name), limit_code(k.torque_min), limit_code(k.torque_max));
+  }
+  s += code("}};\n}}\n");
+  return s;
+}
+
+// Only the file name: generated files must not depend on where pogear was run from.
+CppText file_name(const std::string& path) {
+  return comment_text(std::filesystem::path(path).filename().string());
+}
+
+// `{"J_c", &params.J_c, {{"kg*meters^2", 1.0}, {"kg*m^2", 1.0}}, ">0"}` for set_parameters.
+CppText parameter_fields(const SpecializedSystem& sys, const CppText& params) {
+  std::vector<CppText> fields;
+  for (const auto& p : sys.params) {
+    std::vector<CppText> units;
+    for (const auto& u : p.units) units.push_back(code("{{{}, {}}}", string_literal(u.unit), number_code(u.si)));
+    fields.push_back(code("{{{}, &{}.{}, {{{}}}, {}}}", string_literal(p.name), params, identifier(p.name),
+                          join(units, code(", ")), string_literal(p.sign)));
+  }
+  return join(fields, code(",\n       "));
+}
+
+// One parameter of the model as the header lists it.
+struct ParameterRow {
+  std::string name;
+  double value = 0;  // SI
+  std::string unit;  // SI, e.g. "kg*m^2"
+  std::string text;  // as written, e.g. "14.8*cm"; empty for a radius derived from the geometry
+  SourceLocation where;
+};
+
+// Every parameter of the model (the scene's overrides applied) in the model's order, then the
+// radii the geometry derives. The one place that reads the derivation's parameter tables.
+std::vector<ParameterRow> parameter_rows(const SpecializedScene& model) {
+  const Derivation& d = model.derivation;
+  const std::map<std::string, double> values = parameter_values(d.topology, d.radius);
+  std::vector<ParameterRow> rows;
+  for (const Parameter& p : d.topology.parameters)
+    rows.push_back({p.name, values.at(p.name),
+                    p.value.has_unit ? describe(p.value.dimension) : "SI, no unit written", p.text, p.where});
+  for (const DerivedRadius& r : d.radius.derived) rows.push_back({r.parameter, r.value, "m", "", {}});
+  return rows;
+}
+
+// `namespace parameters { inline constexpr double r_c = 0.148;  // m, "14.8*cm" (model.toml:61) }`:
+// a number in the functions below is traced to the parameters it was computed from.
+CppText parameter_table(const SpecializedScene& model) {
+  const std::vector<std::string>& tunable = model.scene.tunable;
+  CppText s = code("// The model's parameters in SI, with the scene's overrides, as written and where. The functions\n"
+                   "// below have them folded in as numbers, except the tunables, which they read from Params.\n");
+  s += code("namespace parameters {{\n");
+  for (const ParameterRow& p : parameter_rows(model)) {
+    const CppText origin = p.text.empty() ? code("derived from the geometry")
+                           : p.where.line > 0 ? code("\"{}\" ({}:{})", comment_text(p.text), file_name(p.where.file),
+                                                  integer_code(p.where.line))
+                                              : code("\"{}\"", comment_text(p.text));
+    const bool tuned = std::find(tunable.begin(), tunable.end(), p.name) != tunable.end();
+    s += code("inline constexpr double {} = {};  // {}, {}{}\n", identifier(p.name), number_code(p.value),
+              comment_text(p.unit), origin, tuned ? code(", tunable (Params::{})", identifier(p.name)) : CppText{});
+  }
+  return s + code("}}  // namespace parameters\n\n");
+}
+
+// What generated this header from what: a header that differs from another in these was made
+// from another model or scene text, or by another pogear.
+CppText provenance(const SpecializedScene& model) {
+  CppText s = code("inline constexpr std::string_view pogear_version = {};\n", string_literal(build_config::version));
+  s += code("// Digests (64-bit FNV-1a, hex) of the model's and the scene's file text, as pogear read them.\n");
+  s += code("inline constexpr std::string_view model_digest = {};\n", string_literal(model.derivation.topology.digest));
+  s += code("inline constexpr std::string_view scene_digest = {};\n\n", string_literal(model.scene.digest));
+  return s;
+}
+
+GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::Solver>& solvers) {
+  const Scene& sc = model.scene;
+  const Derivation& d = model.derivation;
+  const CppText name = identifier(sc.name);
+  const CppText header_name = code("{}.hpp", name), main_name = code("{}_main.cpp", name);
+  GeneratedSources g;
+  g.header_name = header_name.str();
+  g.main_name = main_name.str();
+  const bool needs_solve = model.main.implicit || (model.rigid && model.rigid->implicit);
+
+  CppText h;
+  h += code("// {}: generated by pogear {} from the scene {}; do not edit.\n", header_name,
+            comment_text(build_config::version), file_name(sc.file));
+  h += code("// Model: {} ({}, as the scene names it){}\n", comment_text(d.topology.name), comment_text(sc.model_ref),
+            d.topology.title.empty() ? CppText{} : code(", {}", comment_text(d.topology.title)));
+  std::vector<CppText> inputs;
+  for (const auto& i : model.main.inputs) inputs.push_back(comment_text(i));
+  h += code("// Effects: {}. Inputs: {}.\n", effects_list(sc.effects), inputs.empty() ? code("none") : join(inputs, code(", ")));
+  h += code("// Equations (Zanasi & Tebaldi, Planetary Gear Modeling Using the Power-Oriented Graphs Technique):\n");
+  h += code("//   {}\n", comment_text(model.main.equations));
+  for (const LoadSpec& l : sc.loads)
+    h += code("//   load on {}: TL = -({} + {} omega + {} omega |omega|) [N m, N m s, N m s^2]\n",
+              comment_text(d.topology.bodies[static_cast<std::size_t>(l.body)].name), number_code(l.constant),
+              number_code(l.linear), number_code(l.quadratic));
+  for (std::size_t c = 0; c < sc.controllers.size(); ++c) {
+    const ControllerSpec& k = sc.controllers[c];
+    h += code("//   controller {}: Tc = {} e + {} theta on {}, e = ref - omega_{}, theta' = e [N m s, N m]\n",
+              comment_text(k.name), number_code(k.kp), number_code(k.ki),
+              comment_text(d.topology.bodies[static_cast<std::size_t>(k.body)].name),
+              comment_text(d.topology.bodies[static_cast<std::size_t>(k.measured)].name));
+    if (k.limited())
+      h += code("//     within [{}, {}] N m, held at a limit beyond it (events){}\n", limit_code(k.torque_min),
+                limit_code(k.torque_max),
+                k.ki != 0 ? code("; there theta' = e + (Tc - law) / (ki {} s), its back-calculation",
+                                 number_code(k.tracking_time))
+                          : CppText{});
+  }
+  if (model.rigid) h += code("//   {} (for comparison)\n", comment_text(model.rigid->equations));
+  h += code("// Units are SI: rad/s, N, N m. Parameters are literals (see namespace parameters) unless listed in Params.\n");
+  h += code("#pragma once\n\n#include <array>\n#include <string_view>\n\n#include <Eigen/Core>\n");
+  if (needs_solve) h += code("#include <Eigen/Cholesky>\n");
+  h += code("\nnamespace pogear_generated::{} {{\n\n", name);
+  h += provenance(model);
+  h += code("inline constexpr std::string_view scene_name = {};\n", string_literal(sc.name));
+  h += code("inline constexpr double horizon = {};  // s\n", number_code(sc.horizon));
+  h += code("inline constexpr double sample_period = {};  // s\n", number_code(sc.sample));
+  h += code("inline constexpr std::string_view default_solver = {};\n", string_literal(solver_name(sc.solver)));
+  h += code("inline constexpr double default_tolerance = {};\n", number_code(sc.tolerance));
+  h += code("inline constexpr double default_step = {};  // s\n", number_code(sc.step));
+  h += code("inline constexpr long default_max_steps = {};\n\n", integer_code(sc.max_steps));
+  h += parameter_table(model);
+  const CppText main_struct = model.main.kind == SystemKind::elastic ? code("Elastic") : code("Rigid");
+  h += system_struct(model.main, d, main_struct) + code("\n");
+  if (model.rigid) h += system_struct(*model.rigid, d, code("Rigid")) + code("\n");
+  h += code("}}  // namespace pogear_generated::{}\n", name);
+  g.header = h.str();
+
+  CppText m;
+  m += code("// {}: generated by pogear {} from the scene {}; do not edit.\n", main_name,
+            comment_text(build_config::version), file_name(sc.file));
+  m += code("// Simulates the scene and writes DIR/{}.csv{}{}.\n", name,
+            model.rigid ? code(" and DIR/{}.rigid.csv", name) : CppText{},
+            model.friction.empty() ? CppText{} : code(", with its brakes' and clutches' events in .events.csv files"));
+  for (const std::string& line : rt::usage_lines("PROGRAM", 100, solvers)) m += code("// {}\n", comment_text(line));
+  const bool limits = !model.main.limited_controllers.empty();
+  const bool hybrid = !model.friction.empty() || limits;
+  m += code("#include \"{}\"\n\n{}{}#include <pogear/parameters.hpp>\n#include <pogear/run_system.hpp>\n#include <pogear/signals.hpp>\n\n",
+            header_name, limits ? code("#include <limits>\n\n") : CppText{},
+            hybrid ? code("#include <pogear/hybrid_run.hpp>\n") : CppText{});
+  m += code("namespace scene = pogear_generated::{};\n\n", name);
+  std::vector<CppText> solver_codes;
+  for (rt::Solver s : solvers) solver_codes.push_back(code("pogear::rt::Solver::{}", identifier(std::string(rt::solver_name(s)))));
+  m += code("namespace {{\n\n");
+  m += code("// The solvers compiled into this simulator (`pogear generate --solvers`): each costs compile time.\n");
+  m += code("using Solvers = pogear::rt::Solvers<{}>;\n\n", join(solver_codes, code(", ")));
+  m += signals_function(model.main, main_struct);
+  if (model.rigid) m += code("\n") + signals_function(*model.rigid, code("Rigid"));
+  if (hybrid) m += code("\n") + friction_function(model);
+  if (limits) {
+    m += code("\n") + torque_limits_function(model, model.main, main_struct);
+    if (model.rigid) m += code("\n") + torque_limits_function(model, *model.rigid, code("Rigid"));
+  }
+  m += code("\n}}  // namespace\n\n");
+  m += code("int main(int argc, char** argv) {{\n");
+  m += code("  pogear::rt::SceneRun run;\n");
+  m += code("  run.name = scene::scene_name;\n  run.horizon = scene::horizon;\n  run.sample = scene::sample_period;\n");
+  m += code("  run.solver = pogear::rt::parse_solver(scene::default_solver).value();\n");
+  m += code("  pogear::rt::set_tolerance(run.options, scene::default_tolerance);\n");
+  m += code("  run.options.h = scene::default_step;\n  run.options.max_steps = scene::default_max_steps;\n");
+  m += code("  if (const int exit = pogear::rt::read_command_line(argc, argv, run, Solvers::list); exit >= 0) return exit;\n");
+  m += code("  scene::{}::Params params;\n", main_struct);
+  m += code("  if (!pogear::rt::set_parameters(run.params, {{{}}}, argv[0])) return 1;\n",
+            parameter_fields(model.main, code("params")));
+  m += code("  const scene::{} system;\n", main_struct);
+  if (hybrid)
+    m += code("  int status = pogear::rt::run_hybrid_system(system, params, {}_signals(), friction_elements(), {}"
+              "scene::{}::initial_state(), run, \"\");\n", main_struct,
+              limits ? code("{}_torque_limits(), ", main_struct) : CppText{}, main_struct);
+  else
+    m += code("  int status = pogear::rt::run_system<Solvers>(system, params, {}_signals(), scene::{}::initial_state(), run, \"\");\n",
+              main_struct, main_struct);
+  if (model.rigid) {
+    m += code("  scene::Rigid::Params rigid_params;\n");
+    for (const auto& p : model.rigid->params)
+      m += code("  rigid_params.{} = params.{};\n", identifier(p.name), identifier(p.name));
+    if (hybrid)
+      m += code("  if (status == 0)\n    status = pogear::rt::run_hybrid_system(scene::Rigid{{}}, rigid_params, Rigid_signals(), "
+                "friction_elements(), {}scene::Rigid::initial_state(), run, \".rigid\");\n",
+                limits ? code("Rigid_torque_limits(), ") : CppText{});
+    else
+      m += code("  if (status == 0)\n    status = pogear::rt::run_system<Solvers>(scene::Rigid{{}}, rigid_params, Rigid_signals(), "
+                "scene::Rigid::initial_state(), run, \".rigid\");\n");
+  }
+  m += code("  return status;\n}}\n");
+  g.main = m.str();
+  return g;
+}
+
+}  // namespace
+
+GeneratedSources generate_sources(const SpecializedScene& model, std::vector<rt::Solver> solvers) {
+  // The scene's solver, and those asked for, in the order of rt::all_solvers.
+  std::vector<rt::Solver> compiled;
+  for (rt::Solver s : rt::all_solvers)
+    if ((solvers.empty() && s == model.scene.solver) || std::find(solvers.begin(), solvers.end(), s) != solvers.end())
+      compiled.push_back(s);
+  for (const rt::Solver fixed : {rt::Solver::exact, rt::Solver::rk4})
+    if (model.main.nonlinear && std::find(compiled.begin(), compiled.end(), fixed) != compiled.end())
+      throw InputError(SourceLocation{model.scene.file, 0, 0},
+                       fmt::format("a quadratic load makes this scene nonlinear, which {}; leave {} out of --solvers",
+                                   fixed == rt::Solver::exact ? "exact stepping does not integrate"
+                                                              : "rk4's fixed step cannot be checked against its "
+                                                                "stability limit",
+                                   rt::solver_name(fixed)));
+  try {
+    return generate(model, compiled);
+  } catch (const std::logic_error& e) {
+    // The readers check every name and number; what still fails here (a name or number cpp_text
+    // refuses, a coefficient that should be a number) is refused, not written.
+    throw InputError(SourceLocation{model.scene.file, 0, 0},
+                     fmt::format("cannot generate the simulator: {}; report this scene as a pogear bug", e.what()));
+  }
+}
+
+}  // namespace pogear

@@ -1,0 +1,92 @@
+// Variable names are a prefix and a body or mesh name; recognizing one compares it with the
+// names the model has, so `omega_` of a body named `x_y` and a mesh `y` can never be confused.
+#include "names/model_variables.hpp"
+
+#include <array>
+
+namespace pogear {
+namespace {
+
+struct KindText {
+  std::string_view prefix, unit;
+};
+
+KindText text_of(VariableKind kind) {
+  switch (kind) {
+    case VariableKind::velocity: return {"omega_", "rad/s"};
+    case VariableKind::acceleration: return {"domega_", "rad/s^2"};
+    case VariableKind::torque: return {"tau_", "N m"};
+    case VariableKind::force: return {"F_", "N"};
+    case VariableKind::force_rate: return {"dF_", "N/s"};
+    case VariableKind::mesh_velocity: return {"v_", "m/s"};
+    case VariableKind::transmitted_force: return {"w_", "N"};
+    case VariableKind::friction_torque: return {"Tf_", "N m"};
+    case VariableKind::load_torque: return {"TL_", "N m"};
+    case VariableKind::controller_torque: return {"Tc_", "N m"};
+    case VariableKind::controller_integral: return {"theta_", "rad"};
+    case VariableKind::controller_error: return {"e_", "rad/s"};
+    case VariableKind::set_point: return {"ref_", "rad/s"};
+  }
+  return {"", ""};
+}
+
+constexpr std::array all_kinds{VariableKind::velocity,  VariableKind::acceleration,  VariableKind::torque,
+                               VariableKind::force,     VariableKind::force_rate,    VariableKind::mesh_velocity,
+                               VariableKind::transmitted_force, VariableKind::friction_torque,
+                               VariableKind::load_torque, VariableKind::controller_torque,
+                               VariableKind::controller_integral, VariableKind::controller_error,
+                               VariableKind::set_point};
+
+}  // namespace
+
+bool of_body(VariableKind kind) {
+  return kind == VariableKind::velocity || kind == VariableKind::acceleration || kind == VariableKind::torque ||
+         kind == VariableKind::load_torque;
+}
+
+bool of_controller(VariableKind kind) {
+  return kind == VariableKind::controller_torque || kind == VariableKind::controller_integral ||
+         kind == VariableKind::controller_error || kind == VariableKind::set_point;
+}
+
+std::size_t variable_count(const Topology& t, VariableKind kind) {
+  if (kind == VariableKind::friction_torque) return t.friction_elements.size();
+  if (of_controller(kind)) return t.controllers.size();
+  return of_body(kind) ? t.bodies.size() : t.meshes.size();
+}
+
+std::string variable_name(const Topology& t, Variable v) {
+  const auto i = static_cast<std::size_t>(v.index);
+  const std::string& owner = v.kind == VariableKind::friction_torque ? t.friction_elements.at(i).name
+                             : of_controller(v.kind)                 ? t.controllers.at(i)
+                             : of_body(v.kind)                       ? t.bodies.at(i).name
+                                                                     : t.meshes.at(i).name;
+  return std::string(text_of(v.kind).prefix) + owner;
+}
+
+Variable derivative_of(Variable state) {
+  if (state.kind == VariableKind::controller_integral) return {VariableKind::controller_error, state.index};
+  return {state.kind == VariableKind::force ? VariableKind::force_rate : VariableKind::acceleration, state.index};
+}
+
+std::string_view unit_of(VariableKind kind) { return text_of(kind).unit; }
+
+std::optional<Variable> find_variable(const Topology& t, std::string_view name,
+                                      std::initializer_list<VariableKind> kinds) {
+  for (const VariableKind kind : kinds) {
+    const std::size_t count = variable_count(t, kind);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Variable v{kind, static_cast<int>(i)};
+      if (variable_name(t, v) == name) return v;
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<Variable> find_variable(const Topology& t, std::string_view name) {
+  for (const VariableKind kind : all_kinds)
+    if (auto v = find_variable(t, name, {kind})) return v;
+  return std::nullopt;
+}
+
+}  // namespace pogear

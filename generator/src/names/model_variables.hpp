@@ -1,0 +1,55 @@
+// The variables of a model's equations (velocities, torques, mesh forces, their derivatives and the
+// generated code's mesh temporaries), named and recognized in one place: no name is parsed back.
+#pragma once
+
+#include <compare>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "read/topology.hpp"
+
+namespace pogear {
+
+enum class VariableKind {
+  velocity,           // omega_<body> [rad/s]
+  acceleration,       // domega_<body> = d omega/dt [rad/s^2]
+  torque,             // tau_<body> [N m], an input
+  force,              // F_<mesh> [N], positive from the first terminal to the second
+  force_rate,         // dF_<mesh> = dF/dt [N/s]
+  mesh_velocity,      // v_<mesh> = R omega, a temporary of the generated rhs [m/s]
+  transmitted_force,  // w_<mesh> = F + b v, the force a damped mesh passes on [N]
+  friction_torque,    // Tf_<element> [N m]: a brake's or clutch's torque, -T on its first body, +T on its second
+  load_torque,        // TL_<body> [N m]: a scene's load on the body (its constant part, an input)
+  controller_torque,  // Tc_<controller> [N m]: a speed controller's torque on its body
+  controller_integral,  // theta_<controller> [rad]: the integral of its speed error, a state
+  controller_error,   // e_<controller> = d theta/dt [rad/s]: set-point less measured speed
+  set_point,          // ref_<controller> [rad/s]: its set-point, an input
+};
+
+// A variable of body or mesh `index`, as the kind says.
+struct Variable {
+  VariableKind kind = VariableKind::velocity;
+  int index = 0;
+  friend auto operator<=>(const Variable&, const Variable&) = default;
+};
+
+// velocity, acceleration, torque and load_torque are of a body; friction_torque of a friction element;
+// controller_* and set_point of a controller; the others of a mesh.
+bool of_body(VariableKind kind);
+bool of_controller(VariableKind kind);
+// How many variables of this kind the model has (its bodies, meshes or friction elements).
+std::size_t variable_count(const Topology& t, VariableKind kind);
+std::string variable_name(const Topology& t, Variable v);
+std::string_view unit_of(VariableKind kind);  // SI, as CSV headers write it: "rad/s", "N", ...
+
+// d/dt of a velocity (an acceleration) or of a force (a force rate); outputs read them.
+Variable derivative_of(Variable state);
+
+// The variable of the model that `name` denotes, found among the model's own names, or nothing.
+std::optional<Variable> find_variable(const Topology& t, std::string_view name);
+// The same, only among the given kinds (a scene's [initial] takes omega_ and F_, its inputs tau_).
+std::optional<Variable> find_variable(const Topology& t, std::string_view name,
+                                      std::initializer_list<VariableKind> kinds);
+
+}  // namespace pogear

@@ -1,0 +1,23 @@
+// The scene's loads and speed controllers ([loads], [controllers]): read and checked against the
+// model, so that specialization can take them as given.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "read/scene.hpp"
+#include "read/scene_reader.hpp"
+
+namespace pogear {
+
+// [loads]: a table of <body> = { constant, linear, quadratic }, in body order.
+std::vector<LoadSpec> read_loads(const SceneReader& r, const toml::node& n);
+
+// [controllers]: a table of <name> = { body, speed_of, set_point, kp, ki }. Their names go into
+// `model.controllers`, which names their variables.
+std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::node& n,
+                                             const std::filesystem::path& scene_dir, Topology& model);
+
+}  // namespace pogear

@@ -1,0 +1,398 @@
+// Reads scene files. Every name a scene uses is checked against its model here, so the later
+// stages can assume a consistent scene.
+#include "read/scene.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <sys/stat.h>
+#include <toml++/toml.h>
+
+#include "pogear/run_limits.hpp"
+#include "common/cpp_text.hpp"
+#include "pogear/signal_table.hpp"
+#include "read/model_parameters.hpp"
+#include "names/model_variables.hpp"
+#include "read/loads_and_controllers.hpp"
+#include "read/scene_reader.hpp"
+#include "read/toml_reader.hpp"
+
+namespace pogear {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Tunable parameters become variables of the generated C++, beside the states, inputs and the
+// functions' own arguments; these names would not compile there.
+bool clashes_with_generated_code(const std::string& name, const Topology& t) {
+  static const std::set<std::string> arguments{"p", "x", "u", "dx", "y", "M", "N"};  // of rhs, outputs, matrices
+  return is_cpp_reserved(name) || arguments.count(name) || find_variable(t, name).has_value();
+}
+
+Effects read_effects(const SceneReader& r, const toml::node& n) {
+  Effects e;
+  for (const std::string& name : r.strings(n, "effects")) {
+    if (name == "mesh_compliance") e.mesh_compliance = true;
+    else if (name == "mesh_damping") e.mesh_damping = true;
+    else if (name == "bearing_friction") e.bearing_friction = true;
+    else if (name == "mesh_forces") e.mesh_forces = true;
+    else
+      r.fail(n, fmt::format("unknown effect '{}'; the effects are mesh_compliance, mesh_damping, bearing_friction, "
+                            "mesh_forces", name));
+  }
+  if (e.mesh_damping && !e.mesh_compliance)
+    r.fail(n, "mesh_damping needs mesh_compliance: a rigid mesh has no deflection to damp; add mesh_compliance "
+              "or drop mesh_damping");
+  return e;
+}
+
+// The scene's [parameters] replace the model's texts, and every parameter is evaluated again (a
+// parameter defined through an overridden one follows it).
+void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
+  if (!n.is_table()) r.fail(n, "[parameters] must be a table");
+  for (const auto& [key, value] : *n.as_table()) {
+    const std::string name(key.str());
+    const auto p = std::find_if(t.parameters.begin(), t.parameters.end(), [&](const Parameter& q) { return q.name == name; });
+    if (p == t.parameters.end())
+      throw InputError(toml_location(r.file, key.source()), fmt::format("'{}' is not a parameter of the model {}", name, t.name));
+    p->where = r.loc(value);
+    p->column_offset = 1;
+    if (value.is_string()) {
+      p->text = *value.value<std::string>();
+    } else if (value.is_integer() || value.is_floating_point()) {
+      if (!std::isfinite(*value.value<double>())) r.fail(value, fmt::format("parameter '{}' is not finite", name));
+      p->text = fmt::format("{}", *value.value<double>());
+      p->column_offset = 0;
+    } else {
+      r.fail(value, "a parameter override is a number (SI) or a string such as \"2000*Newton/mm\"");
+    }
+  }
+  evaluate_parameters(t.parameters);
+  // An override of 0 for an inertia or a length for a stiffness would reach the algebra as a
+  // singular matrix; it is the scene's mistake, and the location is the override's.
+  check_parameter_roles(t);
+}
+
+// What loads and controllers cannot be combined with (yet), each refused at the line that asks for it.
+void check_loads_and_controllers(Scene& s, bool engaged) {
+  if (s.loads.empty() && s.controllers.empty()) return;
+  const SourceLocation& where = s.loads.empty() ? s.controllers_where : s.loads_where;
+  if (!s.tunable.empty())
+    throw InputError(s.tunable_where, "a scene with [loads] or [controllers] has no tunable parameters yet; set the "
+                                      "values in [parameters] and generate one simulator per value");
+  if (s.start != Start::given && !s.controllers.empty())
+    throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [controllers]; give the "
+                                    "initial speeds in [initial]");
+  if (s.start == Start::steady && nonlinear(s))
+    throw InputError(s.start_where, "start = \"steady\" solves a linear equilibrium, which a quadratic load does not "
+                                    "have; start from given speeds, or with start = \"rigid\"");
+  const bool limited = std::any_of(s.controllers.begin(), s.controllers.end(), [](const ControllerSpec& c) { return c.limited(); });
+  if (limited && s.solver == Solver::rk4)
+    throw InputError(s.solver_where, "a controller with torque limits switches at events, which rk4 does not locate "
+                                     "(its fixed steps); use solver = \"exact\", \"dopri5\" or \"implicit\"");
+  if (!nonlinear(s)) return;
+  if (engaged || limited)
+    throw InputError(where, "a quadratic load makes the scene nonlinear, and brakes, clutches and torque limits are "
+                            "simulated on linear scenes only; drop the quadratic part of the load, or the "
+                            "[engagement] and the controllers' limits");
+  if (s.solver_given && (s.solver == Solver::exact || s.solver == Solver::rk4))
+    throw InputError(s.solver_where, fmt::format("a quadratic load makes the scene nonlinear, which {}; use solver = "
+                                                 "\"dopri5\" or \"implicit\", or a linear load",
+                                                 s.solver == Solver::exact
+                                                     ? "exact stepping does not integrate"
+                                                     : "rk4's fixed step cannot be checked against its stability limit"));
+  if (!s.solver_given) s.solver = Solver::dopri5;
+}
+
+}  // namespace
+
+bool nonlinear(const Scene& scene) {
+  return std::any_of(scene.loads.begin(), scene.loads.end(), [](const LoadSpec& l) { return l.quadratic != 0; });
+}
+
+bool identically_zero(const rt::Signal& signal) {
+  struct Zero {
+    bool operator()(const rt::Constant& c) const { return c.v == 0; }
+    bool operator()(const rt::Step& s) const { return s.after == 0 && s.before == 0; }
+    bool operator()(const rt::Ramp& r) const { return r.slope == 0 && r.initial == 0; }
+    bool operator()(const rt::Sine& s) const {
+      return (s.amplitude == 0 || s.frequency_hz == 0) && s.offset == 0 && (s.amplitude == 0 || std::sin(s.phase_rad) == 0);
+    }
+    bool operator()(const rt::Table& t) const {
+      return std::all_of(t.v.begin(), t.v.end(), [](double v) { return v == 0; });
+    }
+  };
+  return std::visit(Zero{}, signal);
+}
+
+Solver parse_solver(const std::string& name, const SourceLocation& where) {
+  if (const std::optional<Solver> solver = rt::parse_solver(name)) return *solver;
+  throw InputError(where, fmt::format("unknown solver '{}'; the solvers are {}", name, rt::solver_names(", ")));
+}
+
+Scene parse_scene_text(const std::string& text, const std::string& path) {
+  SceneReader r{{path}};
+  const toml::table root = parse_toml_document(
+      text, path, max_model_file_bytes,
+      fmt::format("the scene file is larger than {} bytes; a model or scene file is a few kilobytes",
+                  max_model_file_bytes));
+  r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
+                     "parameters", "simulation", "engagement", "speed_unit", "loads", "controllers"},
+              "the scene file");
+  Scene s;
+  s.file = path;
+  s.digest = text_digest(text);
+  s.name = fs::path(path).stem().string();
+  if (const toml::node* n = root.get("name")) s.name = r.string(*n, "name");
+  if (!is_name(s.name))
+    throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
+                     fmt::format("scene name '{}' must be letters, digits and '_' (it names C++ code and files)", s.name));
+  if (s.name.size() > max_name_length)
+    throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
+                     fmt::format("the scene name is {} characters long; names have at most {}", s.name.size(),
+                                 max_name_length));
+  // The generated code lives in namespace pogear_generated::<name>.
+  if (is_cpp_reserved(s.name))
+    throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
+                     fmt::format("scene name '{}' is a C++ keyword or macro, which cannot name the generated code; "
+                                 "choose another name", s.name));
+
+  const toml::node* model = root.get("model");
+  if (!model) throw InputError(SourceLocation{path, 0, 0}, "the scene names no model; add model = \"path/to/model.toml\"");
+  const fs::path scene_dir = fs::path(path).parent_path();
+  const std::string model_name = r.string(*model, "model");
+  s.model_ref = model_name;
+  // The path is quoted in a comment of the generated code, which a line break would end.
+  if (std::any_of(model_name.begin(), model_name.end(), [](char c) { return c == '\n' || c == '\r'; }))
+    r.fail(*model, "the model path contains a line break; give the path of the model file");
+  if (model_name.empty()) r.fail(*model, "the model path is empty; give the path of the model file, e.g. model = \"gear.toml\"");
+  // TOML strings may hold \u0000; the system would read the path only up to it.
+  if (model_name.find('\0') != std::string::npos)
+    r.fail(*model, "the model path contains a NUL character; give the path of the model file");
+  s.model_file = (fs::path(model_name).is_absolute() ? fs::path(model_name) : scene_dir / model_name).lexically_normal().string();
+  if (struct stat st {}; ::stat(s.model_file.c_str(), &st) != 0) {
+    if (errno == ENOENT || errno == ENOTDIR)
+      r.fail(*model, fmt::format("model file '{}' does not exist; give its path relative to the scene file", s.model_file));
+    r.fail(*model, fmt::format("model file '{}' cannot be opened ({}); check the path and its links", s.model_file,
+                               std::strerror(errno)));
+  }
+  s.model = parse_topology(s.model_file);
+  const Topology& topology = s.model;
+  r.model = &topology;
+  // Before anything that evaluates a quantity: [initial] and [inputs] may name parameters.
+  if (const toml::node* n = root.get("parameters")) apply_overrides(r, *n, s.model);
+
+  if (const toml::node* n = root.get("effects")) s.effects = read_effects(r, *n);
+  // Before the tunables, whose names must not be the controllers' variables.
+  if (const toml::node* n = root.get("loads")) {
+    s.loads = read_loads(r, *n);
+    s.loads_where = r.loc(*n);
+  }
+  if (const toml::node* n = root.get("controllers")) {
+    s.controllers = read_controllers(r, *n, scene_dir, s.model);
+    s.controllers_where = r.loc(*n);
+  }
+  if (const toml::node* n = root.get("keep")) {
+    s.keep = r.strings(*n, "keep");
+    s.keep_where = r.loc(*n);
+    for (const auto& k : s.keep)
+      if (find_body(topology, k) < 0) r.fail(*n, fmt::format("keep names '{}', which is not a body of the model", k));
+  } else {
+    s.keep_where = SourceLocation{path, 0, 0};
+  }
+  if (const toml::node* n = root.get("speed_unit")) {
+    const std::string unit = r.string(*n, "speed_unit");
+    if (unit != "rpm" && unit != "rad/s") r.fail(*n, "speed_unit is \"rad/s\" (the default) or \"rpm\"");
+    s.speeds_in_rpm = unit == "rpm";
+  }
+  if (const toml::node* n = root.get("compare_rigid")) {
+    if (!n->is_boolean()) r.fail(*n, "compare_rigid must be true or false");
+    s.compare_rigid = **n->as_boolean();
+    if (s.compare_rigid && !s.effects.mesh_compliance)
+      r.fail(*n, "compare_rigid compares the elastic model with the rigid one, but this scene is already rigid "
+                 "(no mesh_compliance); drop compare_rigid or add mesh_compliance");
+  }
+
+  std::set<std::string> parameter_names;
+  for (const auto& p : topology.parameters) parameter_names.insert(p.name);
+  if (const toml::node* n = root.get("tunable")) {
+    s.tunable = r.strings(*n, "tunable");
+    s.tunable_where = r.loc(*n);
+    std::set<std::string> seen;
+    for (const auto& name : s.tunable) {
+      if (!parameter_names.count(name)) r.fail(*n, fmt::format("tunable '{}' is not a parameter of the model", name));
+      if (!seen.insert(name).second) r.fail(*n, fmt::format("tunable '{}' is listed twice", name));
+      if (clashes_with_generated_code(name, topology))
+        r.fail(*n, fmt::format("tunable '{}' cannot be a variable of the generated C++ (a keyword, a macro or a name "
+                               "the code uses itself); rename the parameter in the model", name));
+    }
+  }
+
+  if (const toml::node* n = root.get("inputs")) {
+    if (!n->is_table()) r.fail(*n, "[inputs] must be a table of tau_<body> = signal");
+    for (const auto& [key, value] : *n->as_table()) {
+      const std::string name(key.str());
+      const auto tau = find_variable(topology, name, {VariableKind::torque});
+      if (!tau)
+        throw InputError(toml_location(path, key.source()),
+                         fmt::format("input '{}' names no body; inputs are tau_<body>, e.g. tau_{}", name,
+                                     topology.bodies.front().name));
+      s.inputs.push_back(InputSpec{tau->index, read_signal(r, value, scene_dir), r.loc(value)});
+    }
+    // Inputs in body order, the order of the model's tau vector.
+    std::sort(s.inputs.begin(), s.inputs.end(), [](const InputSpec& a, const InputSpec& b) { return a.body < b.body; });
+  }
+
+  if (const toml::node* n = root.get("engagement")) {
+    if (!n->is_table()) r.fail(*n, "[engagement] must be a table of <element> = command");
+    if (topology.friction_elements.empty())
+      r.fail(*n, fmt::format("[engagement] commands brakes and clutches, but the model {} has none; add [[brake]] or "
+                             "[[clutch]] to the model, or drop [engagement]", topology.name));
+    for (const auto& [key, value] : *n->as_table()) {
+      const std::string name(key.str());
+      const int k = find_friction_element(topology, name);
+      if (k < 0) {
+        std::string names;
+        for (const auto& e : topology.friction_elements) names += (names.empty() ? "" : ", ") + e.name;
+        throw InputError(toml_location(path, key.source()),
+                         fmt::format("'{}' is not a brake or clutch of the model; its elements are {}", name, names));
+      }
+      s.engagement.push_back(EngagementSpec{k, read_signal(r, value, scene_dir, SignalQuantity::engagement), r.loc(value)});
+    }
+    std::sort(s.engagement.begin(), s.engagement.end(),
+              [](const EngagementSpec& a, const EngagementSpec& b) { return a.element < b.element; });
+  }
+
+  if (const toml::node* n = root.get("initial")) {
+    if (!n->is_table()) r.fail(*n, "[initial] must be a table of omega_<body> and F_<mesh> values");
+    s.initial_where = r.loc(*n);
+    for (const auto& [key, value] : *n->as_table()) {
+      const std::string name(key.str());
+      if (name == "start") {
+        const std::string start = r.string(value, "start");
+        s.start_where = r.loc(value);
+        if (start == "rigid") s.start = Start::rigid;
+        else if (start == "steady") s.start = Start::steady;
+        else if (start == "given") s.start = Start::given;
+        else r.fail(value, fmt::format("start \"{}\" is not known; write \"given\" (the default), \"rigid\" or \"steady\"", start));
+        continue;
+      }
+      const auto v = find_variable(topology, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+      if (!v)
+        throw InputError(toml_location(path, key.source()),
+                         fmt::format("'{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene; name a "
+                                     "body's speed, a mesh's force or a controller's start torque", name));
+      if (v->kind == VariableKind::controller_torque) {
+        // The controller starts at this torque through its integral's initial value.
+        const ControllerSpec& c = s.controllers[static_cast<std::size_t>(v->index)];
+        if (c.ki == 0)
+          r.fail(value, fmt::format("controller '{}' has no integral (ki = 0) to start at a given torque; its torque at "
+                                    "t = 0 is kp times the speed error: drop {}", c.name, name));
+        s.initial[*v] = r.quantity(value, torque_dimension(), name);
+      } else if (v->kind == VariableKind::velocity) {
+        s.initial[*v] = r.quantity(value, angular_velocity_dimension(), name);
+      } else {
+        if (!s.effects.mesh_compliance)
+          throw InputError(toml_location(path, key.source()), fmt::format("initial force '{}' needs mesh_compliance: the rigid "
+                                                               "model has no force states", name));
+        s.initial[*v] = r.quantity(value, force_dimension(), name);
+      }
+    }
+  }
+
+  if (const toml::node* n = root.get("outputs")) {
+    s.outputs_where = r.loc(*n);
+    for (const auto& o : r.strings(*n, "outputs")) {
+      const auto v = find_variable(topology, o, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+      if (!v) r.fail(*n, fmt::format("output '{}' is neither omega_<body>, F_<mesh> nor Tc_<controller>", o));
+      if (std::find(s.outputs.begin(), s.outputs.end(), *v) != s.outputs.end())
+        r.fail(*n, fmt::format("output '{}' is listed twice", o));
+      if (v->kind == VariableKind::force && !s.effects.mesh_forces)
+        r.fail(*n, fmt::format("output '{}' is a mesh force, but the scene does not ask for mesh_forces; add it to "
+                               "effects", o));
+      s.outputs.push_back(*v);
+    }
+  }
+
+  if (const toml::node* n = root.get("simulation")) {
+    if (!n->is_table()) r.fail(*n, "[simulation] must be a table");
+    const toml::table& t = *n->as_table();
+    r.only_keys(t, {"horizon", "sample", "solver", "tolerance", "step", "max_steps"}, "[simulation]");
+    if (const toml::node* v = t.get("max_steps")) {
+      if (!v->is_integer() || *v->value<long>() < rt::limits::min_max_steps ||
+          *v->value<long>() > rt::limits::max_max_steps)
+        r.fail(*v, fmt::format("max_steps is a whole number from {} to {}", rt::limits::min_max_steps,
+                               rt::limits::max_max_steps));
+      s.max_steps = *v->value<long>();
+    }
+    if (const toml::node* v = t.get("horizon")) s.horizon = r.quantity(*v, time_dimension(), "horizon");
+    if (const toml::node* v = t.get("sample")) {
+      s.sample = r.quantity(*v, time_dimension(), "sample");
+      s.sample_where = r.loc(*v);
+    }
+    if (const toml::node* v = t.get("step")) s.step = r.quantity(*v, time_dimension(), "step");
+    if (const toml::node* v = t.get("tolerance")) {
+      if (!v->is_number()) r.fail(*v, "tolerance is a plain number, the relative tolerance, e.g. 1e-8");
+      s.tolerance = *v->value<double>();
+      if (!(s.tolerance >= rt::limits::min_tolerance && s.tolerance <= rt::limits::max_tolerance))
+        r.fail(*v, fmt::format("tolerance must be from {} to {} (a looser one lets an adaptive method "
+                               "diverge, a tighter one stalls it on rounding); give one in that range, e.g. 1e-8",
+                               rt::limits::min_tolerance, rt::limits::max_tolerance));
+    }
+    if (const toml::node* v = t.get("solver")) {
+      s.solver_where = r.loc(*v);
+      s.solver = parse_solver(r.string(*v, "solver"), s.solver_where);
+      s.solver_given = true;
+    }
+    if (!(s.horizon > 0)) r.fail(*t.get("horizon"), "horizon must be positive; give the simulated time, e.g. horizon = \"2*s\"");
+    if (!(s.sample > 0) || s.sample > s.horizon)
+      r.fail(t.get("sample") ? *t.get("sample") : *n, "sample must be positive and at most the horizon");
+    if (!(s.step > 0)) r.fail(*t.get("step"), "step must be positive");
+    if (!(s.step >= rt::limits::min_step && s.step <= rt::limits::max_step))
+      r.fail(*t.get("step"), fmt::format("step must be from {} s to {} s; give a step in that range",
+                                             rt::limits::min_step, rt::limits::max_step));
+    if (s.horizon / s.sample > rt::limits::max_samples)
+      r.fail(*n, fmt::format("{} samples requested; at most 1e7 (raise sample or shorten the horizon)", s.horizon / s.sample));
+  }
+  const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(),
+                                   [](const EngagementSpec& e) { return !identically_zero(e.command); });
+  check_loads_and_controllers(s, engaged);
+  if (engaged && s.solver == Solver::rk4)
+    throw InputError(s.solver_where, fmt::format("the scene engages brakes or clutches, which rk4 does not simulate (its "
+                                                 "fixed steps cannot locate their events); use solver = \"exact\", "
+                                                 "\"dopri5\" or \"implicit\""));
+  for (const EngagementSpec& e : s.engagement) {
+    const FrictionElement& f = topology.friction_elements[static_cast<std::size_t>(e.element)];
+    if (std::find(s.tunable.begin(), s.tunable.end(), f.capacity_parameter) != s.tunable.end())
+      throw InputError(s.tunable_where,
+                       fmt::format("'{}' is the torque capacity of {}, which a simulation takes at the scene's value; "
+                                   "it cannot be tunable: set it in [parameters] instead",
+                                   f.capacity_parameter, f.name));
+  }
+  // A command is piecewise linear: its extremes over the run are at 0, the horizon and its breakpoints.
+  for (const EngagementSpec& e : s.engagement) {
+    std::vector<double> times = rt::breakpoints(e.command, 0.0, s.horizon);
+    times.push_back(0.0);
+    times.push_back(s.horizon);
+    for (double t : times)
+      for (double p : {rt::value(e.command, t), rt::value(e.command, std::nextafter(t, 0.0))})
+        if (!(p >= 0 && p <= 1))
+          throw InputError(e.where, fmt::format("the command of {} is {} at t = {} s; an engagement command is from 0 "
+                                                "(open) to 1 (fully engaged) over the whole run",
+                                                topology.friction_elements[static_cast<std::size_t>(e.element)].name,
+                                                p, t));
+  }
+  return s;
+}
+
+Scene parse_scene(const std::string& path) {
+  return parse_scene_text(read_input_file(path, max_model_file_bytes, "scene file"), path);
+}
+
+}  // namespace pogear

@@ -1,0 +1,120 @@
+// Scene files: what to simulate on a model — effects, inputs, initial state, parameter
+// overrides and tunables, outputs, horizon, solver — read and checked against the model.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "pogear/signals.hpp"
+#include "pogear/solver.hpp"
+#include "names/model_variables.hpp"
+#include "read/topology.hpp"
+
+namespace pogear {
+
+struct Effects {
+  bool mesh_compliance = false;  // the elastic model; without it the rigid model
+  bool mesh_damping = false;     // B_K (needs compliance)
+  bool bearing_friction = false; // B_J
+  bool mesh_forces = false;      // force outputs
+};
+
+// An input torque of the scene, in SI units, as the runtime evaluates it.
+struct InputSpec {
+  int body = -1;  // the driven body; the input is tau_<body>
+  rt::Signal signal;
+  SourceLocation where;
+};
+
+// The engagement command p(t) in [0, 1] of a brake or clutch of the model.
+struct EngagementSpec {
+  int element = -1;  // index into Topology::friction_elements
+  rt::Signal command;
+  SourceLocation where;
+};
+
+// A load on a body (scene-format.md, "Loads"): the torque -(constant + linear omega + quadratic
+// omega |omega|) in SI units. The constant part is a constant input, the linear one a damping that
+// keeps the scene linear, the quadratic one makes it nonlinear.
+struct LoadSpec {
+  int body = -1;
+  double constant = 0, linear = 0, quadratic = 0;
+  SourceLocation where;
+};
+
+// A PI speed controller (scene-format.md, "Controllers"): the torque kp e + ki theta on `body`, with
+// e = set_point(t) - omega_<measured> and theta its integral (a state of the scene).
+struct ControllerSpec {
+  std::string name;
+  int body = -1, measured = -1;
+  rt::Signal set_point;
+  double kp = 0, ki = 0;
+  // Torque limits [N m]: the torque stays within them, held at a limit while the law asks for more;
+  // events at both ends, as for brakes and clutches. At a limit the integral tracks it (anti-windup
+  // by back-calculation): theta' = e + (T - law) / (ki tracking_time).
+  double torque_min = -std::numeric_limits<double>::infinity(), torque_max = std::numeric_limits<double>::infinity();
+  double tracking_time = 0;  // [s], with limits and ki > 0
+  SourceLocation where;
+  bool limited() const { return std::isfinite(torque_min) || std::isfinite(torque_max); }
+};
+
+// Whether the signal is zero at every time: such an input is no input.
+bool identically_zero(const rt::Signal& signal);
+
+using rt::Solver;
+
+// Where a scene starts (docs/scene-format.md, "Initial state"): from the speeds and forces [initial]
+// names; on the rigid model's trajectory (its state and its eq. (8) mesh forces); or at the
+// equilibrium of the inputs' values at t = 0.
+enum class Start { given, rigid, steady };
+
+struct Scene {
+  std::string file;
+  std::string digest;  // of the scene file's text (text_digest)
+  std::string name;
+  std::string model_file;  // resolved relative to the scene file
+  std::string model_ref;   // as the scene file writes it
+  // The model, read once, with the scene's [parameters] applied: every quantity of the scene is
+  // evaluated against it, and every later stage reads it (never the file again).
+  Topology model;
+  Effects effects;
+  std::vector<std::string> keep;  // empty: the model's default
+  bool compare_rigid = false;
+  bool speeds_in_rpm = false;  // speed outputs (CSV, figures) in rpm instead of rad/s
+  std::vector<InputSpec> inputs;
+  // Commands of the brakes and clutches the scene engages, in the model's order; an element not
+  // listed, or whose command is zero at every time, is open throughout and leaves no term.
+  std::vector<EngagementSpec> engagement;
+  std::vector<LoadSpec> loads;  // in body order, at most one per body
+  // In the order of Topology::controllers, which names them for their variables.
+  std::vector<ControllerSpec> controllers;
+  bool solver_given = false;  // a quadratic load makes dopri5 the default
+  std::map<Variable, double> initial;  // velocities [rad/s] and forces [N]
+  Start start = Start::given;
+  SourceLocation start_where;
+  std::vector<std::string> tunable;
+  std::vector<Variable> outputs;  // velocities and forces; empty: every velocity, and every force with mesh_forces
+  double horizon = 1.0;
+  double sample = 1e-3;
+  Solver solver = Solver::exact;
+  double tolerance = 1e-8;  // adaptive methods, relative
+  double step = 1e-4;       // fixed-step methods
+  long max_steps = 10000000;  // adaptive methods: a stiff scene stops with an error, not a hang
+  SourceLocation loads_where, controllers_where;
+  SourceLocation solver_where, outputs_where, keep_where, tunable_where, sample_where, initial_where;
+};
+
+// Reads a scene and its model, applies the scene's parameter overrides to the model, and checks
+// the scene against the result (bodies, meshes, parameter names, units).
+Scene parse_scene(const std::string& path);
+// Whether a load of the scene is quadratic in speed: its equations are then nonlinear.
+bool nonlinear(const Scene& scene);
+Scene parse_scene_text(const std::string& text, const std::string& path);
+
+// The solver `name` (rt::parse_solver), or an InputError at `where`.
+Solver parse_solver(const std::string& name, const SourceLocation& where);
+
+}  // namespace pogear

@@ -1,0 +1,177 @@
+// The scene file's quantities and signals; every complaint located at the value it concerns.
+#include "read/scene_reader.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "read/model_parameters.hpp"
+#include "pogear/signal_table.hpp"
+
+namespace pogear {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> SceneReader::strings(const toml::node& n, std::string_view what) const {
+  if (!n.is_array()) fail(n, fmt::format("{} must be a list of strings, e.g. [\"a\", \"b\"]", what));
+  std::vector<std::string> out;
+  for (const toml::node& e : *n.as_array()) out.push_back(string(e, what));
+  return out;
+}
+
+Quantity SceneReader::evaluated(const toml::node& n, const Dimension& dim, std::string_view what) const {
+  Quantity q;
+  if (n.is_integer() || n.is_floating_point()) {
+    q.si = *n.value<double>();
+  } else if (n.is_string()) {
+    q = evaluate_quantity(*n.value<std::string>(), parameter_quantities(*model), loc(n), 1);
+  } else {
+    fail(n, fmt::format("{} must be a number (SI) or a string with a unit", what));
+  }
+  if (q.has_unit && !(q.dimension == dim))
+    fail(n, q.dimension == Dimension{}
+                ? fmt::format("{} has no unit (rad, deg, rev and pi are plain numbers); it needs {}", what,
+                              describe(dim))
+                : fmt::format("{} has unit {}; it needs {}", what, describe(q.dimension), describe(dim)));
+  if (!std::isfinite(q.si)) fail(n, fmt::format("{} is not finite", what));
+  return q;
+}
+
+Quantity SceneReader::checked_quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
+  const Quantity q = evaluated(n, dim, what);
+  // Hz is 1/s, which in a speed would be read as rad/s: 2 pi short of the revolutions it usually means.
+  Dimension acceleration = angular_velocity_dimension();
+  acceleration.exponent[2] -= 1;
+  if (n.is_string() && (dim == angular_velocity_dimension() || dim == acceleration) &&
+      n.value<std::string>()->find("Hz") != std::string::npos)
+    fail(n, fmt::format("{} is in Hz, which for a speed could mean rev/s or rad/s; give it in rpm or rad/s, e.g. "
+                        "\"600*rpm\"", what));
+  return q;
+}
+
+double SceneReader::quantity(const toml::node& n, const Dimension& dim, std::string_view what) const {
+  const Quantity q = checked_quantity(n, dim, what);
+  // A speed or a torque without a unit is ambiguous (rad/s or rpm? N m or kN m?): it needs one.
+  if (!q.has_unit && (dim == angular_velocity_dimension() || dim == torque_dimension())) {
+    const std::string value = n.is_string() ? *n.value<std::string>() : fmt::format("{}", q.si);
+    fail(n, dim == torque_dimension()
+                ? fmt::format("{} has no unit ({}); a torque needs one, e.g. \"{}*N*m\"", what, value, value)
+                : fmt::format("{} has no unit ({}); a speed needs one, e.g. \"{}*rpm\" or \"{}*rad/s\"", what,
+                              value, value, value));
+  }
+  return q.si;
+}
+
+double SceneReader::frequency_hz(const toml::node& n, std::string_view what) const {
+  // rpm, rev, rad, deg and pi make a speed in rad/s, which as a frequency would be read as cycles per
+  // second: 60*rpm would be 2 pi Hz.
+  if (n.is_string())
+    for (const std::string& unit : referenced_units(*n.value<std::string>()))
+      if (unit == "rpm" || unit == "rev" || unit == "rad" || unit == "deg" || unit == "pi")
+        fail(n, fmt::format("{} is in cycles per second; give it in Hz or kHz, e.g. \"50*Hz\" ({} would make it an "
+                            "angular speed, 2 pi times the frequency: 3000*rpm turns at 50*Hz)",
+                            what, unit));
+  Dimension hz;
+  hz.exponent[2] = -1;
+  return evaluated(n, hz, what).si;
+}
+
+double SceneReader::coefficient(const toml::node& n, const Dimension& dim, std::string_view what,
+                                std::string_view example_unit) const {
+  if (n.is_string() && n.value<std::string>()->find("Hz") != std::string::npos)
+    fail(n, fmt::format("{} is per Hz, which for a speed could mean per rev/s or per rad/s; give it per rad/s, e.g. "
+                        "\"{}\"", what, example_unit));
+  const Quantity q = checked_quantity(n, dim, what);
+  if (!q.has_unit) {
+    const std::string text = n.is_string() ? *n.value<std::string>() : fmt::format("{}", q.si);
+    fail(n, fmt::format("{} has no unit ({}); give it with its unit, e.g. \"{}\"", what, text, example_unit));
+  }
+  return q.si;
+}
+
+namespace {
+
+// A table signal from its CSV file; `at` is the `table =` value, where complaints about the whole
+// file point (a complaint about one line points into the table).
+rt::Signal read_table_signal(const SceneReader& r, const toml::node& at, const std::string& table_file,
+                             const std::string& layout) {
+  rt::TableError error;
+  const auto table = rt::load_table_csv(table_file, error);
+  if (!table) {
+    // A row's complaint points into the table; one about the whole file (missing, empty, too
+    // large) points at this `table =`.
+    if (error.line > 0)
+      throw InputError(SourceLocation{table_file, static_cast<int>(error.line), 0}, error.message + "; " + layout);
+    std::string advice;
+    if (error.kind == rt::TableErrorKind::cannot_open) advice = "; give its path relative to the scene file";
+    else if (error.kind == rt::TableErrorKind::no_data_rows) advice = "; " + layout;
+    throw InputError(r.loc(at), fmt::format("table '{}': {}{}", table_file, error.message, advice));
+  }
+  return rt::Table{table->t, table->v};
+}
+
+}  // namespace
+
+// An input torque, an engagement command or a speed set-point. An engagement command's sine form is
+// refused: the exact method is exact for piecewise linear commands, and events are located on them.
+rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path& scene_dir, SignalQuantity what) {
+  const bool engagement = what == SignalQuantity::engagement;
+  const Dimension torque = engagement ? Dimension{}
+                           : what == SignalQuantity::speed ? angular_velocity_dimension()
+                                                           : torque_dimension();
+  const char* name = engagement ? "an engagement command" : what == SignalQuantity::speed ? "a set-point" : "an input torque";
+  if (!n.is_table()) return rt::Constant{r.quantity(n, torque, name)};
+  const toml::table& t = *n.as_table();
+  auto get = [&](std::string_view key) { return t.get(key); };
+  if (const toml::node* v = get("constant")) {
+    r.only_keys(t, {"constant"}, "a constant signal");
+    return rt::Constant{r.quantity(*v, torque, "constant")};
+  }
+  if (const toml::node* v = get("step")) {
+    r.only_keys(t, {"step", "at", "before"}, "a step signal");
+    rt::Step s;
+    s.after = r.quantity(*v, torque, "step");
+    if (!get("at")) r.fail(n, "a step needs at = \"<time>\", e.g. at = \"0.5*s\"");
+    s.time = r.quantity(*get("at"), time_dimension(), "at");
+    if (get("before")) s.before = r.quantity(*get("before"), torque, "before");
+    return s;
+  }
+  if (const toml::node* v = get("ramp")) {
+    r.only_keys(t, {"ramp", "start", "initial"}, "a ramp signal");
+    rt::Ramp s;
+    Dimension slope = torque;
+    slope.exponent[2] -= 1;
+    s.slope = r.quantity(*v, slope, engagement ? "ramp (a slope, e.g. \"2/s\")"
+                                    : what == SignalQuantity::speed ? "ramp (a slope, e.g. \"500*rpm/s\")"
+                                                                    : "ramp (a slope, e.g. \"50*Nm/s\")");
+    if (get("start")) s.start_time = r.quantity(*get("start"), time_dimension(), "start");
+    if (get("initial")) s.initial = r.quantity(*get("initial"), torque, "initial");
+    return s;
+  }
+  if (const toml::node* v = get("sine"); v && engagement)
+    r.fail(*v, "an engagement command is constant, a step, a ramp or a table (piecewise linear, so that events are "
+               "located exactly); give the sine as a table");
+  if (const toml::node* v = get("sine")) {
+    r.only_keys(t, {"sine", "frequency", "phase", "offset"}, "a sine signal");
+    rt::Sine s;
+    s.amplitude = r.quantity(*v, torque, "sine (its amplitude)");
+    if (!get("frequency")) r.fail(n, "a sine needs frequency = \"<f>*Hz\"");
+    s.frequency_hz = r.frequency_hz(*get("frequency"), "frequency");
+    if (get("phase")) s.phase_rad = r.quantity(*get("phase"), Dimension{}, "phase");
+    if (get("offset")) s.offset = r.quantity(*get("offset"), torque, "offset");
+    return s;
+  }
+  if (const toml::node* v = get("table")) {
+    r.only_keys(t, {"table"}, "a table signal");
+    const std::string file = r.string(*v, "table");
+    const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : scene_dir / file;
+    return read_table_signal(r, *v, path.lexically_normal().string(),
+                             engagement ? "the table needs two columns: time [s], engagement command [0 to 1]"
+                             : what == SignalQuantity::speed ? "the table needs two columns: time [s], speed [rad/s]"
+                                                             : "the table needs two columns: time [s], torque [N m]");
+  }
+  r.fail(n, "a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., "
+            "frequency = ... } or { table = \"file.csv\" }");
+}
+
+}  // namespace pogear

@@ -1,0 +1,49 @@
+// What the scene reader's parts share: a TomlReader whose quantities may name the model's
+// parameters, and the signals of inputs and engagement commands.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "pogear/signals.hpp"
+#include "common/quantity.hpp"
+#include "read/toml_reader.hpp"
+#include "read/topology.hpp"
+
+namespace pogear {
+
+struct SceneReader : TomlReader {
+  const Topology* model = nullptr;
+
+  std::vector<std::string> strings(const toml::node& n, std::string_view what) const;
+
+  // A quantity with a unit of the given dimension, its parameters the model's; bare numbers are SI,
+  // except for speeds and torques, which need a unit.
+  double quantity(const toml::node& n, const Dimension& dim, std::string_view what) const;
+  // The same for a gain or a load coefficient (`example_unit` shows one): it needs a unit, and Hz is
+  // refused, which per speed could mean per rev/s or per rad/s.
+  double coefficient(const toml::node& n, const Dimension& dim, std::string_view what, std::string_view example_unit) const;
+  // A frequency in Hz (cycles per second): angle units are refused, which would make it an angular
+  // speed read as cycles, 2 pi off.
+  double frequency_hz(const toml::node& n, std::string_view what) const;
+
+ private:
+  // The quantity, checked: its dimension when it has a unit, finite.
+  Quantity evaluated(const toml::node& n, const Dimension& dim, std::string_view what) const;
+  // The same, and no Hz in a speed.
+  Quantity checked_quantity(const toml::node& n, const Dimension& dim, std::string_view what) const;
+};
+
+// What a signal of the scene is: an input torque, a dimensionless engagement command (piecewise
+// linear), or a controller's speed set-point.
+enum class SignalQuantity { torque, engagement, speed };
+
+// A signal; a table's file is found relative to `scene_dir`.
+rt::Signal read_signal(const SceneReader& r, const toml::node& n, const std::filesystem::path& scene_dir,
+                       SignalQuantity what = SignalQuantity::torque);
+
+}  // namespace pogear

@@ -1,0 +1,132 @@
+// Pitch radii from tooth counts and modules. A pitch radius is an ordinary radius parameter from
+// here on: R, the geometry checks and the code see radii; only the reports write ratios in Z.
+#include "read/tooth_counts.hpp"
+
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "read/model_parameters.hpp"
+#include "common/quantity.hpp"
+
+namespace pogear {
+namespace {
+
+struct Module {
+  double value = 0;  // m
+  std::string text;
+};
+
+std::string millimetres(double m) { return fmt::format("{:.6g} mm", m * 1e3); }
+
+Module evaluate_module(const std::string& text, const SourceLocation& where, int column_offset,
+                       const std::map<std::string, Quantity>& known) {
+  const Quantity q = evaluate_quantity(text, known, where, column_offset);
+  if (!q.has_unit || !(q.dimension == length_dimension()))
+    throw InputError(where, fmt::format("the module '{}' {}; a module is a length, e.g. \"2*mm\"", text,
+                                        q.has_unit ? "has unit " + describe(q.dimension) : "has no unit"));
+  // Modules of real gears run from 0.05 mm (watches) to about 100 mm (mill drives).
+  if (!(q.si >= 1e-6 && q.si <= 1.0))
+    throw InputError(where, fmt::format("the module '{}' is {} m; a module is positive and at most 1 m", text, q.si));
+  return {q.si, text};
+}
+
+}  // namespace
+
+void add_pitch_radii(Topology& t) {
+  std::map<std::string, Quantity> known;
+  for (const auto& p : t.parameters) known[p.name] = p.value;
+  // The module of each toothed wheel: its own, else the first of its meshes that gives one.
+  std::map<std::pair<int, int>, Module> modules;
+  for (int bi = 0; bi < static_cast<int>(t.bodies.size()); ++bi)
+    for (int wi = 0; wi < static_cast<int>(t.bodies[bi].wheels.size()); ++wi) {
+      const Wheel& w = t.bodies[bi].wheels[wi];
+      if (w.teeth > 0 && !w.module.empty())
+        modules[{bi, wi}] = evaluate_module(w.module, w.module_where, w.module_column_offset, known);
+    }
+  for (int mi = 0; mi < static_cast<int>(t.meshes.size()); ++mi) {
+    const Mesh& m = t.meshes[mi];
+    if (m.module.empty()) continue;
+    const Module given = evaluate_module(m.module, m.module_where, m.module_column_offset, known);
+    if (wheel(t, m.first).teeth == 0 && wheel(t, m.second).teeth == 0)
+      throw InputError(m.module_where, fmt::format("mesh {} gives a module, but neither {} nor {} has teeth; give "
+                                                   "their teeth, or leave the module out",
+                                                   m.name, wheel_label(t, m.first), wheel_label(t, m.second)));
+    for (WheelRef w : {m.first, m.second})
+      if (wheel(t, w).teeth > 0) modules.emplace(std::make_pair(w.body, w.wheel), given);
+  }
+  for (int bi = 0; bi < static_cast<int>(t.bodies.size()); ++bi)
+    for (int wi = 0; wi < static_cast<int>(t.bodies[bi].wheels.size()); ++wi) {
+      const Wheel& w = t.bodies[bi].wheels[wi];
+      if (w.teeth == 0) continue;
+      const WheelRef ref{bi, wi};
+      const auto it = modules.find({bi, wi});
+      if (it == modules.end())
+        throw InputError(w.teeth_where, fmt::format("{} has {} teeth but no module; give module = \"2*mm\" with its "
+                                                    "teeth or on one of its meshes",
+                                                    wheel_label(t, ref), w.teeth));
+      if (const Parameter* p = find_parameter(t, w.radius_parameter))
+        throw InputError(p->where, fmt::format("'{}' is the pitch radius of {}, which its {} teeth give; leave it "
+                                               "out of [parameters]",
+                                               w.radius_parameter, wheel_label(t, ref), w.teeth));
+      Parameter p;
+      p.name = w.radius_parameter;
+      p.text = fmt::format("{}*({})/2", w.teeth, it->second.text);
+      p.value = Quantity{w.teeth * it->second.value / 2, length_dimension(), true};
+      p.where = w.teeth_where;
+      p.column_offset = 0;
+      t.parameters.push_back(std::move(p));
+    }
+  for (const Mesh& m : t.meshes) {
+    const auto a = modules.find({m.first.body, m.first.wheel});
+    const auto b = modules.find({m.second.body, m.second.wheel});
+    if (a == modules.end() || b == modules.end()) continue;
+    // Modules typed as the same text, or as equal lengths in other units, agree to rounding.
+    if (std::abs(a->second.value - b->second.value) > 1e-12 * std::max(a->second.value, b->second.value))
+      throw InputError(m.where, fmt::format("mesh {}: {} has module {} and {} module {}; meshing wheels share one "
+                                            "module",
+                                            m.name, wheel_label(t, m.first), millimetres(a->second.value),
+                                            wheel_label(t, m.second), millimetres(b->second.value)));
+  }
+}
+
+GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s) {
+  // Wheels as one index each; meshes between toothed wheels join their sets.
+  std::vector<std::pair<int, int>> wheels;
+  std::map<std::pair<int, int>, int> index;
+  for (int bi = 0; bi < static_cast<int>(t.bodies.size()); ++bi)
+    for (int wi = 0; wi < static_cast<int>(t.bodies[bi].wheels.size()); ++wi)
+      if (t.bodies[bi].wheels[wi].teeth > 0) {
+        index[{bi, wi}] = static_cast<int>(wheels.size());
+        wheels.push_back({bi, wi});
+      }
+  if (wheels.empty()) return {};
+  std::vector<int> parent(wheels.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const Mesh& m : t.meshes) {
+    const auto a = index.find({m.first.body, m.first.wheel});
+    const auto b = index.find({m.second.body, m.second.wheel});
+    if (a != index.end() && b != index.end()) parent[root(a->second)] = root(b->second);
+  }
+  std::map<int, int> set_number;  // root -> 1, 2, ... in the order of the wheels
+  for (std::size_t i = 0; i < wheels.size(); ++i) set_number.emplace(root(static_cast<int>(i)), set_number.size() + 1);
+  std::map<int, GiNaC::ex> module;
+  for (const auto& [r, k] : set_number)
+    module[r] = GiNaC::realsymbol(set_number.size() == 1 ? std::string("m") : fmt::format("m_{}", k));
+  GiNaC::exmap out;
+  for (std::size_t i = 0; i < wheels.size(); ++i) {
+    const Wheel& w = t.bodies[wheels[i].first].wheels[wheels[i].second];
+    out[parameter_symbol(s, w.radius_parameter)] =
+        module[root(static_cast<int>(i))] * GiNaC::realsymbol("Z_" + w.name) / 2;
+  }
+  return out;
+}
+
+}  // namespace pogear

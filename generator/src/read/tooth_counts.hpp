@@ -1,0 +1,22 @@
+// Wheels given by tooth count and module: their pitch radii m Z / 2 as parameters of the model, the
+// modules of meshing wheels checked, and the substitution that writes ratios in tooth counts.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include "names/symbols.hpp"
+#include "read/topology.hpp"
+
+namespace pogear {
+
+// Adds each toothed wheel's pitch radius to t.parameters (after the file's parameters are
+// evaluated: a module may name one). Throws InputError for a wheel without a module, meshing wheels
+// of different modules, or a radius given twice.
+void add_pitch_radii(Topology& t);
+
+// r_w -> m Z_w / 2 for every toothed wheel, with one module symbol per set of wheels joined by
+// meshes (`m` when there is one set, else m_1, m_2, ... in the order of the wheels) and Z_w named
+// after the wheel. Empty when no wheel has teeth. The symbols are for printing only.
+GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s);
+
+}  // namespace pogear

@@ -1,0 +1,146 @@
+// The topology of a planetary gear as written in a model file: bodies, toothed wheels, meshes
+// and parameters (in SI), plus `parse_topology` that reads and validates it.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/input_error.hpp"
+#include "common/quantity.hpp"
+
+namespace pogear {
+
+enum class AxisKind {
+  central,  // the gear's main axis, drawn at height 0
+  fixed,    // a separate fixed parallel axis (a countershaft such as the paper's g or m)
+  carried,  // a planet axis held by a carrier body at a given distance
+};
+
+struct Wheel {
+  std::string name;
+  std::string radius_parameter;  // the name of the parameter that holds the radius, e.g. r_s1
+  bool internal = false;  // teeth on the inside (a ring)
+  SourceLocation where;
+  // A wheel given by its tooth count (0: by its radius) and module (here, or on one of its meshes):
+  // its pitch radius m Z / 2 is the parameter radius_parameter (tooth_counts.hpp).
+  int teeth = 0;
+  SourceLocation teeth_where;
+  std::string module;  // an expression of length, e.g. "2*mm"; empty when the mesh gives it
+  SourceLocation module_where;
+  int module_column_offset = 1;
+};
+
+struct Body {
+  std::string name;
+  AxisKind axis = AxisKind::central;
+  std::string carrier;   // carried: the carrier body's name
+  std::string distance_parameter;  // carried: the parameter holding the axis distance, e.g. r_c
+  int side = +1;         // carried: +1 drawn above the carrier's axis; fixed: +1 above its mates
+  int arrow = +1;        // positive direction of omega as drawn: +1 right, -1 left (the paper's s_k)
+  // The parameters holding the inertia and the bearing friction: J_<name> and b_<name> unless set.
+  std::string inertia_parameter;
+  std::string friction_parameter;
+  std::vector<Wheel> wheels;
+  SourceLocation where;
+  // A planet that stands for `count` identical planets sharing the load equally (lumped): the model
+  // multiplies its inertia and friction, and its meshes' stiffness and damping, by the count.
+  int count = 1;
+  SourceLocation count_where;
+};
+
+struct WheelRef {
+  int body = -1;
+  int wheel = -1;
+};
+
+struct Mesh {
+  std::string name;       // F_<name> is positive from the first terminal to the second
+  WheelRef first, second;
+  std::string stiffness_parameter;  // K_<name> unless set
+  std::string damping_parameter;    // b_<name> unless set
+  SourceLocation where;
+  std::string module;  // the module of its toothed wheels, when they do not give it
+  SourceLocation module_where;
+  int module_column_offset = 1;
+};
+
+// A brake (holds a body against the housing) or a clutch (joins two bodies on one axis). Its
+// slip is s = a_first omega_first - a_second omega_second (a: the bodies' arrows, so that s is
+// in one rotation sense; a brake's second is the housing, at rest); its torque T acts as -T on
+// the first body and +T on the second, in that sense.
+struct FrictionElement {
+  std::string name;
+  int first = -1;   // body index
+  int second = -1;  // body index; -1 for a brake
+  std::string capacity_parameter;  // kinetic torque capacity at full engagement (N m): T_<name> unless set
+  std::string static_ratio = "1";  // static / kinetic friction, an expression of the parameters
+  SourceLocation where;            // the name
+  SourceLocation static_ratio_where;
+  int static_ratio_column_offset = 0;
+  // A one-way element (freewheel, sprag): its slip may be positive freely (no torque); it holds
+  // against negative slip only. A one-way brake lets its body turn forward and stops it turning back.
+  bool one_way = false;
+  bool is_brake() const { return second < 0; }
+};
+
+struct Parameter {
+  std::string name;
+  std::string text;  // as written, e.g. "4.8*cm"
+  Quantity value;
+  SourceLocation where;
+  int column_offset = 1;  // where the text starts after `where` (1 past a quote)
+};
+
+struct Topology {
+  std::string file;
+  std::string digest;  // of the model file's text (text_digest)
+  std::string name;
+  std::string title;
+  std::vector<Body> bodies;  // in the order of the velocity vector omega
+  std::vector<Mesh> meshes;  // in the order of the force vector F
+  std::vector<FrictionElement> friction_elements;  // brakes and clutches, in file order
+  std::vector<Parameter> parameters;
+  std::vector<std::string> default_keep;
+  SourceLocation keep_where;
+  // The speed controllers of the scene that simulates this model (none for a model alone): the
+  // names of their variables theta_, e_, ref_ and Tc_ (model_variables.hpp).
+  std::vector<std::string> controllers;
+};
+
+// Limits that keep hostile input bounded.
+inline constexpr std::size_t max_model_file_bytes = 1 << 20;
+// The closed forms grow like n^4 in size for a chain of stages (L1 of a chain of k stages is
+// (k+1)^2 sums of O(k) terms of O(k) factors). scripts/make_chain.sh's planetary chain, Release,
+// whole process, machine shared (load ~2-2.7 on 2 cores): `pogear derive --format json` 0.11 s
+// at 46 bodies, 0.56 s at 76, 1.1 s at 91 and 3.1 s at 121 (27 MB of JSON); `pogear generate`
+// 0.10 s, 0.42 s, 0.75 s and 1.9 s. 128 admits that 40-stage chain; the paper's gears have 6 and
+// 7 bodies.
+inline constexpr std::size_t max_bodies = 128;
+// Two meshes per body, as for planets between a sun and a ring (the 40-stage chain has 80).
+inline constexpr std::size_t max_meshes = 256;
+// Above what a gear at the body and mesh limits can name (an inertia and a friction per body, a
+// stiffness and a damping per mesh, a radius per wheel, an axis distance per planet: at most
+// 1408; the 40-stage chain names 562), and a bound on how deep parameters may refer to one another.
+inline constexpr std::size_t max_parameters = 2048;
+// `pogear ratios` looks at every set of engaged elements (2^k of them); automatic transmissions
+// have 5 to 7 shift elements.
+inline constexpr std::size_t max_friction_elements = 12;
+
+
+// Reads a model file (TOML). Throws InputError for anything wrong, located in the file.
+Topology parse_topology(const std::string& path);
+// The same from text already in memory; `path` names it in messages.
+Topology parse_topology_text(const std::string& text, const std::string& path);
+
+
+int find_body(const Topology& t, const std::string& name);  // -1 when absent
+// How many identical planets a mesh stands for: its lumped planet's count, 1 for other meshes. The
+// model's F_<mesh> is their sum; the outputs and reports give one planet's share.
+int mesh_count(const Topology& t, const Mesh& m);
+int find_friction_element(const Topology& t, const std::string& name);  // -1 when absent
+const Wheel& wheel(const Topology& t, WheelRef w);
+std::string wheel_label(const Topology& t, WheelRef w);  // "s1 (body s)" or "p"
+
+}  // namespace pogear

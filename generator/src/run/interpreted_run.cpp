@@ -1,0 +1,124 @@
+// The interpreted path: the numeric model's matrices wrapped in the members run_system and
+// simulate_system expect of a generated system.
+#include "run/interpreted_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include <Eigen/SparseCore>
+
+#include "pogear/hybrid_run.hpp"
+#include "specialize/reference_model.hpp"
+
+namespace pogear {
+namespace {
+
+// A system with the generated structs' members, on dynamic matrices, from the numeric model.
+// The output maps are sparse, as the generated expressions are: a structural zero must not turn
+// an overflowed (infinite) rate into NaN through 0 * inf, where the compiled path writes inf.
+struct InterpretedSystem {
+  InterpretedSystem(NumericSystem numeric, std::vector<std::string> names, std::vector<std::string> units)
+      : ns(std::move(numeric)), output_names(std::move(names)), output_units(std::move(units)),
+        C(ns.C.sparseView()), D(ns.D.sparseView()), E(ns.E.sparseView()) {}
+
+  using State = Eigen::VectorXd;
+  using Input = Eigen::VectorXd;
+  using Output = Eigen::VectorXd;
+  using StateMatrix = Eigen::MatrixXd;
+  using InputMatrix = Eigen::MatrixXd;
+  struct Params {};
+  NumericSystem ns;
+  std::vector<std::string> output_names, output_units;
+  Eigen::SparseMatrix<double> C, D, E;
+
+  // A quadratic load's torque -c s |s| at the state x.
+  static double load_torque(const QuadraticLoad& q, const State& x) {
+    const double s = q.speed_row.dot(x);
+    return -q.coefficient * s * std::abs(s);
+  }
+  void rhs(const Params&, const State& x, const Input& u, State& dx) const {
+    dx.noalias() = ns.M * x;
+    if (u.size()) dx.noalias() += ns.N * u;
+    for (const QuadraticLoad& q : ns.quadratic) dx += load_torque(q, x) * q.state_column;
+  }
+  void outputs(const Params&, const State& x, const Input& u, Output& y) const {
+    State dx(x.size());
+    rhs({}, x, u, dx);
+    y.noalias() = C * x;
+    y.noalias() += E * dx;
+    if (u.size()) y.noalias() += D * u;
+    for (const QuadraticLoad& q : ns.quadratic) y += load_torque(q, x) * q.output_column;
+  }
+  void matrices(const Params&, StateMatrix& M, InputMatrix& N) const {
+    M = ns.M;
+    N = ns.N;
+  }
+  void energy_matrix(const Params&, StateMatrix& L) const { L = ns.L; }  // empty: no bound (controllers)
+  bool nonlinear = !ns.quadratic.empty();
+  void slip_matrix(const Params&, Eigen::MatrixXd& S) const { S = ns.S; }
+  void torque_limit_laws(const Params&, Eigen::MatrixXd& X, Eigen::MatrixXd& W) const {
+    X = ns.limit_x;
+    W = ns.limit_u;
+  }
+};
+
+std::vector<rt::FrictionElementData> friction_data(const SpecializedScene& model) {
+  std::vector<rt::FrictionElementData> out;
+  for (const FrictionRun& f : model.friction) out.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
+  return out;
+}
+
+// The controllers with torque limits of `sys`, as the runtime takes them (their laws from the system).
+std::vector<rt::TorqueLimitData> torque_limits(const SpecializedScene& model, const SpecializedSystem& sys) {
+  std::vector<rt::TorqueLimitData> out;
+  for (const int c : sys.limited_controllers) {
+    const ControllerSpec& k = model.scene.controllers[static_cast<std::size_t>(c)];
+    out.push_back({k.name, k.torque_min, k.torque_max, {}, {}});
+  }
+  return out;
+}
+
+int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run,
+                        const std::string& suffix) {
+  InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
+  if (!sys.friction_elements.empty() || !sys.limited_controllers.empty())
+    return rt::run_hybrid_system(is, {}, sys.input_signals, friction_data(model), torque_limits(model, sys), is.ns.x0,
+                                 run, suffix);
+  return rt::run_system(is, {}, sys.input_signals, is.ns.x0, run, suffix);
+}
+
+}  // namespace
+
+int run_interpreted(const SpecializedScene& model, const rt::SceneRun& run) {
+  int status = run_one_interpreted(model, model.main, run, "");
+  if (status == 0 && model.rigid) status = run_one_interpreted(model, *model.rigid, run, ".rigid");
+  return status;
+}
+
+Trajectory interpret_trajectory(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run) {
+  const InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
+  const std::vector<rt::Signal> signals = sys.input_signals;
+  Eigen::VectorXd u(static_cast<Eigen::Index>(signals.size())), y(sys.outputs.size());
+  auto f = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
+    rt::input_values(signals, t, u);
+    is.rhs({}, x, u, dx);
+  };
+  Trajectory tr;
+  if (is.nonlinear && run.solver == rt::Solver::exact) {
+    tr.status = {false, "the scene is nonlinear (a quadratic load), which exact stepping does not integrate", 0.0};
+    return tr;
+  }
+  auto obs = [&](double t, const Eigen::VectorXd& x) {
+    rt::input_values(signals, t, u);
+    is.outputs({}, x, u, y);
+    tr.t.push_back(t);
+    tr.x.push_back(x);
+    tr.y.push_back(y);
+  };
+  tr.status = rt::simulate_system(run, signals, is.ns.M, is.ns.N, f, is.ns.x0, obs);
+  return tr;
+}
+
+}  // namespace pogear

@@ -1,0 +1,244 @@
+// gnuplot reads the script, data included, from a memory file on its standard input and writes
+// the SVG to its standard output; pogear checks its exit status and that the SVG is whole before
+// the file is written, so a failed or cut-short drawing never replaces a good figure.
+#include "run/plot.hpp"
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <sys/stat.h>
+
+#include "common/child_process.hpp"
+#include "common/output_file.hpp"
+
+namespace pogear {
+namespace {
+
+namespace fs = std::filesystem;
+
+}  // namespace
+
+std::string gnuplot_label(const std::string& name) {
+  // omega_c -> {/Symbol w}_{c}, F_ps -> F_{ps}
+  const auto us = name.find('_');
+  std::string base = name.substr(0, us), sub = us == std::string::npos ? "" : name.substr(us + 1);
+  if (base == "omega") base = "{/Symbol w}";
+  // Enhanced text would read a further '_' as another subscript (Tc_engine_speed).
+  std::string escaped;
+  for (const char c : sub) escaped += c == '_' ? std::string("\\_") : std::string(1, c);
+  return sub.empty() ? base : base + "_{" + escaped + "}";
+}
+
+namespace {
+
+// One CSV line of numbers, or nothing for the header, a comment or a row cut short.
+bool parse_row(const std::string& line, std::size_t width, std::vector<double>& row) {
+  row.clear();
+  const char* p = line.data();
+  const char* end = p + line.size();
+  while (p < end) {
+    double v = 0;
+    const auto [next, ec] = std::from_chars(p, end, v);
+    if (ec != std::errc()) return false;
+    row.push_back(v);
+    p = next;
+    if (p < end && *p != ',') return false;
+    if (p < end) ++p;
+  }
+  return width == 0 || row.size() == width;
+}
+
+}  // namespace
+
+std::string gnuplot_datablock(const std::string& name, const std::vector<std::vector<double>>& rows) {
+  std::string s = "$" + name + " << EOD\n";
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) s += fmt::format("{}{}", i ? "," : "", row[i]);
+    s += '\n';
+  }
+  return s + "EOD\n";
+}
+
+std::vector<std::vector<double>> thinned_csv_rows(const std::string& path, double horizon) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    throw std::runtime_error(fmt::format("the simulation wrote no {}; run the simulator by hand to see why", path));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("cannot read {} for the figures; check its permissions", path));
+  std::vector<std::vector<double>> kept, bucket;
+  std::vector<std::size_t> lo, hi;  // per column: the bucket rows of the smallest and largest value
+  long current = -1;
+  auto flush = [&] {
+    if (bucket.empty()) return;
+    std::vector<bool> keep(bucket.size(), false);
+    keep.front() = keep.back() = true;
+    for (std::size_t c = 1; c < lo.size(); ++c) keep[lo[c]] = keep[hi[c]] = true;
+    for (std::size_t i = 0; i < bucket.size(); ++i)
+      if (keep[i]) kept.push_back(std::move(bucket[i]));
+    bucket.clear();
+  };
+  std::string line;
+  std::vector<double> row;
+  std::size_t width = 0;
+  while (std::getline(in, line)) {
+    if (!parse_row(line, width, row) || row.empty()) continue;
+    width = row.size();
+    const long b = horizon > 0 ? static_cast<long>(row[0] / horizon * static_cast<double>(plot_buckets)) : 0;
+    if (b != current) {
+      flush();
+      current = b;
+      lo.assign(width, 0);
+      hi.assign(width, 0);
+    }
+    const std::size_t i = bucket.size();
+    bucket.push_back(row);
+    for (std::size_t c = 1; c < width; ++c) {
+      if (bucket[i][c] < bucket[lo[c]][c]) lo[c] = i;
+      if (bucket[i][c] > bucket[hi[c]][c]) hi[c] = i;
+    }
+  }
+  flush();
+  if (kept.empty()) throw std::runtime_error(fmt::format("{} holds no rows to plot", path));
+  return kept;
+}
+
+std::string gnuplot_svg_preamble(int width, int height) {
+  static constexpr const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b",
+                                            "#e377c2", "#17becf", "#ff7f0e", "#7f7f7f", "#000000"};
+  std::string s = fmt::format("set terminal svg size {},{} dynamic enhanced font 'Helvetica,13' background rgb 'white'\n",
+                              width, height);
+  for (std::size_t i = 0; i < std::size(colours); ++i) s += fmt::format("set linetype {} lc rgb '{}'\n", i + 1, colours[i]);
+  return s + fmt::format("set linetype cycle {}\n", std::size(colours));
+}
+
+std::optional<std::string> gnuplot_program() { return find_program("gnuplot"); }
+
+std::string render_svg(const std::string& gnuplot, const std::string& script, const std::string& svg,
+                       const std::string& already_written) {
+  ChildRequest request;
+  // The script as a file argument: gnuplot reads a script file in blocks, but its standard input
+  // a few bytes per call (0.28 s instead of 0.04 s for a 2000-sample figure).
+  request.argv = {gnuplot, "/dev/stdin"};
+  request.input = script;
+  request.capture_stdout = true;
+  request.capture_stderr = true;
+  const ChildResult result = run_child(request);
+  const std::size_t end = result.out.rfind("</svg>");
+  if (!result.ok() || end == std::string::npos || result.out.find_first_not_of(" \n", end + 6) != std::string::npos)
+    throw std::runtime_error(fmt::format("gnuplot failed drawing {} ({}){}{}; {}", svg, result.describe(),
+                                         result.err.empty() ? "" : ": ", result.err.substr(0, 2000), already_written));
+  return result.out;
+}
+
+void draw_svg(const std::string& gnuplot, const std::string& script, const std::string& svg,
+              const std::string& already_written) {
+  write_file_atomically(svg, render_svg(gnuplot, script, svg, already_written));
+}
+
+namespace {
+
+// Three panels over time: the bodies' speeds, the brakes' and clutches' torques, and their slips
+// (the columns run_hybrid_system writes after the system's outputs: T_, slip_, E_ per element).
+std::string shift_script(const SpecializedScene& model, const std::vector<std::vector<double>>& rows) {
+  const std::size_t ny = model.main.outputs.size(), ne = model.friction.size();
+  std::string script;
+  script += gnuplot_svg_preamble(900, 900);
+  script += "set datafile separator ','\n";
+  script += gnuplot_datablock("run", rows);
+  script += "set grid\nset key outside right top\nset multiplot layout 3,1\n";
+  script += "set lmargin 12\nset rmargin 22\n";
+  auto panel = [&](const std::string& title, const std::string& ylabel, const std::vector<std::size_t>& columns,
+                   const std::vector<std::string>& labels, bool last) {
+    script += fmt::format("set title '{}' noenhanced\nset ylabel '{}'\n", title, ylabel);
+    script += last ? "set xlabel 't [s]'\n" : "unset xlabel\n";
+    script += "plot ";
+    for (std::size_t i = 0; i < columns.size(); ++i)
+      script += fmt::format("{}$run using 1:{} with lines lw 2 title '{}'", i ? ", \\\n     " : "", columns[i],
+                            gnuplot_label(labels[i]));
+    script += "\n";
+  };
+  std::vector<std::size_t> speeds, torques, slips;
+  std::vector<std::string> speed_names, torque_names, slip_names;
+  for (std::size_t i = 0; i < ny; ++i)
+    if (model.main.output_variables[i].kind == VariableKind::velocity) {
+      speeds.push_back(i + 2);
+      speed_names.push_back(model.main.outputs[i]);
+    }
+  for (std::size_t k = 0; k < ne; ++k) {
+    torques.push_back(ny + k + 2);
+    torque_names.push_back("T_" + model.friction[k].name);
+    slips.push_back(ny + ne + k + 2);
+    slip_names.push_back("slip_" + model.friction[k].name);
+  }
+  // The scene's name and the elements' names are identifiers, checked when the files were read.
+  if (!speeds.empty())
+    panel(model.scene.name + ": angular velocities", model.scene.speeds_in_rpm ? "n [rpm]" : "{/Symbol w} [rad/s]",
+          speeds, speed_names, false);
+  panel("brake and clutch torques", "T [N m]", torques, torque_names, false);
+  panel("slips", "slip [rad/s]", slips, slip_names, true);
+  return script + "unset multiplot\n";
+}
+
+}  // namespace
+
+std::vector<std::string> plot_scene(const SpecializedScene& model, const std::string& dir) {
+  const std::optional<std::string> gnuplot = gnuplot_program();
+  if (!gnuplot)
+    throw std::runtime_error("gnuplot is not installed, so no figures were drawn (the CSV files are written); "
+                             "install gnuplot-nox (scripts/install-deps.sh)");
+  std::vector<std::string> written;
+  const std::string name = model.scene.name;
+  const auto elastic = thinned_csv_rows((fs::path(dir) / (name + ".csv")).string(), model.scene.horizon);
+  std::vector<std::vector<double>> rigid;
+  if (model.rigid) rigid = thinned_csv_rows((fs::path(dir) / (name + ".rigid.csv")).string(), model.scene.horizon);
+  for (const std::string kind : {"velocities", "forces", "controllers"}) {
+    const VariableKind shown = kind == "velocities" ? VariableKind::velocity
+                               : kind == "forces"   ? VariableKind::force
+                                                    : VariableKind::controller_torque;
+    std::vector<int> columns;  // 1-based gnuplot columns; column 1 is t
+    for (std::size_t i = 0; i < model.main.outputs.size(); ++i)
+      if (model.main.output_variables[i].kind == shown) columns.push_back(static_cast<int>(i) + 2);
+    if (columns.empty()) continue;
+    // Every word of the script is pogear's own or a validated name: the scene's name and the
+    // outputs' names are identifiers (checked when the files are read), and the data are numbers.
+    std::string script;
+    script += gnuplot_svg_preamble(900, 560);
+    script += "set datafile separator ','\n";
+    script += gnuplot_datablock("elastic", elastic);
+    if (model.rigid) script += gnuplot_datablock("rigid", rigid);
+    script += "set grid\nset key outside right top\n";
+    script += fmt::format("set title '{}: {}{}' noenhanced\n", name,
+                          kind == "velocities" ? "angular velocities" : kind == "forces" ? "mesh forces" : "controller torques",
+                          model.rigid ? " (rigid model dashed, in the same colour)" : "");
+    script += "set xlabel 't [s]'\n";
+    script += fmt::format("set ylabel '{}'\n", kind == "velocities" ? (model.scene.speeds_in_rpm ? "n [rpm]" : "{/Symbol w} [rad/s]")
+                                                : kind == "forces"   ? "F [N]"
+                                                                     : "T [N m]");
+    script += "plot ";
+    // One colour per quantity; its rigid curve dashed in that colour, one legend entry saying so.
+    for (std::size_t k = 0; k < columns.size(); ++k)
+      script += fmt::format("{}$elastic using 1:{} with lines lt {} lw 2 title '{}'", k ? ", \\\n     " : "", columns[k],
+                            k + 1, gnuplot_label(model.main.outputs[columns[k] - 2]));
+    if (model.rigid) {
+      for (std::size_t k = 0; k < columns.size(); ++k)
+        script += fmt::format(", \\\n     $rigid using 1:{} with lines lt {} dt 2 lw 1.5 notitle", columns[k], k + 1);
+      script += ", \\\n     NaN with lines dt 2 lw 1.5 lc rgb 'black' title 'rigid model'";
+    }
+    script += "\n";
+
+    const fs::path svg = fs::path(dir) / fmt::format("{}.{}.svg", name, kind);
+    draw_svg(*gnuplot, script, svg.string(), "the CSV files are written");
+    written.push_back(svg.string());
+  }
+  if (!model.friction.empty()) {
+    const fs::path svg = fs::path(dir) / fmt::format("{}.shift.svg", name);
+    draw_svg(*gnuplot, shift_script(model, elastic), svg.string(), "the CSV files are written");
+    written.push_back(svg.string());
+  }
+  return written;
+}
+
+}  // namespace pogear

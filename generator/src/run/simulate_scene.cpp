@@ -1,0 +1,100 @@
+// From a specialized scene to CSV files and figures: everything `pogear simulate` does after
+// reading its options, so that the command line stays a thin shell over the library.
+#include "run/simulate_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "common/child_process.hpp"
+#include "codegen/codegen.hpp"
+#include "report/run_summary.hpp"
+#include "common/input_error.hpp"
+#include "run/interpreted_run.hpp"
+#include "common/output_file.hpp"
+#include "run/plot.hpp"
+#include "run/simulator_cache.hpp"
+
+namespace pogear {
+
+rt::SceneRun scene_run(const Scene& scene) {
+  rt::SceneRun run;
+  run.name = scene.name;
+  run.horizon = scene.horizon;
+  run.sample = scene.sample;
+  run.solver = scene.solver;
+  rt::set_tolerance(run.options, scene.tolerance);
+  run.options.h = scene.step;
+  run.options.max_steps = scene.max_steps;
+  return run;
+}
+
+std::uintmax_t csv_bytes_bound(const SpecializedScene& model) {
+  const double samples = std::ceil(model.scene.horizon / model.scene.sample) + 1;
+  double numbers = samples * static_cast<double>(model.main.outputs.size() + 1);
+  if (model.rigid) numbers += samples * static_cast<double>(model.rigid->outputs.size() + 1);
+  return static_cast<std::uintmax_t>(std::min(numbers * 25, 1e18));
+}
+
+void check_output_size(const SpecializedScene& model, bool allow_large) {
+  const std::uintmax_t bytes = csv_bytes_bound(model);
+  if (allow_large || bytes <= max_csv_bytes) return;
+  const Scene& sc = model.scene;
+  throw InputError(sc.sample_where.file.empty() ? SourceLocation{sc.file, 0, 0} : sc.sample_where,
+                   fmt::format("the CSV files of this scene may take up to {:.3g} GB ({:.4g} samples of {} columns); "
+                               "the limit is {:.3g} GB: raise sample, shorten the horizon or list fewer outputs, or "
+                               "pass --large-output to write them all the same",
+                               static_cast<double>(bytes) / 1e9, std::ceil(sc.horizon / sc.sample) + 1,
+                               model.main.outputs.size() + 1, static_cast<double>(max_csv_bytes) / 1e9));
+}
+
+int run_compiled(const std::string& exe, const rt::SceneRun& run) {
+  ChildRequest request;
+  request.argv = rt::command_line(run);
+  request.argv.insert(request.argv.begin(), exe);
+  std::fflush(stdout);
+  const ChildResult result = run_child(request);
+  if (result.signal != 0)
+    throw std::runtime_error(fmt::format("the simulator {} died of {}; run it by hand to see why", exe, result.describe()));
+  return result.exit_code;
+}
+
+int simulate_scene(const SpecializedScene& model, const SimulateOptions& options, std::ostream& out) {
+  check_output_size(model, options.large_output);
+  rt::SceneRun run = scene_run(model.scene);
+  if (options.solver) run.solver = *options.solver;
+  if (!model.friction.empty() && run.solver == rt::Solver::rk4)
+    throw InputError(SourceLocation{model.scene.file, 0, 0},
+                     "the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate "
+                     "their events); use --solver exact, dopri5 or implicit");
+  if (!model.main.limited_controllers.empty() && run.solver == rt::Solver::rk4)
+    throw InputError(SourceLocation{model.scene.file, 0, 0},
+                     "a controller with torque limits switches at events, which rk4 does not locate (its fixed steps); "
+                     "use --solver exact, dopri5 or implicit");
+  if (model.main.nonlinear && (run.solver == rt::Solver::exact || run.solver == rt::Solver::rk4))
+    throw InputError(SourceLocation{model.scene.file, 0, 0},
+                     fmt::format("a quadratic load makes the scene nonlinear, which {}; use --solver dopri5 or implicit",
+                                 run.solver == rt::Solver::exact
+                                     ? "exact stepping does not integrate"
+                                     : "rk4's fixed step cannot be checked against its stability limit"));
+  run.out_dir = options.out_dir;
+  run.repeat = options.repeat;
+  ensure_directory(options.out_dir);
+  out << operation_summary(model) << std::flush;
+  int status = 0;
+  if (options.interpreted) {
+    status = run_interpreted(model, run);
+  } else {
+    const CompiledSimulator simulator = build_simulator(generate_sources(model, {run.solver}));
+    status = run_compiled(simulator.executable(), run);
+  }
+  if (status != 0) return status;
+  for (const auto& svg : plot_scene(model, options.out_dir)) out << "wrote " << svg << "\n";
+  return 0;
+}
+
+}  // namespace pogear

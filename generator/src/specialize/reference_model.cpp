@@ -1,0 +1,276 @@
+// See reference_model.hpp: exact rational arithmetic on the assembled matrices, rounded once.
+#include "specialize/reference_model.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "derive/engagement.hpp"
+#include "common/exact_algebra.hpp"
+#include "specialize/parameter_folding.hpp"
+#include "vibrate/vibration_modes.hpp"
+#include "specialize/specialization.hpp"
+
+namespace pogear {
+
+namespace {
+
+// The gear's system with the loads' and controllers' torques as inputs (after the system's own):
+// the matrices of dx/dt = M x + N u, y = C x + D u + E dx/dt over the gear's states.
+struct OpenLoop {
+  Eigen::MatrixXd M, N, L, C, D, E, S;
+  Eigen::MatrixXd speeds;  // omega = speeds x, one row per body
+};
+
+OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, const std::vector<Variable>& inputs,
+                   std::size_t nx) {
+  const Derivation& d = model.derivation;
+  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  const ElasticModel& e = d.elastic;
+  // Exact rational arithmetic on the assembled matrices, rounded once at the end: the same
+  // numbers the specialized expressions give, by another formula.
+  auto exact = [&](const GiNaC::matrix& m) { return exact_matrix(m, values); };
+  auto doubles = [](const GiNaC::matrix& m) { return evaluate_matrix(m, {}); };
+  OpenLoop out;
+  // The torque of each input on each body (tau_, loads, controllers: a unit column; friction
+  // torques: -e_k^T; set-points: none).
+  const GiNaC::matrix G_in = input_torques(d.topology, model.scene.controllers, inputs);
+  auto input_columns = [&](const GiNaC::matrix& B) { return exact_product(B, G_in); };
+  const std::size_t ny = sys.outputs.size(), nu = inputs.size(), n = d.topology.bodies.size();
+  out.C = Eigen::MatrixXd::Zero(ny, nx);
+  out.D = Eigen::MatrixXd::Zero(ny, nu);
+  out.E = Eigen::MatrixXd::Zero(ny, nx);
+  out.speeds = Eigen::MatrixXd::Zero(n, nx);
+  auto state_index = [&](Variable v) {
+    return static_cast<Eigen::Index>(std::find(sys.state_variables.begin(), sys.state_variables.end(), v) -
+                                     sys.state_variables.begin());
+  };
+  const GiNaC::matrix E_rows = engagement_rows(d.topology, sys.friction_elements);
+  out.S = Eigen::MatrixXd::Zero(E_rows.rows(), nx);
+  if (sys.kind == SystemKind::elastic) {
+    for (unsigned r = 0; r < E_rows.rows(); ++r)
+      for (std::size_t i = 0; i < nx; ++i)
+        if (sys.state_variables[i].kind == VariableKind::velocity)
+          out.S(r, i) = to_double(as_number(E_rows(r, sys.state_variables[i].index)));
+    for (std::size_t b = 0; b < n; ++b) out.speeds(b, state_index({VariableKind::velocity, static_cast<int>(b)})) = 1;
+    const GiNaC::matrix L = exact(e.L);
+    out.L = doubles(L);
+    out.M = doubles(exact_solve(L, exact(e.A)));
+    out.N = doubles(exact_solve(L, input_columns(exact(e.B))));
+    for (std::size_t i = 0; i < ny; ++i)
+      if (sys.output_variables[i].kind != VariableKind::controller_torque)
+        out.C(i, state_index(sys.output_variables[i])) = 1;
+  } else {
+    // L1, A1 and Q1 from Q1's entries, not by substituting into the closed forms (the same numbers).
+    const RigidValues v = exact_rigid_values(d.rigid, e, values);
+    const GiNaC::matrix& Q1 = v.Q1;
+    const GiNaC::matrix R = exact(e.R), J = exact(e.J), BJ = exact(e.B_J);
+    out.L = doubles(v.L1);
+    out.M = doubles(exact_solve(v.L1, v.A1));
+    out.N = doubles(exact_solve(v.L1, input_columns(Q1.transpose())));
+    // Eq. (8) literally, F = (R R^T)^-1 R g with g = tau - J Q1 x1' - B_J Q1 x1; with redundant
+    // meshes the stiffness-weighted split F = K R (R^T K R)^+ g, which equals
+    // K R (R^T K R + Q1 Q1^T)^-1 g because g is orthogonal to ker R = span Q1. The inverse is
+    // applied to the columns needed, [B_J Q1, J Q1, the inputs' unit vectors], not formed.
+    const unsigned k = Q1.cols();
+    GiNaC::matrix G(n, 2 * k + nu);
+    for (unsigned b = 0; b < n; ++b)
+      for (unsigned j = 0; j < k; ++j) {
+        G(b, j) = BJ(b, b) * Q1(b, j);
+        G(b, k + j) = J(b, b) * Q1(b, j);
+      }
+    for (unsigned b = 0; b < n; ++b)
+      for (std::size_t j = 0; j < nu; ++j) G(b, 2 * k + j) = G_in(b, j);
+    GiNaC::matrix PG;  // P G
+    if (!d.rigid.redundant_meshes) {
+      PG = exact_solve(exact_product(R, R.transpose()), exact_product(R, G));
+    } else {
+      const GiNaC::matrix K = exact(e.K);
+      const GiNaC::matrix S = exact_product(exact_product(R.transpose(), K), R).add(exact_product(Q1, Q1.transpose()));
+      PG = exact_product(exact_product(K, R), exact_solve(S, G));
+    }
+    const Eigen::MatrixXd PGn = doubles(PG), Q1n = doubles(Q1);
+    out.speeds = Q1n;
+    if (E_rows.rows() > 0) out.S = doubles(exact_product(E_rows, Q1));
+    const Eigen::MatrixXd C_F = -PGn.leftCols(k), E_F = -PGn.middleCols(k, k);
+    for (std::size_t i = 0; i < ny; ++i) {
+      const Variable y = sys.output_variables[i];
+      if (y.kind == VariableKind::velocity) {
+        out.C.row(i) = Q1n.row(y.index);
+      } else if (y.kind == VariableKind::force) {
+        const Eigen::Index f = y.index;
+        out.C.row(i) = C_F.row(f);
+        out.E.row(i) = E_F.row(f);
+        for (std::size_t j = 0; j < nu; ++j) out.D(i, j) = PGn(f, 2 * k + j);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& sys) {
+  const Scene& sc = model.scene;
+  const Topology& t = model.derivation.topology;
+  const auto nx = static_cast<Eigen::Index>(sys.states.size()), nu = static_cast<Eigen::Index>(sys.inputs.size());
+  const auto nc = static_cast<Eigen::Index>(sc.controllers.size()), nb = nx - nc;  // the gear's states, then the integrals
+  // The loads' and controllers' torques as inputs after the system's: w = Kx x + Kv u (+ the
+  // quadratic loads) closes the loop. A controller with torque limits has its torque among the
+  // system's inputs already, closed by the hybrid runs through its law.
+  std::vector<Variable> inputs = sys.input_variables;
+  std::vector<int> closed;  // controllers closed here
+  for (Eigen::Index c = 0; c < nc; ++c)
+    if (!sc.controllers[static_cast<std::size_t>(c)].limited()) {
+      inputs.push_back({VariableKind::controller_torque, static_cast<int>(c)});
+      closed.push_back(static_cast<int>(c));
+    }
+  std::vector<const LoadSpec*> state_loads;
+  for (const LoadSpec& l : sc.loads)
+    if (l.linear != 0 || l.quadratic != 0) {
+      inputs.push_back({VariableKind::load_torque, l.body});
+      state_loads.push_back(&l);
+    }
+  const OpenLoop o = open_loop(model, sys, inputs, static_cast<std::size_t>(nb));
+  const auto nw = static_cast<Eigen::Index>(inputs.size()) - nu;
+  const Eigen::Index ny = o.C.rows();
+  Eigen::MatrixXd Kx = Eigen::MatrixXd::Zero(nw, nx), Kv = Eigen::MatrixXd::Zero(nw, nu);
+  NumericSystem out;
+  out.M = Eigen::MatrixXd::Zero(nx, nx);
+  out.N = Eigen::MatrixXd::Zero(nx, nu);
+  out.M.topLeftCorner(nb, nb) = o.M;
+  out.N.topRows(nb) = o.N.leftCols(nu);
+  // Each controller's law, Tc = kp (ref - omega_measured) + ki theta, as rows over x and u; its
+  // integral theta' = ref - omega_measured.
+  Eigen::MatrixXd law_x = Eigen::MatrixXd::Zero(nc, nx), law_u = Eigen::MatrixXd::Zero(nc, nu);
+  for (Eigen::Index c = 0; c < nc; ++c) {
+    const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
+    const auto ref = static_cast<Eigen::Index>(
+        std::find(sys.input_variables.begin(), sys.input_variables.end(), Variable{VariableKind::set_point, static_cast<int>(c)}) -
+        sys.input_variables.begin());
+    out.M.row(nb + c).head(nb) = -o.speeds.row(k.measured);
+    out.N(nb + c, ref) = 1;
+    law_x.row(c).head(nb) = -k.kp * o.speeds.row(k.measured);
+    law_x(c, nb + c) = k.ki;
+    law_u(c, ref) = k.kp;
+  }
+  const auto ncl = static_cast<Eigen::Index>(closed.size());
+  for (Eigen::Index j = 0; j < ncl; ++j) {
+    Kx.row(j) = law_x.row(closed[static_cast<std::size_t>(j)]);
+    Kv.row(j) = law_u.row(closed[static_cast<std::size_t>(j)]);
+  }
+  for (const int c : sys.limited_controllers) {
+    // The integral's back-calculation at a limit: theta' += (Tc - law) / (ki tracking_time).
+    const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
+    if (k.ki != 0) {
+      const double gain = 1 / (k.ki * k.tracking_time);
+      const auto torque = static_cast<Eigen::Index>(
+          std::find(sys.input_variables.begin(), sys.input_variables.end(), Variable{VariableKind::controller_torque, c}) -
+          sys.input_variables.begin());
+      out.M.row(nb + c) -= gain * law_x.row(c);
+      out.N.row(nb + c) -= gain * law_u.row(c);
+      out.N(nb + c, torque) += gain;
+    }
+    out.limit_x.conservativeResize(out.limit_x.rows() + 1, nx);
+    out.limit_u.conservativeResize(out.limit_u.rows() + 1, nu);
+    out.limit_x.bottomRows(1) = law_x.row(c);
+    out.limit_u.bottomRows(1) = law_u.row(c);
+  }
+  for (std::size_t l = 0; l < state_loads.size(); ++l)
+    Kx.row(ncl + static_cast<Eigen::Index>(l)).head(nb) = -state_loads[l]->linear * o.speeds.row(state_loads[l]->body);
+  Eigen::MatrixXd Nw = Eigen::MatrixXd::Zero(nx, nw);
+  Nw.topRows(nb) = o.N.rightCols(nw);
+  const Eigen::MatrixXd Dw = o.D.rightCols(nw);
+  out.M += Nw * Kx;
+  out.N += Nw * Kv;
+  out.C = Eigen::MatrixXd::Zero(ny, nx);
+  out.C.leftCols(nb) = o.C;
+  out.C += Dw * Kx;
+  out.D = o.D.leftCols(nu) + Dw * Kv;
+  out.E = Eigen::MatrixXd::Zero(ny, nx);
+  out.E.leftCols(nb) = o.E;
+  for (std::size_t l = 0; l < state_loads.size(); ++l) {
+    if (state_loads[l]->quadratic == 0) continue;
+    QuadraticLoad q{Nw.col(ncl + static_cast<Eigen::Index>(l)), Dw.col(ncl + static_cast<Eigen::Index>(l)),
+                    Eigen::VectorXd::Zero(nx), state_loads[l]->quadratic};
+    q.speed_row.head(nb) = o.speeds.row(state_loads[l]->body).transpose();
+    out.quadratic.push_back(std::move(q));
+  }
+  for (Eigen::Index i = 0; i < ny; ++i)
+    if (const Variable y = sys.output_variables[static_cast<std::size_t>(i)]; y.kind == VariableKind::controller_torque) {
+      const auto input = std::find(sys.input_variables.begin(), sys.input_variables.end(), y);
+      out.C.row(i).setZero();
+      out.D.row(i).setZero();
+      if (input != sys.input_variables.end()) {  // with limits: the input the hybrid run sets
+        out.D(i, input - sys.input_variables.begin()) = 1;
+      } else {
+        out.C.row(i) = law_x.row(y.index);
+        out.D.row(i) = law_u.row(y.index);
+      }
+    }
+  if (nc == 0) out.L = o.L;
+  out.S = Eigen::MatrixXd::Zero(o.S.rows(), nx);
+  out.S.leftCols(nb) = o.S;
+  out.x0 = Eigen::Map<const Eigen::VectorXd>(sys.x0.data(), nx);
+  // A lumped planet's meshes: the model's force is its planets' sum, the output one planet's. Speeds
+  // in rpm when the scene asks.
+  for (Eigen::Index i = 0; i < ny; ++i) {
+    const Variable y = sys.output_variables[static_cast<std::size_t>(i)];
+    if (y.kind == VariableKind::force) {
+      const double count = mesh_count(t, t.meshes[static_cast<std::size_t>(y.index)]);
+      out.C.row(i) /= count;
+      out.D.row(i) /= count;
+      out.E.row(i) /= count;
+      for (QuadraticLoad& q : out.quadratic) q.output_column(i) /= count;
+    } else if (y.kind == VariableKind::velocity && sc.speeds_in_rpm) {
+      out.C.row(i) *= rpm_per_rad_per_s;
+      out.D.row(i) *= rpm_per_rad_per_s;
+      out.E.row(i) *= rpm_per_rad_per_s;
+      for (QuadraticLoad& q : out.quadratic) q.output_column(i) *= rpm_per_rad_per_s;
+    }
+  }
+  return out;
+}
+
+Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSystem& sys) {
+  const Derivation& d = model.derivation;
+  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  if (!sys.implicit) return evaluate_matrix(sys.M, values);
+  return evaluate_matrix(sys.implicit->L, values).llt().solve(evaluate_matrix(sys.implicit->A, values));
+}
+
+rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedSystem& system, const NumericSystem& ns) {
+  rt::HybridSystem hs;
+  hs.M = ns.M;
+  hs.N = ns.N;
+  hs.S = ns.S;
+  hs.inputs = system.input_signals;
+  for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
+  for (std::size_t l = 0; l < system.limited_controllers.size(); ++l) {
+    const ControllerSpec& c = model.scene.controllers[static_cast<std::size_t>(system.limited_controllers[l])];
+    hs.limits.push_back({c.name, c.torque_min, c.torque_max, ns.limit_x.row(static_cast<Eigen::Index>(l)),
+                         ns.limit_u.row(static_cast<Eigen::Index>(l))});
+  }
+  return hs;
+}
+
+Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedSystem& sys) {
+  const Derivation& d = model.derivation;
+  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  // The specialized system's own M, exact in the tunable parameters, at their values: the numbers
+  // numeric_system computes by another formula (the tests compare them), without solving again.
+  // L1 holds inertias and radii only, which the folding leaves at the model's values.
+  Diagnostics out = diagnose(state_matrix(model, sys), evaluate_matrix(d.rigid_values.L1, {}),
+                             evaluate_matrix(d.elastic.R, values), model.scene.sample);
+  // At the derivation's values (the scene's overrides), not the folded ones: a rigid scene folds
+  // the stiffnesses away, yet the frequency below which it holds is that of its gear.
+  add_natural_frequency(out, d, d.values, !model.friction.empty());
+  if (sys.nonlinear) {
+    out.suggested_solver = out.adaptive_solver;
+    out.reason = fmt::format("the scene is nonlinear (a quadratic load), which exact stepping does not integrate; its "
+                             "linear part is {}", out.adaptive_solver == "implicit" ? "stiff" : "not stiff");
+  }
+  return out;
+}
+
+}  // namespace pogear

@@ -1,0 +1,417 @@
+// Specialized equations are built as GiNaC expressions in the scene's own variables, with the
+// mesh velocities v = R omega (and damped forces w = F + B_K v) as the shared temporaries.
+#include "specialize/specialization.hpp"
+#include "specialize/start_state.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "derive/engagement.hpp"
+#include "common/exact_algebra.hpp"
+#include "specialize/initial_state.hpp"
+#include "specialize/linear_form.hpp"
+#include "specialize/loop_closure.hpp"
+#include "read/model_parameters.hpp"
+#include "specialize/operation_count.hpp"
+#include "specialize/parameter_folding.hpp"
+#include "common/printer.hpp"
+#include "specialize/tunable_parameters.hpp"
+
+namespace pogear {
+namespace {
+
+using GiNaC::ex;
+
+bool contains(const std::vector<Variable>& v, Variable x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+
+std::vector<Variable> requested_outputs(const Scene& sc, const Topology& t) {
+  if (!sc.outputs.empty()) return sc.outputs;
+  std::vector<Variable> out;
+  for (std::size_t b = 0; b < t.bodies.size(); ++b) out.push_back({VariableKind::velocity, static_cast<int>(b)});
+  if (sc.effects.mesh_forces)
+    for (std::size_t i = 0; i < t.meshes.size(); ++i) out.push_back({VariableKind::force, static_cast<int>(i)});
+  for (std::size_t c = 0; c < sc.controllers.size(); ++c) out.push_back({VariableKind::controller_torque, static_cast<int>(c)});
+  return out;
+}
+
+void inputs_of(const Scene& sc, const Topology& t, SpecializedSystem& sys) {
+  for (const InputSpec& in : sc.inputs) {
+    if (identically_zero(in.signal)) continue;  // a zero input is not an input
+    add_input(t, {VariableKind::torque, in.body}, sys);
+    sys.input_signals.push_back(in.signal);
+  }
+}
+
+// Engaged brakes and clutches: their torques are inputs after the scene's (an element whose command
+// is zero at every time stays open and leaves no term).
+void friction_inputs_of(const Scene& sc, const Topology& t, SpecializedSystem& sys) {
+  for (const EngagementSpec& e : sc.engagement) {
+    if (identically_zero(e.command)) continue;
+    const Variable torque{VariableKind::friction_torque, e.element};
+    sys.input_variables.push_back(torque);
+    sys.inputs.push_back(variable_name(t, torque));
+    sys.friction_elements.push_back(e.element);
+  }
+}
+
+// The torque on a body from every input: its own tau_, its load and controller, and the engaged
+// elements' -e_k^T Tf_k.
+ex body_torque(const SymbolTable& s, const std::vector<Variable>& inputs, const GiNaC::matrix& torques,
+               std::size_t body) {
+  ex sum = 0;
+  for (std::size_t j = 0; j < inputs.size(); ++j)
+    if (!torques(body, j).is_zero()) sum += torques(body, j) * variable_symbol(s, inputs[j]);
+  return sum;
+}
+
+// What `--param` accepts for a tunable, and the sign its roles in the model ask for.
+TunableParameter tunable_parameter(const Topology& t, const std::string& name, double value) {
+  TunableParameter p{name, value, {}, ""};
+  const Parameter* given = find_parameter(t, name);
+  if (given) {
+    if (auto unit = written_unit(*given)) p.units.push_back({unit->first, unit->second});
+    if (given->value.has_unit && !(given->value.dimension == Dimension{}) &&
+        (p.units.empty() || p.units[0].unit != describe(given->value.dimension)))
+      p.units.push_back({describe(given->value.dimension), 1.0});
+  }
+  bool positive = false, non_negative = false;
+  for (const auto& b : t.bodies) {
+    positive = positive || b.inertia_parameter == name || (b.axis == AxisKind::carried && b.distance_parameter == name);
+    non_negative = non_negative || b.friction_parameter == name;
+    for (const auto& w : b.wheels) positive = positive || w.radius_parameter == name;
+  }
+  for (const auto& m : t.meshes) {
+    positive = positive || m.stiffness_parameter == name;
+    non_negative = non_negative || m.damping_parameter == name;
+  }
+  p.sign = positive ? "positive" : non_negative ? "non-negative" : "";
+  return p;
+}
+
+// A given radius cannot follow a tunable through a geometry relation: it keeps its number, which
+// the relation then contradicts at every other value of the tunable.
+void check_tunable_geometry(const Scene& sc, const Derivation& d) {
+  const GiNaC::exmap fold = parameter_folding(sc, d, true);
+  const SymbolTable& s = d.symbols;
+  for (const auto& g : d.radius.relations) {
+    const ex lhs = parameter_symbol(s, g.parameter).subs(fold, GiNaC::subs_options::no_pattern);
+    const ex rhs = g.rhs.subs(fold, GiNaC::subs_options::no_pattern);
+    if ((lhs - rhs).expand().is_zero()) continue;
+    std::string tunables;
+    for (const auto& name : sc.tunable)
+      if (lhs.has(parameter_symbol(s, name)) || rhs.has(parameter_symbol(s, name))) tunables += (tunables.empty() ? "'" : ", '") + name + "'";
+    if (tunables.empty()) continue;  // rounding of given values, checked when the model was read
+    throw InputError(sc.tunable_where,
+                     fmt::format("tunable {} enters the geometry relation {} = {} of {}, but '{}' is given in the "
+                                 "model and would keep its value; leave '{}' out of the model so that it is derived, "
+                                 "or define it through the tunable, or do not tune a radius of this relation",
+                                 tunables, g.parameter, print_expression(g.rhs, Notation::ginac),
+                                 describe_mesh(d.topology, g.mesh), g.parameter, g.parameter));
+  }
+}
+
+// E = x^T L x / 2, the energy stored in the specialized system's states, which a run is checked
+// against (the power balance bounds it; runtime/pogear/run_system.hpp): L = diag(J, K^-1) for the
+// elastic model, L1 = Q1^T J Q1 for the rigid one, folded like the equations (tunables stay symbols).
+GiNaC::matrix energy_matrix(const Derivation& d, const GiNaC::exmap& fold, bool elastic) {
+  auto folded = [&](const ex& e) { return e.subs(fold, GiNaC::subs_options::no_pattern).expand(); };
+  const ElasticModel& e = d.elastic;
+  if (elastic) {
+    GiNaC::matrix L(e.L.rows(), e.L.cols());
+    for (unsigned i = 0; i < e.L.rows(); ++i)
+      for (unsigned j = 0; j < e.L.cols(); ++j) L(i, j) = folded(e.L(i, j));
+    return L;
+  }
+  const GiNaC::matrix& Q1 = d.rigid.Q1;
+  GiNaC::matrix L(Q1.cols(), Q1.cols());
+  for (unsigned i = 0; i < Q1.cols(); ++i)
+    for (unsigned j = 0; j <= i; ++j) {
+      ex sum = 0;
+      for (unsigned b = 0; b < Q1.rows(); ++b) sum += e.J(b, b) * Q1(b, i) * Q1(b, j);
+      L(i, j) = L(j, i) = folded(sum);
+    }
+  return L;
+}
+
+}  // namespace
+
+SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, bool elastic) {
+  const SymbolTable& s = d.symbols;
+  const Topology& t = d.topology;
+  const std::size_t n = t.bodies.size();
+  const std::size_t m = t.meshes.size();
+  const GiNaC::exmap fold = parameter_folding(sc, d, true);
+  auto folded = [&](const ex& e) { return e.subs(fold, GiNaC::subs_options::no_pattern).expand(); };
+  SpecializedSystem sys;
+  sys.kind = elastic ? SystemKind::elastic : SystemKind::rigid;
+  for (const auto& name : sc.tunable) sys.params.push_back(tunable_parameter(t, name, parameter_value(t, name)));
+  inputs_of(sc, t, sys);
+  loop_inputs_of(sc, t, sys);
+  friction_inputs_of(sc, t, sys);
+  const std::vector<Variable> open_inputs = sys.input_variables;  // before close_loops
+  const GiNaC::matrix torques_of_inputs = input_torques(t, sc.controllers, open_inputs);
+
+  // Readers of the generated code would take a temporary for the parameter of the same name.
+  auto temporary = [&](Variable v) {
+    const std::string name = variable_name(t, v);
+    if (const Parameter* p = find_parameter(t, name))  // the model's line is where to rename it
+      throw InputError(p->where, fmt::format("the model has a parameter named '{}', which pogear's generated code "
+                                             "uses for a mesh velocity; rename the parameter", name));
+    return name;
+  };
+
+  if (elastic) {
+    sys.equations = "elastic POG model (eqs. 2-3): J omega' = tau - B_J omega - R^T (B_K R omega + F), "
+                    "K^-1 F' = R omega";
+    for (std::size_t k = 0; k < n; ++k) add_state(t, {VariableKind::velocity, static_cast<int>(k)}, sys);
+    for (std::size_t i = 0; i < m; ++i) add_state(t, {VariableKind::force, static_cast<int>(i)}, sys);
+    std::vector<ex> w(m);  // the force each mesh passes on, damping included
+    for (std::size_t i = 0; i < m; ++i) {
+      const Variable vi{VariableKind::mesh_velocity, static_cast<int>(i)}, wi{VariableKind::transmitted_force, static_cast<int>(i)};
+      const ex force = variable_symbol(s, {VariableKind::force, static_cast<int>(i)});
+      ex v = 0;
+      for (std::size_t k = 0; k < n; ++k) v += d.elastic.R(i, k) * variable_symbol(s, {VariableKind::velocity, static_cast<int>(k)});
+      sys.rhs_temporaries.push_back({temporary(vi), folded(v), variable_symbol(s, vi)});
+      const ex damping = folded(d.elastic.B_K(i, i));
+      if (damping.is_zero()) {
+        w[i] = force;
+      } else {
+        sys.rhs_temporaries.push_back({temporary(wi), folded(force + damping * variable_symbol(s, vi)), variable_symbol(s, wi)});
+        w[i] = variable_symbol(s, wi);
+      }
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      ex torque = body_torque(s, open_inputs, torques_of_inputs, k) -
+                  d.elastic.B_J(k, k) * variable_symbol(s, {VariableKind::velocity, static_cast<int>(k)});
+      for (std::size_t i = 0; i < m; ++i) torque -= d.elastic.R(i, k) * w[i];
+      sys.rhs.push_back(folded(torque / d.elastic.J(k, k)));
+    }
+    for (std::size_t i = 0; i < m; ++i)
+      sys.rhs.push_back(folded(d.elastic.K(i, i) * variable_symbol(s, {VariableKind::mesh_velocity, static_cast<int>(i)})));
+  } else {
+    sys.equations = "rigid reduced POG model (eq. 7): L1 x1' = A1 x1 + B1 tau, omega = Q1 x1, "
+                    "F from eq. (8)";
+    for (int k : d.rigid.kept) add_state(t, {VariableKind::velocity, k}, sys);
+    const std::size_t k1 = sys.states.size();
+    // Whether every inertia, friction and radius the rigid system reads is a number (tunables that
+    // are stiffnesses or dampings do not enter it).
+    bool numeric = true;
+    for (std::size_t b = 0; b < n; ++b)
+      numeric = numeric && GiNaC::is_a<GiNaC::numeric>(folded(d.elastic.J(b, b))) &&
+                GiNaC::is_a<GiNaC::numeric>(folded(d.elastic.B_J(b, b)));
+    for (std::size_t i = 0; i < m; ++i)
+      for (std::size_t b = 0; b < n; ++b) numeric = numeric && GiNaC::is_a<GiNaC::numeric>(folded(d.elastic.R(i, b)));
+    if (numeric) {
+      // Every parameter is a number: x1' = L1^-1 (A1 x1 + B1 tau) exactly, and as A1 = -Q1^T B_J Q1
+      // and B1 = Q1^T, that is L1^-1 Q1^T applied to the torques -B_J Q1 (one column per kept
+      // velocity) and to the inputs' unit vectors: one sparse exact solve (exact_rigid_response),
+      // neither L1 nor A1 formed (the closed forms of a long chain are megabytes to substitute into).
+      const GiNaC::matrix Q1 = exact_matrix(d.rigid.Q1, fold);
+      const std::size_t nu = sys.inputs.size();
+      GiNaC::matrix torques(n, k1 + nu);
+      for (std::size_t b = 0; b < n; ++b) {
+        const GiNaC::numeric friction = as_number(exact_value(d.elastic.B_J(b, b), fold));
+        for (std::size_t j = 0; j < k1 && !friction.is_zero(); ++j)
+          if (!Q1(b, j).is_zero()) torques(b, j) = -friction.mul(as_number(Q1(b, j)));
+      }
+      for (std::size_t b = 0; b < n; ++b)
+        for (std::size_t c = 0; c < nu; ++c) torques(b, k1 + c) = torques_of_inputs(b, c);
+      const GiNaC::matrix X = exact_rigid_response(d.rigid, d.elastic, fold, torques);
+      for (std::size_t j = 0; j < k1; ++j) {
+        GiNaC::exvector f;
+        for (std::size_t i = 0; i < k1; ++i) f.push_back(X(j, i) * variable_symbol(s, sys.state_variables[i]));
+        for (std::size_t c = 0; c < nu; ++c) f.push_back(X(j, k1 + c) * variable_symbol(s, sys.input_variables[c]));
+        sys.rhs.push_back(folded(GiNaC::add(f)));
+      }
+    } else {
+      // L1 = Q1^T J Q1, A1 = -Q1^T B_J Q1 and the inputs' columns of B1 = Q1^T, entry by entry from
+      // the folded Q1, J and B_J: short sums of monomials in the tunables. The generated code
+      // solves L1 x1' = A1 x1 + B1 tau numerically (see SpecializedSystem::implicit).
+      GiNaC::matrix Q1(n, k1);
+      for (std::size_t b = 0; b < n; ++b)
+        for (std::size_t j = 0; j < k1; ++j) Q1(b, j) = folded(d.rigid.Q1(b, j));
+      ImplicitForm f{GiNaC::matrix(k1, k1), GiNaC::matrix(k1, k1), GiNaC::matrix(k1, sys.inputs.size())};
+      for (std::size_t i = 0; i < k1; ++i)
+        for (std::size_t j = 0; j < k1; ++j) {
+          ex l = 0, a = 0;
+          for (std::size_t b = 0; b < n; ++b) {
+            if (Q1(b, i).is_zero() || Q1(b, j).is_zero()) continue;
+            l += d.elastic.J(b, b) * Q1(b, i) * Q1(b, j);
+            a -= d.elastic.B_J(b, b) * Q1(b, i) * Q1(b, j);
+          }
+          f.L(i, j) = folded(l);
+          f.A(i, j) = folded(a);
+        }
+      for (std::size_t c = 0; c < sys.inputs.size(); ++c)
+        for (std::size_t i = 0; i < k1; ++i) {
+          ex sum = 0;
+          for (std::size_t b = 0; b < n; ++b) sum += Q1(b, i) * torques_of_inputs(b, c);
+          f.B(i, c) = folded(sum);
+        }
+      sys.implicit = std::move(f);
+    }
+  }
+  const std::size_t gear_states = sys.states.size();  // before the controllers' integrals
+  const ClosedLoops loops = close_loops(sc, d, elastic, fold, sys);
+  // The rigid model starts from the state the named speeds determine (initial_state.hpp); with
+  // compare_rigid the elastic model starts from that same state, unnamed bodies included.
+  std::vector<double> rigid_x0;
+  if (!elastic || sc.compare_rigid) rigid_x0 = rigid_initial_state(sc, d, parameter_folding(sc, d, false));
+  Eigen::VectorXd omega;  // left empty from rest: Q1 of a long chain is costly to evaluate
+  if (elastic && sc.compare_rigid && std::any_of(rigid_x0.begin(), rigid_x0.end(), [](double x) { return x != 0; }))
+    omega = evaluate_matrix(d.rigid.Q1, parameter_folding(sc, d, false)) *
+            Eigen::Map<const Eigen::VectorXd>(rigid_x0.data(), static_cast<Eigen::Index>(rigid_x0.size()));
+  for (std::size_t i = 0; i < sys.state_variables.size(); ++i) {
+    const Variable v = sys.state_variables[i];
+    if (i >= gear_states) sys.x0.push_back(0.0);  // a controller's integral
+    else if (const auto it = sc.initial.find(v); it != sc.initial.end())  // exactly as given, a lumped force per planet
+      sys.x0.push_back(v.kind == VariableKind::force ? it->second * mesh_count(t, t.meshes[v.index]) : it->second);
+    else if (!elastic) sys.x0.push_back(rigid_x0[i]);
+    else if (v.kind == VariableKind::velocity && omega.size()) sys.x0.push_back(omega(v.index));
+    else sys.x0.push_back(0.0);
+  }
+  // A controller started at a given torque Tc0: its integral from kp (ref(0) - omega(0)) + ki theta(0) = Tc0.
+  for (std::size_t c = 0; c < sc.controllers.size(); ++c) {
+    const auto given = sc.initial.find(Variable{VariableKind::controller_torque, static_cast<int>(c)});
+    if (given == sc.initial.end()) continue;
+    const ControllerSpec& k = sc.controllers[c];
+    double omega = 0;
+    for (std::size_t j = 0; j < gear_states; ++j) {
+      if (elastic) {
+        if (sys.state_variables[j] == Variable{VariableKind::velocity, k.measured}) omega = sys.x0[j];
+      } else {
+        omega += to_double(as_number(exact_value(d.rigid.Q1(static_cast<unsigned>(k.measured), static_cast<unsigned>(j)),
+                                                 parameter_folding(sc, d, false)))) * sys.x0[j];
+      }
+    }
+    sys.x0[gear_states + c] = (given->second - k.kp * (rt::value(k.set_point, 0.0) - omega)) / k.ki;
+  }
+  if (!sys.implicit) linear_form(s, sys);
+  limit_laws(d.symbols, loops, sys);
+  // After the linear form, which reads a temporary it does not know as a constant, and leaves it out.
+  sys.rhs_temporaries.insert(sys.rhs_temporaries.end(), loops.quadratic.begin(), loops.quadratic.end());
+  GiNaC::exmap loop_outputs = loops.torques;  // the outputs have no temporaries: TQ_ written out
+  for (const Assignment& q : loops.quadratic)
+    for (auto& [symbol, law] : loop_outputs) law = law.subs(GiNaC::exmap{{q.symbol, q.value}}, GiNaC::subs_options::no_pattern);
+
+  // Outputs: only those asked for.
+  bool need_derivatives = false;
+  for (const Variable out : requested_outputs(sc, t)) {
+    sys.output_variables.push_back(out);
+    sys.outputs.push_back(variable_name(t, out));
+    sys.output_units.emplace_back(unit_of(out.kind));
+    if (out.kind == VariableKind::controller_torque) {  // its law, or with limits its input
+      const auto law = loop_outputs.find(variable_symbol(s, out));
+      sys.output_values.push_back(law != loop_outputs.end() ? law->second : ex(variable_symbol(s, out)));
+    } else if (elastic || contains(sys.state_variables, out)) {
+      sys.output_values.push_back(variable_symbol(s, out));
+    } else if (out.kind == VariableKind::velocity) {
+      ex w = 0;
+      for (std::size_t j = 0; j < gear_states; ++j)
+        w += d.rigid.Q1(out.index, j) * variable_symbol(s, sys.state_variables[j]);
+      sys.output_values.push_back(folded(w));
+    } else {
+      // Eq. (8) reads the torque on each body: the inputs', friction torques included.
+      GiNaC::exmap body_torques;
+      for (std::size_t b = 0; b < n; ++b)
+        body_torques[variable_symbol(s, {VariableKind::torque, static_cast<int>(b)})] =
+            body_torque(s, open_inputs, torques_of_inputs, b);
+      sys.output_values.push_back(folded(
+          d.rigid.force_recovery.at(out.index).subs(body_torques).subs(loop_outputs, GiNaC::subs_options::no_pattern)));
+      need_derivatives = true;
+    }
+    // The model's force of a lumped planet's mesh is its planets' sum; users read one planet's.
+    if (out.kind == VariableKind::force && mesh_count(t, t.meshes[out.index]) > 1)
+      sys.output_values.back() = folded(sys.output_values.back() / mesh_count(t, t.meshes[out.index]));
+    if (out.kind == VariableKind::velocity && sc.speeds_in_rpm) {
+      sys.output_values.back() = folded(sys.output_values.back() * exact_number(rpm_per_rad_per_s));
+      sys.output_units.back() = "rpm";
+    }
+  }
+  sys.output_derivatives = need_derivatives;
+  sys.rhs_ops = sys.implicit ? implicit_operations(*sys.implicit) : count_all(sys.rhs_temporaries, sys.rhs);
+  sys.output_ops = count_all({}, sys.output_values);
+  if (sys.output_derivatives) {  // the outputs call rhs
+    sys.output_ops.multiplications += sys.rhs_ops.multiplications;
+    sys.output_ops.additions += sys.rhs_ops.additions;
+  }
+  if (sc.controllers.empty()) sys.L = energy_matrix(d, fold, elastic);
+  else sys.L = GiNaC::matrix(0, 0);
+
+  // Slips s_k = e_k omega in the system's states: omega itself (elastic), omega = Q1 x1 (rigid).
+  const GiNaC::matrix E = engagement_rows(t, sys.friction_elements);
+  sys.slip = GiNaC::matrix(E.rows(), sys.states.size());
+  for (unsigned r = 0; r < E.rows(); ++r)
+    for (std::size_t j = 0; j < sys.states.size(); ++j) {
+      ex sum = 0;
+      for (std::size_t b = 0; b < n; ++b) {
+        if (E(r, b).is_zero()) continue;
+        const Variable v = sys.state_variables[j];
+        if (j >= gear_states) continue;  // a controller's integral
+        if (elastic) sum += v == Variable{VariableKind::velocity, static_cast<int>(b)} ? E(r, b) : ex(0);
+        else sum += E(r, b) * d.rigid.Q1(b, j);
+      }
+      sys.slip(r, j) = folded(sum);
+    }
+  return sys;
+}
+
+void add_state(const Topology& t, Variable v, SpecializedSystem& sys) {
+  sys.state_variables.push_back(v);
+  sys.states.push_back(variable_name(t, v));
+  sys.state_units.emplace_back(unit_of(v.kind));
+}
+
+void add_input(const Topology& t, Variable v, SpecializedSystem& sys) {
+  sys.input_variables.push_back(v);
+  sys.inputs.push_back(variable_name(t, v));
+}
+
+GiNaC::matrix input_torques(const Topology& t, const std::vector<ControllerSpec>& controllers,
+                            const std::vector<Variable>& inputs) {
+  GiNaC::matrix G(t.bodies.size(), inputs.size());
+  for (std::size_t j = 0; j < inputs.size(); ++j) {
+    const VariableKind kind = inputs[j].kind;
+    if (kind == VariableKind::torque || kind == VariableKind::load_torque) {
+      G(inputs[j].index, j) = 1;
+    } else if (kind == VariableKind::controller_torque) {
+      G(controllers.at(static_cast<std::size_t>(inputs[j].index)).body, j) = 1;
+    } else if (kind == VariableKind::set_point) {
+      continue;  // a speed, which acts through its controller
+    } else {
+      const GiNaC::matrix e = engagement_rows(t, {inputs[j].index});
+      for (std::size_t b = 0; b < t.bodies.size(); ++b) G(b, j) = -e(0, b);
+    }
+  }
+  return G;
+}
+
+SpecializedScene specialize(const Scene& scene) {
+  SpecializedScene model;
+  model.scene = scene;
+  std::optional<std::vector<std::string>> keep;
+  if (!scene.keep.empty()) keep = scene.keep;
+  // With every parameter a number the rigid system needs no closed forms of L1 and A1.
+  model.derivation = derive_topology(scene.model, keep, scene.keep_where, !scene.tunable.empty());
+  const bool rigid_forces = scene.effects.mesh_forces && (!scene.effects.mesh_compliance || scene.compare_rigid);
+  if (model.derivation.rigid.redundant_meshes && rigid_forces && !scene.tunable.empty())
+    throw InputError(SourceLocation{scene.file, 0, 0},
+                     "this model has redundant meshes, whose rigid load split depends on every stiffness and "
+                     "radius; it is computed at fixed values, so it cannot be combined with tunable parameters: "
+                     "drop 'tunable' or 'mesh_forces'");
+  if (!scene.tunable.empty()) check_tunable_geometry(scene, model.derivation);
+  model.main = specialize_system(scene, model.derivation, scene.effects.mesh_compliance);
+  if (scene.compare_rigid) model.rigid = specialize_system(scene, model.derivation, false);
+  const Topology& t = model.derivation.topology;
+  for (const EngagementSpec& e : scene.engagement) {
+    if (identically_zero(e.command)) continue;
+    const FrictionElement& f = t.friction_elements[static_cast<std::size_t>(e.element)];
+    model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter),
+                                         static_friction_ratio(t, f), e.command, f.one_way});
+  }
+  apply_start(model);
+  return model;
+}
+
+}  // namespace pogear

@@ -1,0 +1,124 @@
+// Specialization: the equations a scene calls for and nothing more. Effects left out leave no
+// term, zero inputs are not inputs, unrequested outputs are not computed, and every parameter
+// that is not tunable is folded to a number.
+#pragma once
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "derive/derivation.hpp"
+#include "specialize/operation_count.hpp"
+#include "specialize/reference_model.hpp"
+#include "read/scene.hpp"
+
+namespace pogear {
+
+// `const double name = value;` in generated code.
+struct Assignment {
+  std::string name;
+  GiNaC::ex value;
+  GiNaC::ex symbol;  // what the expressions after it read for it
+};
+
+// How `--param NAME=VALUE` of a generated simulator may write a tunable's value: a plain number
+// (SI), or NUMBER*UNIT with one of these units (the model's own spelling and the SI one).
+struct UnitSpelling {
+  std::string unit;  // e.g. "Newton/mm"
+  double si = 1;     // its value in SI, e.g. 1000
+};
+
+struct TunableParameter {
+  std::string name;
+  double value = 0;  // SI, the scene's value
+  std::vector<UnitSpelling> units;
+  std::string sign;  // "positive", "non-negative", or empty when no role of the model bounds it
+};
+
+// L dx/dt = A x + B u, which the generated code solves numerically (L symmetric positive definite).
+struct ImplicitForm {
+  GiNaC::matrix L, A, B;
+};
+
+enum class SystemKind { elastic, rigid };
+inline std::string_view kind_name(SystemKind k) { return k == SystemKind::elastic ? "elastic" : "rigid"; }
+inline std::ostream& operator<<(std::ostream& out, SystemKind k) { return out << kind_name(k); }
+
+struct SpecializedSystem {
+  SystemKind kind = SystemKind::elastic;
+  std::string equations;  // one line, for the generated header comment
+  // Names (as the generated code and the CSV files write them) and what each one is.
+  std::vector<std::string> states, state_units;
+  std::vector<Variable> state_variables;
+  std::vector<double> x0;  // the controllers' integrals theta_ start at zero
+  std::vector<std::string> inputs;    // tau_<body> of the nonzero signals
+  std::vector<Variable> input_variables;
+  // The signal of each input but the friction torques: the scene's torques, the constant parts of
+  // its loads (TL_<body>), the controllers' set-points (ref_<controller>).
+  std::vector<rt::Signal> input_signals;
+  // Brakes and clutches the scene engages (indices into Topology::friction_elements): their torques
+  // Tf_<element> are the last inputs, after the scene's, and their slips are s = slip x.
+  std::vector<int> friction_elements;
+  GiNaC::matrix slip;
+  // Controllers with torque limits (indices into Scene::controllers): their torques Tc_<controller>
+  // are the very last inputs, after the friction torques, and the hybrid runs apply their laws
+  // T = limit_law_x x + limit_law_u u (one row each, exact) within the limits.
+  std::vector<int> limited_controllers;
+  GiNaC::matrix limit_law_x, limit_law_u;
+  std::vector<TunableParameter> params;
+  std::vector<Assignment> rhs_temporaries;
+  std::vector<GiNaC::ex> rhs;  // dx/dt, one per state
+  std::vector<std::string> outputs, output_units;
+  std::vector<Variable> output_variables;
+  std::vector<GiNaC::ex> output_values;
+  GiNaC::matrix M, N;  // dx/dt = M x + N u (every scene pogear knows is linear); 0 x 0 with `implicit`
+  // A rigid system with tunables: dx/dt from L1 x1' = A1 x1 + B1 tau, solved by the generated code
+  // (rhs and M, N are then empty). The symbolic L1^-1 over one common denominator grew to 21,844
+  // operations for 10 tunables of a 2-state system, with exact coefficients beyond doubles.
+  std::optional<ImplicitForm> implicit;
+  bool output_derivatives = false;  // the outputs read dx/dt as d<state>, computed by rhs
+  OperationCount rhs_ops, output_ops;
+  // Energy E = x^T L x / 2 (symmetric positive definite), for the runner's divergence check; empty
+  // with controllers, which feed power in that no bound of the inputs limits.
+  GiNaC::matrix L;
+  // A quadratic load makes the equations nonlinear: rhs then holds its torques -c omega |omega|
+  // (temporaries TQ_<body>), which M and N leave out, and exact stepping is refused.
+  bool nonlinear = false;
+};
+
+// A brake or clutch of a scene at the scene's values: capacity [N m], static ratio, and command.
+struct FrictionRun {
+  int element = -1;
+  std::string name;
+  double capacity = 0, static_ratio = 1;
+  rt::Signal command;
+  bool one_way = false;
+};
+
+struct SpecializedScene {
+  Scene scene;
+  std::vector<FrictionRun> friction;  // the engaged elements, in the order of the systems' Tf_ inputs
+  Derivation derivation;  // with the scene's overrides applied
+  SpecializedSystem main;
+  std::optional<SpecializedSystem> rigid;  // the comparison, when the scene asks for it
+};
+
+// 60 / 2 pi, rounded once: a speed output in rpm is this times the speed in rad/s.
+inline constexpr double rpm_per_rad_per_s = 9.5492965855137201;
+
+SpecializedScene specialize(const Scene& scene);
+
+// A state or an input appended to a system being built, with its name and unit.
+void add_state(const Topology& t, Variable v, SpecializedSystem& sys);
+void add_input(const Topology& t, Variable v, SpecializedSystem& sys);
+SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, bool elastic);
+
+// The torque each input applies to each body (bodies x inputs, exact): a unit column for tau_<body>,
+// a load's TL_<body> and a controller's Tc_ (on its body), -e_k^T for a friction torque Tf_<k> (-T
+// on the element's first body, +T on its second, arrows taken into account), none for a set-point.
+GiNaC::matrix input_torques(const Topology& t, const std::vector<ControllerSpec>& controllers,
+                            const std::vector<Variable>& inputs);
+
+}  // namespace pogear

@@ -1,0 +1,144 @@
+// Eigenvalues of M give the time scales; a mode whose decay rate is below rounding of the
+// fastest one counts as not decaying (a free rotation without friction, an undamped mesh).
+#include "vibrate/diagnostics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "common/matrix_balancing.hpp"
+#include "pogear/stability_limit.hpp"
+
+namespace pogear {
+namespace {
+
+double condition(const Eigen::MatrixXd& A) {
+  if (A.size() == 0) return 1;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A);
+  const auto& s = svd.singularValues();
+  return s(s.size() - 1) > 0 ? s(0) / s(s.size() - 1) : std::numeric_limits<double>::infinity();
+}
+
+std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "inf"; }
+
+}  // namespace
+
+Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R, double sample) {
+  Diagnostics d;
+  // Balanced first (exact, the same eigenvalues): unbalanced, the mesh-force rows of a very stiff
+  // gear ruled the rounding, and modes of a passive gear came out growing.
+  const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(balanced(M), false).eigenvalues();
+  d.fastest_rate = lambda.cwiseAbs().maxCoeff();
+  d.fastest_time_constant = d.fastest_rate > 0 ? 1 / d.fastest_rate : std::numeric_limits<double>::infinity();
+  double slowest_decay = std::numeric_limits<double>::infinity();
+  // Rounding in the eigenvalues of M is ~1e-13 of its largest one; below that a decay rate is noise.
+  const double floor = 1e-11 * d.fastest_rate;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
+    const double decay = -lambda(i).real();
+    if (std::abs(decay) <= floor) {
+      ++d.undecaying_modes;
+      continue;
+    }
+    if (decay < 0) {
+      ++d.growing_modes;
+      d.fastest_growth_rate = std::max(d.fastest_growth_rate, -decay);
+      continue;
+    }
+    slowest_decay = std::min(slowest_decay, decay);
+  }
+  for (Eigen::Index i = 0; i < lambda.size(); ++i)
+    if (std::abs(lambda(i).imag()) > floor)
+      d.fastest_oscillation_hz = std::max(d.fastest_oscillation_hz, std::abs(lambda(i).imag()) / (2 * std::numbers::pi));
+  d.sample = sample;
+  if (sample > 0 && d.fastest_oscillation_hz > 0) {
+    const double cycles = d.fastest_oscillation_hz * sample;  // per sample
+    d.sampled_peak_shortfall = cycles >= 0.5 ? 1.0 : 1 - std::cos(std::numbers::pi * cycles);
+  }
+  if (std::isfinite(slowest_decay) && slowest_decay > 0) {
+    d.slowest_time_constant = 1 / slowest_decay;
+    // The fastest time scale over the slowest time constant, |lambda|max / min|Re lambda|: mesh
+    // modes are lightly damped oscillations, and it is their frequency, not their decay rate,
+    // that bounds an explicit method's step against the time the scene must cover.
+    d.stiffness_ratio = d.fastest_rate / slowest_decay;
+  }
+  d.cond_L1 = condition(L1);
+  const Eigen::MatrixXd RRt = R * R.transpose();
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(RRt);
+  qr.setThreshold(1e-9);
+  if (qr.rank() == RRt.rows()) d.cond_RRt = condition(RRt);
+  d.rk4_max_step = rt::rk4_stability_limit(M);
+  d.suggested_solver = "exact";
+  // An explicit method's step is bounded by the fastest mode, |lambda| h < ~3, whether that mode
+  // decays or not; the stiffness ratio only sees decaying modes, so an undamped gear with 1e-29 s
+  // mesh modes had ratio 1 and was called not stiff. Stability alone then costs sample |lambda|max
+  // steps per sample: above 1e3, the steps are set by a mode the output does not resolve.
+  const double steps_per_sample = sample * d.fastest_rate;
+  std::string why;
+  if (d.stiffness_ratio > 1e3) {
+    why = fmt::format("stiffness ratio {}", number(d.stiffness_ratio));
+  } else if (steps_per_sample > 1e3) {
+    why = fmt::format("the fastest time scale {} s is {} times below the sample period and bounds an explicit "
+                      "method's step, damped or not", number(d.fastest_time_constant), number(steps_per_sample));
+  }
+  d.adaptive_solver = why.empty() ? "dopri5" : "implicit";
+  d.reason = fmt::format("the scene is linear: exact stepping is exact up to rounding for piecewise-linear inputs, or "
+                         "refuses the step; among "
+                         "adaptive methods use {}",
+                         why.empty() ? "dopri5 (not stiff)" : fmt::format("implicit ({})", why));
+  return d;
+}
+
+std::string diagnostics_text(const Diagnostics& d, const std::string& in) {
+  std::string s;
+  s += fmt::format("{}stiffness ratio {}; fastest time scale {} s; slowest time constant {} s{}\n", in,
+                   number(d.stiffness_ratio), number(d.fastest_time_constant), number(d.slowest_time_constant),
+                   d.undecaying_modes ? fmt::format("; {} mode(s) do not decay", d.undecaying_modes) : "");
+  if (d.growing_modes)
+    s += fmt::format("{}warning: {} mode(s) grow, the fastest by e in {} s: the scene is unstable (a speed controller "
+                     "whose torque slows the speed it measures feeds back positively: check its body and speed_of)\n",
+                     in, d.growing_modes, number(1 / d.fastest_growth_rate));
+  s += fmt::format("{}cond(L1) = {}; cond(R R^T) = {}\n", in, number(d.cond_L1),
+                   d.cond_RRt ? number(*d.cond_RRt) : "singular (redundant meshes)");
+  s += fmt::format("{}largest stable rk4 step {} s; suggested solver: {} ({})\n", in, number(d.rk4_max_step),
+                   d.suggested_solver, d.reason);
+  // Above 1 %: the output would show the scene's fastest vibration visibly lower than it is.
+  if (d.sampled_peak_shortfall > 0.01) {
+    const double f = d.fastest_oscillation_hz;
+    s += fmt::format("{}warning: sample period {} s is {} of a period of the fastest oscillation ({} Hz): ", in,
+                     number(d.sample), number(d.sample * f), number(f));
+    s += d.sampled_peak_shortfall >= 1
+             ? "the samples do not resolve it (fewer than 2 per period), and its peaks can be missed entirely"
+             : fmt::format("its sampled peaks can read up to {:.3g} % low", 100 * d.sampled_peak_shortfall);
+    s += fmt::format("; for 1 % take sample <= {} s\n", number(std::acos(0.99) / (std::numbers::pi * f)));
+  }
+  if (d.lowest_natural_frequency_hz)
+    s += fmt::format("{}lowest natural frequency {} Hz (undamped elastic model{}): the rigid model holds for inputs "
+                     "well below it\n", in, fmt::format("{:.6g}", *d.lowest_natural_frequency_hz),
+                     d.natural_frequency_of.empty() ? "" : ", " + d.natural_frequency_of);
+  else if (!d.natural_frequency_note.empty())
+    s += fmt::format("{}lowest natural frequency not computed: {}\n", in, d.natural_frequency_note);
+  return s;
+}
+
+std::string diagnostics_json(const Diagnostics& d, const std::string& in) {
+  auto num = [](double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); };
+  std::string s = "{\n";
+  s += fmt::format("{}  \"stiffness_ratio\": {},\n", in, num(d.stiffness_ratio));
+  s += fmt::format("{}  \"fastest_time_scale\": {},\n", in, num(d.fastest_time_constant));
+  s += fmt::format("{}  \"slowest_time_constant\": {},\n", in, num(d.slowest_time_constant));
+  s += fmt::format("{}  \"undecaying_modes\": {},\n", in, d.undecaying_modes);
+  s += fmt::format("{}  \"growing_modes\": {},\n", in, d.growing_modes);
+  s += fmt::format("{}  \"cond_L1\": {},\n", in, num(d.cond_L1));
+  s += fmt::format("{}  \"cond_RRt\": {},\n", in, d.cond_RRt ? num(*d.cond_RRt) : "null");
+  s += fmt::format("{}  \"rk4_max_step\": {},\n", in, num(d.rk4_max_step));
+  s += fmt::format("{}  \"fastest_oscillation_hz\": {},\n", in, num(d.fastest_oscillation_hz));
+  s += fmt::format("{}  \"suggested_solver\": \"{}\",\n", in, d.suggested_solver);
+  s += fmt::format("{}  \"lowest_natural_frequency_hz\": {}\n", in,
+                   d.lowest_natural_frequency_hz ? num(*d.lowest_natural_frequency_hz) : "null");
+  return s + in + "}";
+}
+
+}  // namespace pogear
