@@ -194,10 +194,8 @@ int main(int argc, char** argv) {
     } else if (*generate) {
       const pogear::SpecializedScene model = pogear::specialize(pogear::parse_scene(scene_file));
       std::vector<pogear::rt::Solver> solvers;
-      if (generate_solvers == "all") {  // those that integrate the scene: not exact stepping when it is nonlinear
-        for (const pogear::rt::Solver s : pogear::rt::all_solvers)
-          if (!(model.main.nonlinear && (s == pogear::rt::Solver::exact || s == pogear::rt::Solver::rk4)))
-            solvers.push_back(s);
+      if (generate_solvers == "all") {  // those that can run the scene
+        solvers = pogear::rt::admissible_solvers(pogear::solver_traits(model));
       } else if (!generate_solvers.empty())
         for (const std::string& name : split_list(generate_solvers)) solvers.push_back(*pogear::rt::parse_solver(name));
       const pogear::GeneratedSources sources = pogear::generate_sources(model, solvers);

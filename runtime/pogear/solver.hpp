@@ -89,6 +89,18 @@ inline constexpr std::optional<SolverRefusal> solver_refusal(Solver s, const Sys
   return std::nullopt;
 }
 
+// The solvers of `list` as a refusal's remedy offers them: "exact, dopri5 or implicit", or quoted as a
+// scene writes them: "\"dopri5\" or \"implicit\"".
+inline std::string solver_alternatives(std::span<const Solver> list, bool quoted) {
+  std::string text;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (i > 0) text += i + 1 == list.size() ? " or " : ", ";
+    const std::string name(solver_name(list[i]));
+    text += quoted ? "\"" + name + "\"" : name;
+  }
+  return text;
+}
+
 // The solvers of all_solvers that can run the system, in that order.
 inline std::vector<Solver> admissible_solvers(const SystemTraits& system) {
   std::vector<Solver> out;

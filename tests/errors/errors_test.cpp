@@ -1066,6 +1066,20 @@ TEST_F(EngagementCommands, SolverOptionRk4) {
                       R"~(scene.toml: error: the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate their events); use --solver exact, dopri5 or implicit)~");
 }
 
+// generate refuses a solver that can never run the scene, with the reason simulate gives; --solvers
+// all compiles the others (issue 31, item 9).
+TEST_F(EngagementCommands, GenerateRk4) {
+  write_text("gear.toml", shift_model());
+  write_text("scene.toml", base_scene() + "\n[engagement]\nB1 = \"1\"\n");
+  expect_pogear_error("generate scene.toml --solvers rk4 -o out", 2,
+                      R"~(scene.toml: error: the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate their events); leave rk4 out of --solvers)~");
+  const Command all = run(pogear() + " generate scene.toml --solvers all -o out");
+  ASSERT_EQ(all.status, 0) << all.err;
+  const std::string main = read_text("out/demo_main.cpp");
+  EXPECT_NE(main.find("Solver::dopri5"), std::string::npos) << main;
+  EXPECT_EQ(main.find("Solver::rk4"), std::string::npos) << main;
+}
+
 TEST_F(EngagementCommands, TunableCapacity) {
   expect_error("B1 = \"1\"\n",
                R"~(scene.toml:7:11: error: 'Tcap_B1' is the torque capacity of B1, which a simulation takes at the scene's value; it cannot be tunable: set it in [parameters] instead)~",
@@ -1265,7 +1279,7 @@ TEST_F(LoadsAndControllers, SimulateWithExactSolver) {
   expect_pogear_error("simulate scene.toml --solver exact --interpreted -o out", 2,
                       R"~(scene.toml: error: a quadratic load makes the scene nonlinear, which exact stepping does not integrate; use --solver dopri5 or implicit)~");
   expect_pogear_error("generate scene.toml --solvers exact,dopri5 -o out", 2,
-                      R"~(scene.toml: error: a quadratic load makes this scene nonlinear, which exact stepping does not integrate; leave exact out of --solvers)~");
+                      R"~(scene.toml: error: a quadratic load makes the scene nonlinear, which exact stepping does not integrate; leave exact out of --solvers)~");
 }
 
 }  // namespace

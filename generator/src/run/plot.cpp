@@ -13,6 +13,7 @@
 
 #include "common/child_process.hpp"
 #include "common/output_file.hpp"
+#include "names/model_variables.hpp"
 
 namespace pogear {
 namespace {
@@ -120,7 +121,7 @@ std::string render_svg(const std::string& gnuplot, const std::string& script, co
                        const std::string& already_written) {
   ChildRequest request;
   // The script as a file argument: gnuplot reads a script file in blocks, but its standard input
-  // a few bytes per call (0.28 s instead of 0.04 s for a 2000-sample figure).
+  // a few bytes per call.
   request.argv = {gnuplot, "/dev/stdin"};
   request.input = script;
   request.capture_stdout = true;
@@ -169,9 +170,9 @@ std::string shift_script(const SpecializedScene& model, const std::vector<std::v
     }
   for (std::size_t k = 0; k < ne; ++k) {
     torques.push_back(ny + k + 2);
-    torque_names.push_back("T_" + model.friction[k].name);
+    torque_names.push_back(element_torque_name(model.friction[k].name));
     slips.push_back(ny + ne + k + 2);
-    slip_names.push_back("slip_" + model.friction[k].name);
+    slip_names.push_back(element_slip_name(model.friction[k].name));
   }
   // The scene's name and the elements' names are identifiers, checked when the files were read.
   if (!speeds.empty())

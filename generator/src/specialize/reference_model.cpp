@@ -25,7 +25,7 @@ struct OpenLoop {
 OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, const std::vector<Variable>& inputs,
                    std::size_t nx) {
   const Derivation& d = model.derivation;
-  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  const GiNaC::exmap& values = model.values.numbers;
   const ElasticModel& e = d.elastic;
   // Exact rational arithmetic on the assembled matrices, rounded once at the end: the same
   // numbers the specialized expressions give, by another formula.
@@ -233,8 +233,7 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
 }
 
 Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSystem& sys) {
-  const Derivation& d = model.derivation;
-  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  const GiNaC::exmap& values = model.values.numbers;
   if (!sys.implicit) return evaluate_matrix(sys.M, values);
   return evaluate_matrix(sys.implicit->L, values).llt().solve(evaluate_matrix(sys.implicit->A, values));
 }
@@ -256,7 +255,7 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedS
 
 Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedSystem& sys) {
   const Derivation& d = model.derivation;
-  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  const GiNaC::exmap& values = model.values.numbers;
   // The specialized system's own M, exact in the tunable parameters, at their values: the numbers
   // numeric_system computes by another formula (the tests compare them), without solving again.
   // L1 holds inertias and radii only, which the folding leaves at the model's values.
@@ -265,10 +264,10 @@ Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedS
   // At the derivation's values (the scene's overrides), not the folded ones: a rigid scene folds
   // the stiffnesses away, yet the frequency below which it holds is that of its gear.
   add_natural_frequency(out, d, d.values, !model.friction.empty());
-  if (sys.nonlinear) {
+  if (const auto refusal = rt::solver_refusal(rt::Solver::exact, {.nonlinear = sys.nonlinear})) {
     out.suggested_solver = out.adaptive_solver;
-    out.reason = fmt::format("the scene is nonlinear (a quadratic load), which exact stepping does not integrate; its "
-                             "linear part is {}", out.adaptive_solver == "implicit" ? "stiff" : "not stiff");
+    out.reason = fmt::format("the scene is nonlinear (a quadratic load), {}; its linear part is {}", refusal->reason,
+                             out.adaptive_solver == "implicit" ? "stiff" : "not stiff");
   }
   return out;
 }
