@@ -128,8 +128,7 @@ struct Run {
 
 // Every entry finite, checked after each fixed step: x - x is 0 for a finite entry and NaN for an
 // infinite or NaN one, so the sum is 0 exactly when all are finite. One vectorized pass, where
-// Eigen's allFinite() compares and branches entry by entry (a third of the exact driver's per-step
-// instructions for the 10-state paper model).
+// Eigen's allFinite() compares and branches entry by entry.
 template <class X>
 POGEAR_RT_INLINE bool all_finite(const X& x) {
   return (x - x).sum() == 0;
@@ -138,7 +137,7 @@ POGEAR_RT_INLINE bool all_finite(const X& x) {
 // Fixed steps: each interval between consecutive stops (samples and breakpoints) is cut into the
 // fewest equal steps not longer than h, so that steps land exactly on both. The counters live in
 // locals, written back to run on the way out: run's address escapes into the error paths, so its
-// members would go through memory on every step (a good part of a batched step's instructions).
+// members would go through memory on every step.
 template <class X, class Advance, class Obs>
 POGEAR_RT_INLINE RunStatus run_fixed(const char* name, Advance&& advance, X& x, double t0, double t_end, double dt,
                                      const SolverOptions& opt, Obs& obs, const std::vector<double>& bps) {
@@ -170,8 +169,8 @@ POGEAR_RT_INLINE RunStatus run_fixed(const char* name, Advance&& advance, X& x, 
     const double te = brk ? breaks[next_break++] : ts;
     const double len = te - t;
     if (!(std::abs(len - last_len) <= 1e-9 * last_len)) {
-      // Counted in double and checked before the conversion: a count beyond a long's range used to
-      // wrap to 1, so a 1e-30 s step became one 10 ms step per sample, past rk4's stability check.
+      // Counted in double and checked before the conversion: a count beyond a long's range would
+      // wrap, and a tiny step become one long step per sample, past rk4's stability check.
       const double count = std::ceil(len / h_max - 1e-9);
       if (!(count <= static_cast<double>(std::min(max_steps, 1L << 62)))) {
         finish();
@@ -234,8 +233,8 @@ RunStatus run_adaptive(const char* name, const char* advice, S& s, X& x, double 
     if (++attempts > opt.max_steps) return stalled("max_steps = " + std::to_string(opt.max_steps) + " reached");
     const double err = s.attempt(t, x, hs, brk);
     // A stall is a step that t can barely represent: a few ulps of t (or, at t = 0, an underflowing
-    // one). Relative to the time reached, not to the horizon: 1e-14 of a 1e8 s horizon (1e-6 s) was
-    // above the steps an honest transient at t = 0 needs, so long horizons stalled at once.
+    // one). Relative to the time reached, not to the horizon: a fraction of a long horizon can exceed
+    // the steps an honest transient at t = 0 needs.
     const double hmin = std::max(16 * std::numeric_limits<double>::epsilon() * std::abs(t),
                                  std::numeric_limits<double>::min());
     if (!(err <= 1)) {

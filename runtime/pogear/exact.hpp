@@ -28,13 +28,12 @@ namespace pogear::rt {
 // models: their states mix velocities (rad/s) and mesh forces (N), so M h has entries from ~1e-3 to
 // ~200 (the stiff K rows) while its eigenvalues are O(1). Balanced, the norm drops to O(1): scaling
 // and squaring needs fewer squarings, and Phi's rounding error, which the lightly damped modes
-// accumulate over thousands of steps, drops from ~1e-14 to ~1e-16 relative (on the one-stage paper
-// scene the sampled error of exact stepping falls from 6e-12 to ~1e-13).
+// accumulate over thousands of steps, drops from ~1e-14 to ~1e-16 relative.
 namespace detail {
 // A B for dynamic matrices of a few rows (the compiled runtime's exact_matrices): each pair of rows of
-// a column of the product is one 2-lane sum over k, A read down its contiguous columns: twice as fast
-// as Eigen's lazy product on dynamic sizes, whose inner products run along strided rows. Each entry is
-// summed over k in order, as there (the same bits on the sizes measured, 4 to 24).
+// a column of the product is one 2-lane sum over k, A read down its contiguous columns, where Eigen's
+// lazy product on dynamic sizes runs its inner products along strided rows. Each entry is summed over
+// k in order, as Eigen's is, so both give the same bits.
 inline Eigen::MatrixXd small_product(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   const Eigen::Index n = A.rows(), m = A.cols(), p = B.cols();
   Eigen::MatrixXd C(n, p);
@@ -90,11 +89,10 @@ Mat mat_mul(const Mat& A, const Mat& B) {
 // in the squaring: it squares D = e^(A/2^s) - I as D <- 2 D + D^2 instead of E <- E^2. Squaring E
 // turns a rounding error of one ulp in an eigenvalue 1 of e^(A/2^s) into (1 - 2^-53)^(2^s): the
 // modes that do not move (a frictionless rotation, the input hold of the augmented matrix) lose
-// e^(-2^s eps) of their value, and 2^s ~ ||A||. At h = 1e14 s that made Gamma0 e^-4 times its value
-// (every velocity 54.6 times too small) and from h = 1e18 s zero. In D those eigenvalues are 0 and
-// stay 0. extra_squarings > 0 takes the degree-13 approximant with that many more squarings (the
-// independent evaluation ExactDiscretization checks against). Without squarings E is (V-U)^-1 (U+V),
-// as before: the same bits.
+// e^(-2^s eps) of their value, and 2^s ~ ||A||, which for very long steps is all of it. In D those
+// eigenvalues are 0 and stay 0. extra_squarings > 0 takes the degree-13 approximant with that many
+// more squarings (the independent evaluation ExactDiscretization checks against). Without squarings
+// E is (V-U)^-1 (U+V), Eigen's own bits.
 template <class Mat>
 Mat small_exp(const Mat& A, int extra_squarings = 0) {
   const Mat I = Mat::Identity(A.rows(), A.cols());

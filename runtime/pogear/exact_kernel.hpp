@@ -169,7 +169,7 @@ struct ExactKernel<NX, NU, true> {
 };
 
 // to[0, N) = from[0, N) in 16-byte moves written out one by one: as a loop GCC turns the copy into a
-// memcpy and expands that as `rep movs`, whose start-up cost was a fifth of a 10-state exact step.
+// memcpy and expands that as `rep movs`, whose start-up cost is large beside a small exact step.
 template <int N>
 POGEAR_RT_INLINE void copy_state(double* to, const double* from) {
 #if defined(__GNUC__)
@@ -302,10 +302,9 @@ struct ExactDiscretization {
   // out must not alias x. No allocation for fixed sizes (and none for dynamic ones once out is sized).
   // Computed as Phi x + (Gamma0 - Gamma1) u0 + Gamma1 u1. Consecutive steps form a chain of dependent
   // sums, so latency bounds a single run: for fixed sizes up to 32 states each row is a balanced
-  // tree of its NX + 2 NU products, computed for several rows at once (detail::exact_step). That
-  // takes 10 instead of 11 ns per step for the 10-state paper model in SSE2 registers, 7.5 in AVX2
-  // ones (simulate_exact picks those at run time). Always inlined: as a call, the driver's state
-  // round-trips through memory. Larger and dynamic sizes use Eigen's products.
+  // tree of its NX + 2 NU products, computed for several rows at once (detail::exact_step), in SSE2
+  // or AVX2 registers (simulate_exact picks the width at run time). Always inlined: as a call, the
+  // driver's state round-trips through memory. Larger and dynamic sizes use Eigen's products.
   template <int W = detail::kDefaultLanes>
   EIGEN_ALWAYS_INLINE void step(const State& x, const Input& u0, const Input& u1, State& out) const {
     if constexpr (detail::ExactKernel<NX, NU>::enabled) {

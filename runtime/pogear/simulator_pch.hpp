@@ -1,6 +1,6 @@
 // What every generated simulator includes, precompiled once when pogear is built (CMake's
 // pogear_simulator_pch) with the very flags `pogear simulate` compiles with: a simulator's compile
-// then starts from Eigen and the runtime already parsed, which was a third of it. A compile with
+// then starts from Eigen and the runtime already parsed. A compile with
 // other flags ignores the precompiled form and reads the headers.
 // An include guard, not #pragma once: GCC warns of the latter in the file it precompiles.
 #ifndef POGEAR_SIMULATOR_PCH_HPP

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "pogear/number_text.hpp"
 
@@ -46,6 +47,67 @@ inline std::string solver_names(std::span<const Solver> list, std::string_view s
   return names;
 }
 inline std::string solver_names(std::string_view separator) { return solver_names(all_solvers, separator); }
+
+// What a system holds that some solvers cannot run: a quadratic load (no M and N to discretize, and
+// no fixed step whose stability can be checked), and events (brakes or clutches engaged, controllers'
+// torque limits), which rk4's fixed steps cannot locate.
+struct SystemTraits {
+  bool nonlinear = false;
+  bool engages_friction = false;
+  bool limits_torque = false;
+};
+
+// Why a solver cannot run a system: what the system holds (`cause`), and how that meets the solver
+// (`reason`, which follows the cause after a comma). Each caller adds its own remedy.
+struct SolverRefusal {
+  std::string_view cause;   // "a quadratic load makes the scene nonlinear"
+  std::string_view reason;  // "which exact stepping does not integrate"
+};
+
+inline std::string describe(const SolverRefusal& r) {
+  std::string text(r.cause);
+  text += ", ";
+  text += r.reason;
+  return text;
+}
+
+// The one decision of which solvers may run a system; nullopt when `s` can. A nonlinear system with
+// events is run by no solver (the hybrid engine's modes are linear); else events refuse rk4 first.
+inline constexpr std::optional<SolverRefusal> solver_refusal(Solver s, const SystemTraits& system) {
+  constexpr std::string_view nonlinear = "a quadratic load makes the scene nonlinear";
+  if (system.nonlinear && (system.engages_friction || system.limits_torque))
+    return SolverRefusal{nonlinear, "and brakes, clutches and torque limits are simulated on linear scenes only"};
+  if (system.engages_friction && s == Solver::rk4)
+    return SolverRefusal{"the scene engages brakes or clutches",
+                         "which rk4 does not simulate (its fixed steps cannot locate their events)"};
+  if (system.limits_torque && s == Solver::rk4)
+    return SolverRefusal{"a controller with torque limits switches at events",
+                         "which rk4 does not locate (its fixed steps)"};
+  if (system.nonlinear && s == Solver::exact) return SolverRefusal{nonlinear, "which exact stepping does not integrate"};
+  if (system.nonlinear && s == Solver::rk4)
+    return SolverRefusal{nonlinear, "which rk4's fixed step cannot be checked against its stability limit"};
+  return std::nullopt;
+}
+
+// The solvers of `list` as a refusal's remedy offers them: "exact, dopri5 or implicit", or quoted as a
+// scene writes them: "\"dopri5\" or \"implicit\"".
+inline std::string solver_alternatives(std::span<const Solver> list, bool quoted) {
+  std::string text;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (i > 0) text += i + 1 == list.size() ? " or " : ", ";
+    const std::string name(solver_name(list[i]));
+    text += quoted ? "\"" + name + "\"" : name;
+  }
+  return text;
+}
+
+// The solvers of all_solvers that can run the system, in that order.
+inline std::vector<Solver> admissible_solvers(const SystemTraits& system) {
+  std::vector<Solver> out;
+  for (Solver s : all_solvers)
+    if (!solver_refusal(s, system)) out.push_back(s);
+  return out;
+}
 
 struct SolverOptions {
   double rtol = 1e-8, atol = 1e-10;

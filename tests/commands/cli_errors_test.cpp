@@ -267,7 +267,7 @@ body = "s"
 name = "B3"
 body = "g"
 
-[parameters])"}, {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nT_B1 = \"50*N*m\"\nT_C1 = \"50*N*m\"\nT_B2 = \"50*N*m\"\nT_B3 = \"50*N*m\""}}));
+[parameters])"}, {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nTcap_B1 = \"50*N*m\"\nTcap_C1 = \"50*N*m\"\nTcap_B2 = \"50*N*m\"\nTcap_B3 = \"50*N*m\""}}));
   }
 };
 

@@ -3,6 +3,7 @@
 // torques they are those of statics (a clutch carries the input torque, the brake the rest).
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -36,6 +37,23 @@ std::vector<GiNaC::numeric> reactions_at(const Derivation& d, const std::vector<
   std::vector<GiNaC::numeric> out;
   for (const GiNaC::ex& f : d.rigid.force_recovery) out.push_back(as_number(exact_value(f, at)));
   return out;
+}
+
+// A brake's or clutch's capacity and its torque have names of their own: the capacity's default
+// parameter is Tcap_<element>, the torque the reports and CSV files print T_<element>. A model
+// that names its capacity keeps that name (pair.toml: capacity = "T_B", an old default's form).
+TEST(EngagedModel, CapacityAndTorqueHaveNamesOfTheirOwn) {
+  const Derivation d = simpson_in("C1,B2");
+  std::set<std::string> capacities;
+  for (const FrictionElement& e : d.topology.friction_elements) {
+    EXPECT_EQ(e.capacity_parameter, "Tcap_" + e.name);
+    capacities.insert(e.capacity_parameter);
+  }
+  const std::vector<std::string> torques(d.rigid.reactions.end() - 2, d.rigid.reactions.end());
+  EXPECT_EQ(torques, (std::vector<std::string>{"T_C1", "T_B2"}));
+  for (const std::string& name : d.rigid.reactions) EXPECT_EQ(capacities.count(name), 0u) << name;
+  const Topology pair = parse_topology(source_path("tests/vibration/pair.toml"));
+  for (const FrictionElement& e : pair.friction_elements) EXPECT_EQ(e.capacity_parameter, "T_B") << e.name;
 }
 
 TEST(EngagedModel, ForcesAndTorquesSatisfyEveryBodysEquationOfMotion) {

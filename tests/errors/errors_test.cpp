@@ -289,7 +289,7 @@ TEST_F(FrictionElements, UnknownBody) {
 
 TEST_F(FrictionElements, SamePairTwice) {
   expect_error("[[clutch]]\nname = \"C1\"\nbodies = [\"s\", \"c\"]\n\n[[clutch]]\nname = \"C2\"\nbodies = [\"c\", \"s\"]\n",
-               "T_C1 = \"100*N*m\"\nT_C2 = \"100*N*m\"",
+               "Tcap_C1 = \"100*N*m\"\nTcap_C2 = \"100*N*m\"",
       R"~(gear.toml:41:8: error: 'C2' joins 'c' and 's' as 'C1' (line 37) does; one element per pair of bodies, or remove one)~");
 }
 
@@ -329,26 +329,26 @@ TEST_F(FrictionElements, UnknownKey) {
 
 TEST_F(FrictionElements, MissingCapacity) {
   expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n", "",
-      R"~(gear.toml:37:8: error: missing parameter 'T_B1' (a brake's torque capacity); add it under [parameters], e.g. T_B1 = "...")~");
+      R"~(gear.toml:37:8: error: missing parameter 'Tcap_B1' (a brake's torque capacity); add it under [parameters], e.g. Tcap_B1 = "...")~");
 }
 
 TEST_F(FrictionElements, NegativeCapacity) {
-  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n", "T_B1 = \"-50*N*m\"",
-      R"~(gear.toml:62:8: error: parameter 'T_B1' is a brake's torque capacity and must be positive (it is -50))~");
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n", "Tcap_B1 = \"-50*N*m\"",
+      R"~(gear.toml:62:8: error: parameter 'Tcap_B1' is a brake's torque capacity and must be positive (it is -50))~");
 }
 
 TEST_F(FrictionElements, CapacityNotATorque) {
-  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n", "T_B1 = \"50*N\"",
-      R"~(gear.toml:62:8: error: parameter 'T_B1' is a brake's torque capacity but has unit kg*m/s^2; it needs kg*m^2/s^2)~");
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n", "Tcap_B1 = \"50*N\"",
+      R"~(gear.toml:62:8: error: parameter 'Tcap_B1' is a brake's torque capacity but has unit kg*m/s^2; it needs kg*m^2/s^2)~");
 }
 
 TEST_F(FrictionElements, StaticRatioBelowOne) {
-  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\nstatic_ratio = \"0.8\"\n", "T_B1 = \"50*N*m\"",
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\nstatic_ratio = \"0.8\"\n", "Tcap_B1 = \"50*N*m\"",
       R"~(gear.toml:39:16: error: static_ratio of 'B1' is 0.8; static over kinetic friction is from 1 to 10 (1 when they are equal))~");
 }
 
 TEST_F(FrictionElements, StaticRatioWithAUnit) {
-  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\nstatic_ratio = \"2*m\"\n", "T_B1 = \"50*N*m\"",
+  expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\nstatic_ratio = \"2*m\"\n", "Tcap_B1 = \"50*N*m\"",
       R"~(gear.toml:39:16: error: static_ratio of 'B1' has unit m; it is a plain number, static over kinetic friction)~");
 }
 
@@ -1019,7 +1019,7 @@ class EngagementCommands : public ErrorTest {
   static std::string shift_model() {
     return edited(base_model(), {{"[parameters]", "[[brake]]\nname = \"B1\"\nbody = \"r\"\n\n[[clutch]]\nname = \"C1\"\n"
                                                   "bodies = [\"s\", \"c\"]\n\n[parameters]"},
-                                 {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nT_B1 = \"50*N*m\"\nT_C1 = \"50*N*m\""}});
+                                 {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nTcap_B1 = \"50*N*m\"\nTcap_C1 = \"50*N*m\""}});
   }
   void expect_error(const std::string& engagement, const std::string& expected, const Edits& scene_edits = {}) {
     expect_documented(scene_error(edited(base_scene(), scene_edits) + "\n[engagement]\n" + engagement, shift_model()),
@@ -1066,10 +1066,24 @@ TEST_F(EngagementCommands, SolverOptionRk4) {
                       R"~(scene.toml: error: the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate their events); use --solver exact, dopri5 or implicit)~");
 }
 
+// generate refuses a solver that can never run the scene, with the reason simulate gives; --solvers
+// all compiles the others (issue 31, item 9).
+TEST_F(EngagementCommands, GenerateRk4) {
+  write_text("gear.toml", shift_model());
+  write_text("scene.toml", base_scene() + "\n[engagement]\nB1 = \"1\"\n");
+  expect_pogear_error("generate scene.toml --solvers rk4 -o out", 2,
+                      R"~(scene.toml: error: the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate their events); leave rk4 out of --solvers)~");
+  const Command all = run(pogear() + " generate scene.toml --solvers all -o out");
+  ASSERT_EQ(all.status, 0) << all.err;
+  const std::string main = read_text("out/demo_main.cpp");
+  EXPECT_NE(main.find("Solver::dopri5"), std::string::npos) << main;
+  EXPECT_EQ(main.find("Solver::rk4"), std::string::npos) << main;
+}
+
 TEST_F(EngagementCommands, TunableCapacity) {
   expect_error("B1 = \"1\"\n",
-               R"~(scene.toml:7:11: error: 'T_B1' is the torque capacity of B1, which a simulation takes at the scene's value; it cannot be tunable: set it in [parameters] instead)~",
-               {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"T_B1\"]"}});
+               R"~(scene.toml:7:11: error: 'Tcap_B1' is the torque capacity of B1, which a simulation takes at the scene's value; it cannot be tunable: set it in [parameters] instead)~",
+               {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"Tcap_B1\"]"}});
 }
 
 // Scenes with loads and speed controllers: scene.toml with a [loads] or [controllers] table after
@@ -1254,7 +1268,7 @@ TEST_F(LoadsAndControllers, QuadraticLoadWithExactSolver) {
 
 TEST_F(LoadsAndControllers, QuadraticLoadWithBrakes) {
   const std::string model = edited(base_model(), {{"[parameters]", "[[brake]]\nname = \"B1\"\nbody = \"r\"\n\n[parameters]"},
-                                                  {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nT_B1 = \"50*N*m\""}});
+                                                  {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nTcap_B1 = \"50*N*m\""}});
   expect_error("[engagement]\nB1 = \"1\"\n\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n",
                R"~(scene.toml:24:1: error: a quadratic load makes the scene nonlinear, and brakes, clutches and torque limits are simulated on linear scenes only; drop the quadratic part of the load, or the [engagement] and the controllers' limits)~",
                {{R"(solver = "exact")", R"(solver = "dopri5")"}}, model);
@@ -1265,7 +1279,7 @@ TEST_F(LoadsAndControllers, SimulateWithExactSolver) {
   expect_pogear_error("simulate scene.toml --solver exact --interpreted -o out", 2,
                       R"~(scene.toml: error: a quadratic load makes the scene nonlinear, which exact stepping does not integrate; use --solver dopri5 or implicit)~");
   expect_pogear_error("generate scene.toml --solvers exact,dopri5 -o out", 2,
-                      R"~(scene.toml: error: a quadratic load makes this scene nonlinear, which exact stepping does not integrate; leave exact out of --solvers)~");
+                      R"~(scene.toml: error: a quadratic load makes the scene nonlinear, which exact stepping does not integrate; leave exact out of --solvers)~");
 }
 
 }  // namespace

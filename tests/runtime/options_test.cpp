@@ -129,6 +129,48 @@ TEST(Options, AbsoluteToleranceFollowsTheRelativeOne) {
   EXPECT_EQ(parse({"--tolerance", "1e-6"}).run.options.atol, options.atol);
 }
 
+// Which solvers may run a system, decided by solver_refusal alone: each reason, and the solvers
+// left (what `generate --solvers all` compiles).
+TEST(SolverRefusal, ALinearSystemWithoutEventsRunsWithEverySolver) {
+  for (const rt::Solver s : rt::all_solvers) EXPECT_FALSE(rt::solver_refusal(s, {})) << rt::solver_name(s);
+  EXPECT_EQ(rt::admissible_solvers({}), std::vector<rt::Solver>(rt::all_solvers.begin(), rt::all_solvers.end()));
+}
+
+TEST(SolverRefusal, ANonlinearSystemIsNotRunByExactSteppingNorRk4) {
+  const rt::SystemTraits nonlinear{.nonlinear = true};
+  EXPECT_EQ(rt::describe(*rt::solver_refusal(rt::Solver::exact, nonlinear)),
+            "a quadratic load makes the scene nonlinear, which exact stepping does not integrate");
+  EXPECT_EQ(rt::describe(*rt::solver_refusal(rt::Solver::rk4, nonlinear)),
+            "a quadratic load makes the scene nonlinear, which rk4's fixed step cannot be checked against its "
+            "stability limit");
+  EXPECT_EQ(rt::admissible_solvers(nonlinear), (std::vector<rt::Solver>{rt::Solver::dopri5, rt::Solver::implicit}));
+}
+
+TEST(SolverRefusal, EventsAreNotLocatedByRk4) {
+  const rt::SystemTraits friction{.engages_friction = true}, limits{.limits_torque = true};
+  EXPECT_EQ(rt::describe(*rt::solver_refusal(rt::Solver::rk4, friction)),
+            "the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate their "
+            "events)");
+  EXPECT_EQ(rt::describe(*rt::solver_refusal(rt::Solver::rk4, limits)),
+            "a controller with torque limits switches at events, which rk4 does not locate (its fixed steps)");
+  const std::vector<rt::Solver> others{rt::Solver::exact, rt::Solver::dopri5, rt::Solver::implicit};
+  EXPECT_EQ(rt::admissible_solvers(friction), others);
+  EXPECT_EQ(rt::admissible_solvers(limits), others);
+}
+
+TEST(SolverRefusal, ANonlinearSystemWithEventsRunsWithNoSolver) {
+  for (const rt::SystemTraits t : {rt::SystemTraits{.nonlinear = true, .engages_friction = true},
+                                   rt::SystemTraits{.nonlinear = true, .limits_torque = true}}) {
+    for (const rt::Solver s : rt::all_solvers) {
+      const auto refusal = rt::solver_refusal(s, t);
+      ASSERT_TRUE(refusal) << rt::solver_name(s);
+      EXPECT_EQ(rt::describe(*refusal), "a quadratic load makes the scene nonlinear, and brakes, clutches and torque "
+                                        "limits are simulated on linear scenes only");
+    }
+    EXPECT_TRUE(rt::admissible_solvers(t).empty());
+  }
+}
+
 // The messages and the usage line list the options of one table.
 TEST(Options, UnknownOptionListsTheTable) {
   ::testing::internal::CaptureStderr();

@@ -79,11 +79,8 @@ TEST(Divergence, HonestRunsOfEverySceneWithEverySolverNeverTripTheBound) {
   for (const auto& entry : fs::directory_iterator(source_path("models/scenes"))) {
     if (entry.path().extension() != ".toml") continue;
     const SpecializedScene m = specialize(parse_scene(entry.path().string()));
-    for (const rt::Solver solver : rt::all_solvers) {
-      // Scenes with brakes and clutches do not run with rk4 (docs/friction-elements.md).
-      if (!m.friction.empty() && solver == rt::Solver::rk4) continue;
-      // Nor do nonlinear scenes (a quadratic load) with exact stepping or rk4 (docs/scene-format.md, "Loads").
-      if (m.main.nonlinear && (solver == rt::Solver::exact || solver == rt::Solver::rk4)) continue;
+    // Brakes and clutches refuse rk4, quadratic loads exact stepping and rk4 (rt::solver_refusal).
+    for (const rt::Solver solver : rt::admissible_solvers(solver_traits(m))) {
       std::vector<double> tolerances{m.scene.tolerance};
       if (solver == rt::Solver::dopri5 || solver == rt::Solver::implicit)
         tolerances.push_back(rt::limits::max_tolerance);

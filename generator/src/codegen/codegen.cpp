@@ -123,43 +123,22 @@ CppText parameter_fields(const SpecializedSystem& sys, const CppText& params) {
   return join(fields, code(",\n       "));
 }
 
-// One parameter of the model as the header lists it.
-struct ParameterRow {
-  std::string name;
-  double value = 0;  // SI
-  std::string unit;  // SI, e.g. "kg*m^2"
-  std::string text;  // as written, e.g. "14.8*cm"; empty for a radius derived from the geometry
-  SourceLocation where;
-};
-
-// Every parameter of the model (the scene's overrides applied) in the model's order, then the
-// radii the geometry derives. The one place that reads the derivation's parameter tables.
-std::vector<ParameterRow> parameter_rows(const SpecializedScene& model) {
-  const Derivation& d = model.derivation;
-  const std::map<std::string, double> values = parameter_values(d.topology, d.radius);
-  std::vector<ParameterRow> rows;
-  for (const Parameter& p : d.topology.parameters)
-    rows.push_back({p.name, values.at(p.name),
-                    p.value.has_unit ? describe(p.value.dimension) : "SI, no unit written", p.text, p.where});
-  for (const DerivedRadius& r : d.radius.derived) rows.push_back({r.parameter, r.value, "m", "", {}});
-  return rows;
-}
-
 // `namespace parameters { inline constexpr double r_c = 0.148;  // m, "14.8*cm" (model.toml:61) }`:
 // a number in the functions below is traced to the parameters it was computed from.
-CppText parameter_table(const SpecializedScene& model) {
+CppText parameters_namespace(const SpecializedScene& model) {
   const std::vector<std::string>& tunable = model.scene.tunable;
   CppText s = code("// The model's parameters in SI, with the scene's overrides, as written and where. The functions\n"
                    "// below have them folded in as numbers, except the tunables, which they read from Params.\n");
   s += code("namespace parameters {{\n");
-  for (const ParameterRow& p : parameter_rows(model)) {
-    const CppText origin = p.text.empty() ? code("derived from the geometry")
+  for (const ParameterValue& p : model.derivation.parameters) {
+    const CppText origin = p.origin == ParameterOrigin::geometry ? code("derived from the geometry")
                            : p.where.line > 0 ? code("\"{}\" ({}:{})", comment_text(p.text), file_name(p.where.file),
                                                   integer_code(p.where.line))
                                               : code("\"{}\"", comment_text(p.text));
     const bool tuned = std::find(tunable.begin(), tunable.end(), p.name) != tunable.end();
-    s += code("inline constexpr double {} = {};  // {}, {}{}\n", identifier(p.name), number_code(p.value),
-              comment_text(p.unit), origin, tuned ? code(", tunable (Params::{})", identifier(p.name)) : CppText{});
+    s += code("inline constexpr double {} = {};  // {}, {}{}\n", identifier(p.name), number_code(p.si),
+              comment_text(p.unit.empty() ? "SI, no unit written" : p.unit), origin,
+              tuned ? code(", tunable (Params::{})", identifier(p.name)) : CppText{});
   }
   return s + code("}}  // namespace parameters\n\n");
 }
@@ -224,7 +203,7 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   h += code("inline constexpr double default_tolerance = {};\n", number_code(sc.tolerance));
   h += code("inline constexpr double default_step = {};  // s\n", number_code(sc.step));
   h += code("inline constexpr long default_max_steps = {};\n\n", integer_code(sc.max_steps));
-  h += parameter_table(model);
+  h += parameters_namespace(model);
   const CppText main_struct = model.main.kind == SystemKind::elastic ? code("Elastic") : code("Rigid");
   h += system_struct(model.main, d, main_struct) + code("\n");
   if (model.rigid) h += system_struct(*model.rigid, d, code("Rigid")) + code("\n");
@@ -300,14 +279,10 @@ GeneratedSources generate_sources(const SpecializedScene& model, std::vector<rt:
   for (rt::Solver s : rt::all_solvers)
     if ((solvers.empty() && s == model.scene.solver) || std::find(solvers.begin(), solvers.end(), s) != solvers.end())
       compiled.push_back(s);
-  for (const rt::Solver fixed : {rt::Solver::exact, rt::Solver::rk4})
-    if (model.main.nonlinear && std::find(compiled.begin(), compiled.end(), fixed) != compiled.end())
+  for (const rt::Solver s : compiled)
+    if (const auto refusal = rt::solver_refusal(s, solver_traits(model)))
       throw InputError(SourceLocation{model.scene.file, 0, 0},
-                       fmt::format("a quadratic load makes this scene nonlinear, which {}; leave {} out of --solvers",
-                                   fixed == rt::Solver::exact ? "exact stepping does not integrate"
-                                                              : "rk4's fixed step cannot be checked against its "
-                                                                "stability limit",
-                                   rt::solver_name(fixed)));
+                       fmt::format("{}; leave {} out of --solvers", rt::describe(*refusal), rt::solver_name(s)));
   try {
     return generate(model, compiled);
   } catch (const std::logic_error& e) {

@@ -16,9 +16,8 @@ namespace pogear {
 int run_generate(const GenerateCommand& command) {
   const SpecializedScene model = specialize(parse_scene(command.scene));
   std::vector<rt::Solver> solvers;
-  if (command.solvers == "all") {  // those that integrate the scene: not exact stepping when it is nonlinear
-    for (const rt::Solver s : rt::all_solvers)
-      if (!(model.main.nonlinear && (s == rt::Solver::exact || s == rt::Solver::rk4))) solvers.push_back(s);
+  if (command.solvers == "all") {  // those that can run the scene
+    solvers = rt::admissible_solvers(solver_traits(model));
   } else if (!command.solvers.empty()) {
     for (const std::string& name : split_list(command.solvers)) solvers.push_back(*rt::parse_solver(name));
   }

@@ -6,6 +6,7 @@
 #include "derive/engagement.hpp"
 #include "common/exact_algebra.hpp"
 #include "common/numeric_rank.hpp"
+#include "names/model_variables.hpp"
 
 namespace pogear {
 
@@ -38,7 +39,7 @@ ElasticModel engaged_constraints(const Derivation& d, const std::vector<int>& en
                                         gear_rank, t.meshes.size()));
   ElasticModel c = d.elastic;
   c.R = stacked(d.elastic.R, E);
-  for (int k : engaged) c.forces.push_back("T_" + t.friction_elements[k].name);
+  for (int k : engaged) c.forces.push_back(element_torque_name(t.friction_elements[k].name));
   return c;
 }
 
@@ -50,7 +51,8 @@ Derivation derive_topology(Topology topology, const std::optional<std::vector<st
   d.topology = std::move(topology);
   d.symbols = make_symbol_table(d.topology);
   d.radius = derive_radius_matrix(d.topology, d.symbols);
-  d.values = numeric_substitutions(d.symbols, parameter_values(d.topology, d.radius));
+  d.parameters = parameter_table(d.topology, d.radius);
+  for (const ParameterValue& p : d.parameters) d.values[parameter_symbol(d.symbols, p.name)] = p.exact;
   d.elastic = assemble_elastic_model(d.topology, d.radius, d.symbols);
   d.engaged = engaged;
   const ElasticModel constrained = engaged.empty() ? d.elastic : engaged_constraints(d, engaged, keep_where);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "derive/parameter_table.hpp"
 #include "derive/rigid_model.hpp"
 
 namespace pogear {
@@ -13,7 +14,8 @@ struct Derivation {
   Topology topology;
   SymbolTable symbols;  // made once from the topology; no stage adds to it
   RadiusMatrix radius;
-  GiNaC::exmap values;  // every parameter (the derived radii included) as an exact number
+  std::vector<ParameterValue> parameters;  // the parameter table, the derived radii included
+  GiNaC::exmap values;  // every parameter of the table as its exact number
   ElasticModel elastic;
   RigidModel rigid;
   std::vector<int> engaged;      // brakes and clutches stuck (indices, ascending); the rigid model is theirs

@@ -102,8 +102,8 @@ std::vector<std::vector<int>> valid_keep_sets(const Eigen::MatrixXd& Rn, std::si
   // Depth first over the bodies in order, keeping before eliminating, yields the sets in
   // lexicographic order. A branch is entered only if it can still be completed: its eliminated
   // columns independent and, with the undecided ones, spanning R's columns (then they extend to
-  // a basis). So each set costs O(n) ranks; walking all C(n, k) subsets instead took minutes for
-  // gears of 25 bodies whose valid sets are rare.
+  // a basis). So each set costs O(n) ranks, where walking all C(n, k) subsets is exponential for
+  // gears whose valid sets are rare.
   std::vector<std::vector<int>> out;
   std::vector<int> kept, elim;
   auto completable = [&](int next) {

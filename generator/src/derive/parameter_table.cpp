@@ -1,29 +1,53 @@
-// Values print to 6 significant digits, as the other report numbers; the text as given is exact.
+// See parameter_table.hpp. The exact value is the SI double's exact rational, as every stage that
+// folds a parameter into the algebra has always taken it.
 #include "derive/parameter_table.hpp"
 
 #include <fmt/format.h>
 
-namespace pogear {
+#include "common/exact_algebra.hpp"
 
-std::vector<std::vector<std::string>> parameter_table(const Derivation& d) {
-  std::vector<std::vector<std::string>> rows;
-  auto pitch_radius = [&](const std::string& name) {
-    for (const Body& b : d.topology.bodies)
-      for (const Wheel& w : b.wheels)
-        if (w.teeth > 0 && w.radius_parameter == name) return true;
-    return false;
-  };
-  for (const Parameter& p : d.topology.parameters) {
-    const std::string unit = p.value.has_unit ? " " + describe(p.value.dimension) : "";
-    const std::string line = fmt::format("line {}", p.where.line);
-    rows.push_back({p.name, p.text, fmt::format("{:.6g}{}", p.value.si, unit),
-                    pitch_radius(p.name) ? "its teeth, " + line : line});
+namespace pogear {
+namespace {
+
+bool is_pitch_radius(const Topology& t, const std::string& name) {
+  for (const Body& b : t.bodies)
+    for (const Wheel& w : b.wheels)
+      if (w.teeth > 0 && w.radius_parameter == name) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<ParameterValue> parameter_table(const Topology& t, const RadiusMatrix& radius) {
+  std::vector<ParameterValue> table;
+  for (const Parameter& p : t.parameters)
+    table.push_back({p.name, p.text, p.value.si, exact_number(p.value.si),
+                     p.value.has_unit ? describe(p.value.dimension) : "", p.where,
+                     is_pitch_radius(t, p.name) ? ParameterOrigin::teeth : ParameterOrigin::file, ""});
+  for (const DerivedRadius& r : radius.derived) {
+    ParameterValue v;
+    v.name = r.parameter;
+    v.si = r.value;
+    v.exact = exact_number(r.value);
+    v.unit = "m";
+    v.origin = ParameterOrigin::geometry;
+    for (const auto& g : radius.relations)
+      if (g.parameter == r.parameter) v.mesh = t.meshes[g.mesh].name;
+    table.push_back(std::move(v));
   }
-  for (const DerivedRadius& r : d.radius.derived) {
-    std::string mesh;
-    for (const auto& g : d.radius.relations)
-      if (g.parameter == r.parameter) mesh = d.topology.meshes[g.mesh].name;
-    rows.push_back({r.parameter, "(geometry)", fmt::format("{:.6g} m", r.value), "mesh " + mesh});
+  return table;
+}
+
+std::vector<std::vector<std::string>> parameter_report_rows(const std::vector<ParameterValue>& table) {
+  std::vector<std::vector<std::string>> rows;
+  for (const ParameterValue& p : table) {
+    const std::string value = fmt::format("{:.6g}{}", p.si, p.unit.empty() ? "" : " " + p.unit);
+    const std::string line = fmt::format("line {}", p.where.line);
+    switch (p.origin) {
+      case ParameterOrigin::file: rows.push_back({p.name, p.text, value, line}); break;
+      case ParameterOrigin::teeth: rows.push_back({p.name, p.text, value, "its teeth, " + line}); break;
+      case ParameterOrigin::geometry: rows.push_back({p.name, "(geometry)", value, "mesh " + p.mesh}); break;
+    }
   }
   return rows;
 }

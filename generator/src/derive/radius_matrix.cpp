@@ -403,11 +403,4 @@ GiNaC::exmap geometry_substitutions(const RadiusMatrix& rm, const SymbolTable& s
   return m;
 }
 
-std::map<std::string, double> parameter_values(const Topology& t, const RadiusMatrix& rm) {
-  std::map<std::string, double> v;
-  for (const auto& p : t.parameters) v[p.name] = p.value.si;
-  for (const auto& d : rm.derived) v[d.parameter] = d.value;
-  return v;
-}
-
 }  // namespace pogear

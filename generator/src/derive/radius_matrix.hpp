@@ -50,9 +50,6 @@ struct RadiusMatrix {
   std::vector<AngledMesh> angled;      // in mesh order
 };
 
-// Every parameter of the model in SI: the file's (its parameter table) and the derived radii.
-std::map<std::string, double> parameter_values(const Topology& topology, const RadiusMatrix& radius);
-
 // Derives R and the geometry relations, and checks the numeric radii against them.
 // Throws InputError naming the parameter, both values and the mesh for an inconsistency.
 RadiusMatrix derive_radius_matrix(const Topology& topology, const SymbolTable& symbols);

@@ -79,8 +79,8 @@ RigidValues exact_rigid_values(const RigidModel& r, const ElasticModel& e, const
   v.A1 = GiNaC::matrix(k, k);
   // Integers over common denominators: Q1(b, i) = q[b][i] / qden[i], J_b = jn[b] / jden and
   // B_J(b) = bn[b] / bden, so that each entry of L1 = Q1^T J Q1 and A1 = -Q1^T B_J Q1 is an integer
-  // sum reduced once. Summing the rationals term by term took a gcd of numbers of thousands of
-  // bits per term for a long chain.
+  // sum reduced once, where summing the rationals term by term takes a gcd of numbers of thousands
+  // of bits per term for a long chain.
   std::vector<cln::cl_RA> J(n), BJ(n);
   cln::cl_I jden = 1, bden = 1;
   for (unsigned b = 0; b < n; ++b) {
@@ -127,7 +127,7 @@ GiNaC::matrix exact_rigid_response(const RigidModel& r, const ElasticModel& e, c
   // and y = omega' at the kept bodies, where Q1 is the identity. So this is L1^-1 Q1^T T without
   // L1: the saddle-point matrix has the sparsity of R (a few entries per row, banded along a
   // chain) and entries of a few machine words, where L1 is dense with entries of thousands of
-  // bits for a long chain, and exact elimination of it cost seconds to minutes.
+  // bits for a long chain, costly to eliminate exactly.
   const unsigned n = e.J.rows(), c = r.constraint_rows.size(), s = n + c, cols = torques.cols();
   GiNaC::matrix S(s, s), rhs(s, cols);
   for (unsigned b = 0; b < n; ++b) {

@@ -64,6 +64,15 @@ std::string variable_name(const Topology& t, Variable v) {
   return std::string(text_of(v.kind).prefix) + owner;
 }
 
+std::string controller_variable_name(VariableKind kind, std::string_view controller) {
+  return std::string(text_of(kind).prefix) + std::string(controller);
+}
+
+std::string element_torque_name(std::string_view element) { return "T_" + std::string(element); }
+std::string element_slip_name(std::string_view element) { return "slip_" + std::string(element); }
+std::string capacity_parameter_name(std::string_view element) { return "Tcap_" + std::string(element); }
+std::string quadratic_load_name(std::string_view body) { return "TQ_" + std::string(body); }
+
 Variable derivative_of(Variable state) {
   if (state.kind == VariableKind::controller_integral) return {VariableKind::controller_error, state.index};
   return {state.kind == VariableKind::force ? VariableKind::force_rate : VariableKind::acceleration, state.index};

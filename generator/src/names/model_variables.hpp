@@ -43,6 +43,19 @@ std::size_t variable_count(const Topology& t, VariableKind kind);
 std::string variable_name(const Topology& t, Variable v);
 std::string_view unit_of(VariableKind kind);  // SI, as CSV headers write it: "rad/s", "N", ...
 
+// A controller's variable (a controller_* or set_point kind) by the controller's name, for a
+// controller the topology does not hold yet (the scene reader's check of the model's names).
+std::string controller_variable_name(VariableKind kind, std::string_view controller);
+
+// Names outside the equations' variables. A brake's or clutch's torque, slip and dissipated energy
+// as the reports and the simulations' CSV files print them (T_, slip_; the runtime writes E_), and
+// the default name of its capacity parameter, Tcap_, which is not its torque.
+std::string element_torque_name(std::string_view element);
+std::string element_slip_name(std::string_view element);
+std::string capacity_parameter_name(std::string_view element);
+// A quadratic load's torque -c omega |omega| on a body, a temporary TQ_ of the generated rhs.
+std::string quadratic_load_name(std::string_view body);
+
 // d/dt of a velocity (an acceleration) or of a force (a force rate); outputs read them.
 Variable derivative_of(Variable state);
 

@@ -84,10 +84,11 @@ std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::n
       r.fail(value, fmt::format("controller name '{}' must be letters, digits and '_', from a letter, at most {} "
                                 "characters (it names the controller's variables in the generated code)",
                                 c.name, max_name_length));
-    for (const char* prefix : {"Tc_", "theta_", "e_", "ref_"})
-      if (find_parameter(model, prefix + c.name))
-        r.fail(value, fmt::format("the model has a parameter named '{}{}', which the generated code uses for controller "
-                                  "'{}'; rename the controller", prefix, c.name, c.name));
+    for (const VariableKind kind : {VariableKind::controller_torque, VariableKind::controller_integral,
+                                    VariableKind::controller_error, VariableKind::set_point})
+      if (const std::string name = controller_variable_name(kind, c.name); find_parameter(model, name))
+        r.fail(value, fmt::format("the model has a parameter named '{}', which the generated code uses for controller "
+                                  "'{}'; rename the controller", name, c.name));
     const toml::node* body = t.get("body");
     if (!body) r.fail(value, "the controller names no body; add body = \"<body>\", the body whose torque it sets");
     c.body = body_named(r, *body, r.string(*body, "body"), "the controller's body");

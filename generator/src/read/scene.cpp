@@ -80,9 +80,8 @@ void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
 }
 
 // What loads and controllers cannot be combined with (yet), each refused at the line that asks for it.
-void check_loads_and_controllers(Scene& s, bool engaged) {
+void check_loads_and_controllers(const Scene& s) {
   if (s.loads.empty() && s.controllers.empty()) return;
-  const SourceLocation& where = s.loads.empty() ? s.controllers_where : s.loads_where;
   if (!s.tunable.empty())
     throw InputError(s.tunable_where, "a scene with [loads] or [controllers] has no tunable parameters yet; set the "
                                       "values in [parameters] and generate one simulator per value");
@@ -92,22 +91,25 @@ void check_loads_and_controllers(Scene& s, bool engaged) {
   if (s.start == Start::steady && nonlinear(s))
     throw InputError(s.start_where, "start = \"steady\" solves a linear equilibrium, which a quadratic load does not "
                                     "have; start from given speeds, or with start = \"rigid\"");
-  const bool limited = std::any_of(s.controllers.begin(), s.controllers.end(), [](const ControllerSpec& c) { return c.limited(); });
-  if (limited && s.solver == Solver::rk4)
-    throw InputError(s.solver_where, "a controller with torque limits switches at events, which rk4 does not locate "
-                                     "(its fixed steps); use solver = \"exact\", \"dopri5\" or \"implicit\"");
-  if (!nonlinear(s)) return;
-  if (engaged || limited)
-    throw InputError(where, "a quadratic load makes the scene nonlinear, and brakes, clutches and torque limits are "
-                            "simulated on linear scenes only; drop the quadratic part of the load, or the "
-                            "[engagement] and the controllers' limits");
-  if (s.solver_given && (s.solver == Solver::exact || s.solver == Solver::rk4))
-    throw InputError(s.solver_where, fmt::format("a quadratic load makes the scene nonlinear, which {}; use solver = "
-                                                 "\"dopri5\" or \"implicit\", or a linear load",
-                                                 s.solver == Solver::exact
-                                                     ? "exact stepping does not integrate"
-                                                     : "rk4's fixed step cannot be checked against its stability limit"));
-  if (!s.solver_given) s.solver = Solver::dopri5;
+}
+
+// The scene's solver, or dopri5 for a nonlinear scene that names none, refused (rt::solver_refusal)
+// at the line that asks for it: the solver's, or the loads' when no solver runs the scene.
+void check_solver(Scene& s, bool engaged) {
+  const rt::SystemTraits traits{.nonlinear = nonlinear(s),
+                                .engages_friction = engaged,
+                                .limits_torque = std::any_of(s.controllers.begin(), s.controllers.end(),
+                                                             [](const ControllerSpec& c) { return c.limited(); })};
+  const std::vector<Solver> admissible = rt::admissible_solvers(traits);
+  if (admissible.empty())
+    throw InputError(s.loads_where, rt::describe(*rt::solver_refusal(s.solver, traits)) +
+                                        "; drop the quadratic part of the load, or the [engagement] and the "
+                                        "controllers' limits");
+  if (traits.nonlinear && !s.solver_given) s.solver = Solver::dopri5;
+  if (const auto refusal = rt::solver_refusal(s.solver, traits))
+    throw InputError(s.solver_where, fmt::format("{}; use solver = {}{}", rt::describe(*refusal),
+                                                 rt::solver_alternatives(admissible, true),
+                                                 traits.nonlinear ? ", or a linear load" : ""));
 }
 
 }  // namespace
@@ -362,11 +364,8 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   }
   const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(),
                                    [](const EngagementSpec& e) { return !identically_zero(e.command); });
-  check_loads_and_controllers(s, engaged);
-  if (engaged && s.solver == Solver::rk4)
-    throw InputError(s.solver_where, fmt::format("the scene engages brakes or clutches, which rk4 does not simulate (its "
-                                                 "fixed steps cannot locate their events); use solver = \"exact\", "
-                                                 "\"dopri5\" or \"implicit\""));
+  check_loads_and_controllers(s);
+  check_solver(s, engaged);
   for (const EngagementSpec& e : s.engagement) {
     const FrictionElement& f = topology.friction_elements[static_cast<std::size_t>(e.element)];
     if (std::find(s.tunable.begin(), s.tunable.end(), f.capacity_parameter) != s.tunable.end())

@@ -20,6 +20,7 @@
 #include "read/body_table.hpp"
 #include "read/toml_reader.hpp"
 #include "read/tooth_counts.hpp"
+#include "names/model_variables.hpp"
 
 namespace pogear {
 namespace {
@@ -184,7 +185,7 @@ void read_friction_elements(const TomlReader& r, const toml::table& root, Topolo
         if (!o->is_boolean()) r.fail(*o, "one_way must be true or false");
         e.one_way = **o->as_boolean();
       }
-      e.capacity_parameter = "T_" + e.name;
+      e.capacity_parameter = capacity_parameter_name(e.name);
       if (const toml::node* c = et.get("capacity")) e.capacity_parameter = r.identifier(*c, "capacity");
       if (const toml::node* m = et.get("static_ratio")) {
         e.static_ratio_where = r.loc(*m);

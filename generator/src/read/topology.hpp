@@ -11,11 +11,8 @@ namespace pogear {
 // Limits that keep hostile input bounded.
 inline constexpr std::size_t max_model_file_bytes = 1 << 20;
 // The closed forms grow like n^4 in size for a chain of stages (L1 of a chain of k stages is
-// (k+1)^2 sums of O(k) terms of O(k) factors). scripts/make_chain.sh's planetary chain, Release,
-// whole process, machine shared (load ~2-2.7 on 2 cores): `pogear derive --format json` 0.11 s
-// at 46 bodies, 0.56 s at 76, 1.1 s at 91 and 3.1 s at 121 (27 MB of JSON); `pogear generate`
-// 0.10 s, 0.42 s, 0.75 s and 1.9 s. 128 admits that 40-stage chain; the paper's gears have 6 and
-// 7 bodies.
+// (k+1)^2 sums of O(k) terms of O(k) factors). 128 admits scripts/make_chain.sh's 40-stage chain
+// in seconds (timings in docs/accuracy-vs-time.md); the paper's gears have 6 and 7 bodies.
 inline constexpr std::size_t max_bodies = 128;
 // Two meshes per body, as for planets between a sun and a ring (the 40-stage chain has 80).
 inline constexpr std::size_t max_meshes = 256;

@@ -257,7 +257,7 @@ std::string math_body(const Derivation& d, const Diagnostics& diagnostics, const
     s += w.display(f + "\\end{aligned}");
   }
   s += w.heading("Parameters");
-  s += w.table({"parameter", "as given", "value (SI)", "defined at"}, parameter_table(d));
+  s += w.table({"parameter", "as given", "value (SI)", "defined at"}, parameter_report_rows(d.parameters));
   return s;
 }
 

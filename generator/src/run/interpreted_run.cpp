@@ -8,6 +8,7 @@
 #include <utility>
 
 #include <Eigen/SparseCore>
+#include <fmt/format.h>
 
 #include "pogear/hybrid_run.hpp"
 #include "specialize/reference_model.hpp"
@@ -106,8 +107,8 @@ Trajectory interpret_trajectory(const SpecializedScene& model, const Specialized
     is.rhs({}, x, u, dx);
   };
   Trajectory tr;
-  if (is.nonlinear && run.solver == rt::Solver::exact) {
-    tr.status = {false, "the scene is nonlinear (a quadratic load), which exact stepping does not integrate", 0.0};
+  if (const auto refusal = rt::solver_refusal(run.solver, {.nonlinear = is.nonlinear})) {
+    tr.status = {false, fmt::format("the scene is nonlinear (a quadratic load), {}", refusal->reason), 0.0};
     return tr;
   }
   auto obs = [&](double t, const Eigen::VectorXd& x) {

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "common/gnuplot.hpp"
+#include "names/model_variables.hpp"
 
 namespace pogear {
 namespace {
@@ -42,9 +43,9 @@ std::string shift_script(const SpecializedScene& model, const std::vector<std::v
     }
   for (std::size_t k = 0; k < ne; ++k) {
     torques.push_back(ny + k + 2);
-    torque_names.push_back("T_" + model.friction[k].name);
+    torque_names.push_back(element_torque_name(model.friction[k].name));
     slips.push_back(ny + ne + k + 2);
-    slip_names.push_back("slip_" + model.friction[k].name);
+    slip_names.push_back(element_slip_name(model.friction[k].name));
   }
   // The scene's name and the elements' names are identifiers, checked when the files were read.
   if (!speeds.empty())

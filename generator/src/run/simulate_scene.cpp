@@ -67,20 +67,11 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   check_output_size(model, options.large_output);
   rt::SceneRun run = scene_run(model.scene);
   if (options.solver) run.solver = *options.solver;
-  if (!model.friction.empty() && run.solver == rt::Solver::rk4)
+  const rt::SystemTraits traits = solver_traits(model);
+  if (const auto refusal = rt::solver_refusal(run.solver, traits))
     throw InputError(SourceLocation{model.scene.file, 0, 0},
-                     "the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate "
-                     "their events); use --solver exact, dopri5 or implicit");
-  if (!model.main.limited_controllers.empty() && run.solver == rt::Solver::rk4)
-    throw InputError(SourceLocation{model.scene.file, 0, 0},
-                     "a controller with torque limits switches at events, which rk4 does not locate (its fixed steps); "
-                     "use --solver exact, dopri5 or implicit");
-  if (model.main.nonlinear && (run.solver == rt::Solver::exact || run.solver == rt::Solver::rk4))
-    throw InputError(SourceLocation{model.scene.file, 0, 0},
-                     fmt::format("a quadratic load makes the scene nonlinear, which {}; use --solver dopri5 or implicit",
-                                 run.solver == rt::Solver::exact
-                                     ? "exact stepping does not integrate"
-                                     : "rk4's fixed step cannot be checked against its stability limit"));
+                     fmt::format("{}; use --solver {}", rt::describe(*refusal),
+                                 rt::solver_alternatives(rt::admissible_solvers(traits), false)));
   run.out_dir = options.out_dir;
   run.repeat = options.repeat;
   ensure_directory(options.out_dir);

@@ -12,6 +12,7 @@
 #include "common/exact_algebra.hpp"
 #include "common/numeric_rank.hpp"
 #include "specialize/parameter_folding.hpp"
+#include "names/model_variables.hpp"
 
 namespace pogear {
 
@@ -45,7 +46,7 @@ std::vector<double> rigid_initial_state(const Scene& scene, const Derivation& d,
     std::string relation, bodies;
     for (int i = 0; i < g; ++i) {
       if (std::abs(y(i)) < 1e-9) continue;
-      const std::string name = "omega_" + t.bodies[named[i]].name;
+      const std::string name = variable_name(t, {VariableKind::velocity, named[i]});
       bodies += (bodies.empty() ? "" : ", ") + name;
       const double c = y(i);
       const std::string coefficient = std::abs(std::abs(c) - 1) < 1e-12 ? "" : fmt::format("{:.6g}*", std::abs(c));
@@ -88,7 +89,7 @@ std::string initial_deflection_note(const SpecializedScene& model) {
   const SpecializedSystem& sys = model.main;
   if (sys.kind != SystemKind::elastic) return "";
   const Derivation& d = model.derivation;
-  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  const GiNaC::exmap& values = model.values.numbers;
   const Eigen::MatrixXd R = evaluate_matrix(d.elastic.R, values);
   const Eigen::VectorXd J = evaluate_matrix(d.elastic.J, values).diagonal();
   const Eigen::VectorXd K = evaluate_matrix(d.elastic.K, values).diagonal();

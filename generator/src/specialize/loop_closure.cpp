@@ -6,6 +6,7 @@
 #include "common/exact_algebra.hpp"
 #include "specialize/linear_form.hpp"
 #include "read/model_parameters.hpp"
+#include "names/model_variables.hpp"
 
 namespace pogear {
 
@@ -51,7 +52,7 @@ ClosedLoops close_loops(const Scene& sc, const Derivation& d, bool elastic, cons
       law += variable_symbol(s, constant);
     }
     if (l.quadratic != 0) {
-      const std::string name = "TQ_" + t.bodies[static_cast<std::size_t>(l.body)].name;
+      const std::string name = quadratic_load_name(t.bodies[static_cast<std::size_t>(l.body)].name);
       if (const Parameter* p = find_parameter(t, name))
         throw InputError(p->where, fmt::format("the model has a parameter named '{}', which pogear's generated code "
                                                "uses for a quadratic load; rename the parameter", name));

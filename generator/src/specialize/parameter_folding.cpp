@@ -9,6 +9,7 @@
 #include "specialize/tunable_parameters.hpp"
 
 namespace pogear {
+namespace {
 
 using GiNaC::ex;
 
@@ -20,10 +21,10 @@ GiNaC::exmap parameter_folding(const Scene& sc, const Derivation& d, bool keep_t
   // Parameters defined through a tunable follow it (K_pr = "K_ps").
   const std::map<std::string, ex> dependents =
       tunable.empty() ? std::map<std::string, ex>{} : tunable_dependents(d.topology.parameters, sc.tunable, s);
-  for (const auto& [name, v] : parameter_values(d.topology, d.radius)) {
-    if (tunable.count(name)) continue;
-    const auto it = dependents.find(name);
-    fold[parameter_symbol(s, name)] = it != dependents.end() ? it->second : ex(exact_number(v));
+  for (const ParameterValue& p : d.parameters) {
+    if (tunable.count(p.name)) continue;
+    const auto it = dependents.find(p.name);
+    fold[parameter_symbol(s, p.name)] = it != dependents.end() ? it->second : ex(p.exact);
   }
   // A derived radius (one the model leaves out) follows a tunable one through the geometry
   // relations; a given one keeps its value, and check_tunable_geometry refuses the contradiction.
@@ -39,6 +40,14 @@ GiNaC::exmap parameter_folding(const Scene& sc, const Derivation& d, bool keep_t
   if (!sc.effects.mesh_damping)
     for (const auto& m : d.topology.meshes) fold[parameter_symbol(s, m.damping_parameter)] = 0;
   return fold;
+}
+
+}  // namespace
+
+SceneValues scene_values(const Scene& scene, const Derivation& d) {
+  SceneValues v{parameter_folding(scene, d, true), {}};
+  v.numbers = scene.tunable.empty() ? v.equations : parameter_folding(scene, d, false);
+  return v;
 }
 
 }  // namespace pogear

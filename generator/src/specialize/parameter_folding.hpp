@@ -9,9 +9,15 @@
 
 namespace pogear {
 
-// Values of every non-tunable parameter (every parameter without `keep_tunables`), as exact
-// numbers, or as expressions in the tunables for parameters defined through one and for derived
-// radii that follow a tunable radius; zeros for the parameters of effects the scene leaves out.
-GiNaC::exmap parameter_folding(const Scene& scene, const Derivation& d, bool keep_tunables);
+// A scene's parameter values, folded once per scene: every non-tunable parameter as an exact number,
+// or as an expression in the tunables for parameters defined through one and for derived radii that
+// follow a tunable radius; zeros for the parameters of effects the scene leaves out. `equations`
+// keeps the tunables as symbols (what the specialized equations read); `numbers` has them at their
+// values too (initial states, the reference model, the diagnostics).
+struct SceneValues {
+  GiNaC::exmap equations, numbers;
+};
+
+SceneValues scene_values(const Scene& scene, const Derivation& d);
 
 }  // namespace pogear

@@ -24,7 +24,7 @@ struct OpenLoop {
 OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, const std::vector<Variable>& inputs,
                    std::size_t nx) {
   const Derivation& d = model.derivation;
-  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  const GiNaC::exmap& values = model.values.numbers;
   const ElasticModel& e = d.elastic;
   // Exact rational arithmetic on the assembled matrices, rounded once at the end: the same
   // numbers the specialized expressions give, by another formula.
@@ -232,8 +232,7 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
 }
 
 Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSystem& sys) {
-  const Derivation& d = model.derivation;
-  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  const GiNaC::exmap& values = model.values.numbers;
   if (!sys.implicit) return evaluate_matrix(sys.M, values);
   return evaluate_matrix(sys.implicit->L, values).llt().solve(evaluate_matrix(sys.implicit->A, values));
 }

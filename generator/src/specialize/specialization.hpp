@@ -11,6 +11,7 @@
 
 #include "derive/derivation.hpp"
 #include "specialize/operation_count.hpp"
+#include "specialize/parameter_folding.hpp"
 #include "specialize/reference_model.hpp"
 #include "read/scene.hpp"
 
@@ -75,8 +76,8 @@ struct SpecializedSystem {
   std::vector<GiNaC::ex> output_values;
   GiNaC::matrix M, N;  // dx/dt = M x + N u (every scene pogear knows is linear); 0 x 0 with `implicit`
   // A rigid system with tunables: dx/dt from L1 x1' = A1 x1 + B1 tau, solved by the generated code
-  // (rhs and M, N are then empty). The symbolic L1^-1 over one common denominator grew to 21,844
-  // operations for 10 tunables of a 2-state system, with exact coefficients beyond doubles.
+  // (rhs and M, N are then empty): the symbolic L1^-1 over one common denominator grows fast with
+  // the tunables, with exact coefficients beyond doubles.
   std::optional<ImplicitForm> implicit;
   bool output_derivatives = false;  // the outputs read dx/dt as d<state>, computed by rhs
   OperationCount rhs_ops, output_ops;
@@ -101,6 +102,7 @@ struct SpecializedScene {
   Scene scene;
   std::vector<FrictionRun> friction;  // the engaged elements, in the order of the systems' Tf_ inputs
   Derivation derivation;  // with the scene's overrides applied
+  SceneValues values;     // the parameters folded once for the scene
   SpecializedSystem main;
   std::optional<SpecializedSystem> rigid;  // the comparison, when the scene asks for it
 };
@@ -110,10 +112,15 @@ inline constexpr double rpm_per_rad_per_s = 9.5492965855137201;
 
 SpecializedScene specialize(const Scene& scene);
 
+// What the scene's systems hold that some solvers cannot run, for rt::solver_refusal.
+rt::SystemTraits solver_traits(const SpecializedScene& model);
+
 // A state or an input appended to a system being built, with its name and unit.
 void add_state(const Topology& t, Variable v, SpecializedSystem& sys);
 void add_input(const Topology& t, Variable v, SpecializedSystem& sys);
-SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, bool elastic);
+// The elastic or the rigid system of a scene, at its folded values: the gear's equations, its
+// loads and controllers closed in, initial state, outputs, slips of the engaged elements.
+SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, const SceneValues& values, bool elastic);
 
 // The torque each input applies to each body (bodies x inputs, exact): a unit column for tau_<body>,
 // a load's TL_<body> and a controller's Tc_ (on its body), -e_k^T for a friction torque Tf_<k> (-T

@@ -6,7 +6,6 @@
 
 #include "common/exact_algebra.hpp"
 #include "specialize/initial_state.hpp"
-#include "specialize/parameter_folding.hpp"
 #include "names/symbols.hpp"
 
 namespace pogear {
@@ -31,8 +30,9 @@ void add_load_torques(const Scene& sc, const GiNaC::matrix& omega, std::vector<G
 // The states on the rigid model's trajectory at x1 (exact, in the kept order) moving at dx1: the rigid
 // system's x1 and the elastic one's speeds Q1 x1 with eq. (8)'s mesh forces (the split by stiffness
 // for redundant meshes).
-void start_on_rigid_trajectory(SpecializedScene& model, const GiNaC::exmap& values, const RigidValues& rv,
-                               const std::vector<GiNaC::numeric>& tau, const GiNaC::matrix& x, const GiNaC::matrix& dx) {
+StartState start_on_rigid_trajectory(const SpecializedScene& model, const GiNaC::exmap& values, const RigidValues& rv,
+                                     const std::vector<GiNaC::numeric>& tau, const GiNaC::matrix& x,
+                                     const GiNaC::matrix& dx) {
   const Derivation& d = model.derivation;
   const std::size_t n = d.topology.bodies.size();
   const GiNaC::matrix omega = exact_product(rv.Q1, x), domega = exact_product(rv.Q1, dx);
@@ -44,26 +44,26 @@ void start_on_rigid_trajectory(SpecializedScene& model, const GiNaC::exmap& valu
     at_start[variable_symbol(s, {VariableKind::acceleration, i})] = domega(b, 0);
     at_start[variable_symbol(s, {VariableKind::torque, i})] = tau[b];
   }
-  for (SpecializedSystem* sys : {&model.main, model.rigid ? &*model.rigid : nullptr}) {
-    if (!sys) continue;
-    for (std::size_t i = 0; i < sys->state_variables.size(); ++i) {
-      if (sys->kind == SystemKind::rigid) {
-        sys->x0[i] = to_double(x(static_cast<unsigned>(i), 0));
-        continue;
-      }
-      const Variable v = sys->state_variables[i];
-      sys->x0[i] = v.kind == VariableKind::velocity
-                       ? to_double(omega(static_cast<unsigned>(v.index), 0))
-                       : to_double(exact_value(d.rigid.force_recovery.at(static_cast<std::size_t>(v.index)), at_start));
+  auto state = [&](const SpecializedSystem& sys) {
+    std::vector<double> x0;
+    for (std::size_t i = 0; i < sys.state_variables.size(); ++i) {
+      const Variable v = sys.state_variables[i];
+      x0.push_back(sys.kind == SystemKind::rigid       ? to_double(x(static_cast<unsigned>(i), 0))
+                   : v.kind == VariableKind::velocity ? to_double(omega(static_cast<unsigned>(v.index), 0))
+                                                      : to_double(exact_value(d.rigid.force_recovery.at(
+                                                                                  static_cast<std::size_t>(v.index)),
+                                                                              at_start)));
     }
-  }
+    return x0;
+  };
+  return {state(model.main), model.rigid ? state(*model.rigid) : std::vector<double>{}};
 }
 
 // start = "rigid": x1 from the named speeds, moving as eq. (7) says: L1 x1' = A1 x1 + Q1^T tau.
 // start = "steady": the rigid equilibrium A1 x1 + Q1^T tau = 0, at rest relative to it. The elastic
 // model's equilibrium is that one: R omega = 0 stops the springs, Q1^T of its speed equation is the
 // rigid one, and from unloaded springs the redundant meshes' forces split by stiffness.
-void start_from_rigid_model(SpecializedScene& model, const GiNaC::exmap& values) {
+StartState start_from_rigid_model(const SpecializedScene& model, const GiNaC::exmap& values) {
   const Derivation& d = model.derivation;
   const RigidValues rv = exact_rigid_values(d.rigid, d.elastic, values);
   const Scene& sc = model.scene;
@@ -104,14 +104,14 @@ void start_from_rigid_model(SpecializedScene& model, const GiNaC::exmap& values)
     }
     add_load_torques(sc, exact_product(rv.Q1, x), tau);  // at the equilibrium speeds
   }
-  start_on_rigid_trajectory(model, values, rv, tau, x, dx);
+  return start_on_rigid_trajectory(model, values, rv, tau, x, dx);
 }
 
 }  // namespace
 
-void apply_start(SpecializedScene& model) {
+std::optional<StartState> start_state(const SpecializedScene& model) {
   const Scene& sc = model.scene;
-  if (sc.start == Start::given) return;
+  if (sc.start == Start::given) return std::nullopt;
   const Topology& t = model.derivation.topology;
   const std::string start = sc.start == Start::rigid ? "rigid" : "steady";
   auto refuse = [&](const std::string& why) {
@@ -132,7 +132,7 @@ void apply_start(SpecializedScene& model) {
   if (sc.start == Start::rigid && model.main.kind == SystemKind::rigid)
     refuse("starts the elastic model on the rigid model's trajectory; this scene simulates the rigid model (no "
            "mesh_compliance), which starts there already: remove start");
-  start_from_rigid_model(model, parameter_folding(sc, model.derivation, false));
+  return start_from_rigid_model(model, model.values.numbers);
 }
 
 }  // namespace pogear

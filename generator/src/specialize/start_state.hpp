@@ -3,14 +3,22 @@
 // equilibrium of the inputs' values at t = 0), computed exactly at the scene's values.
 #pragma once
 
+#include <optional>
+#include <vector>
+
 #include "specialize/specialization.hpp"
 
 namespace pogear {
 
-// Sets the systems' x0 as the scene's `start` asks; `given` leaves them as specialize_system set
-// them. Throws InputError at the scene's `start` when the request cannot be met: brakes or clutches
-// engaged, tunable parameters, speeds or forces named that the start computes, a rigid scene asking
-// for the rigid start, or inputs without an equilibrium.
-void apply_start(SpecializedScene& model);
+// The systems' initial states.
+struct StartState {
+  std::vector<double> main, rigid;  // rigid: empty without the comparison
+};
+
+// The initial states the scene's `start` asks for; nothing for `given`, which leaves them as
+// specialize_system set them. Throws InputError at the scene's `start` when the request cannot be
+// met: brakes or clutches engaged, tunable parameters, speeds or forces named that the start
+// computes, a rigid scene asking for the rigid start, or inputs without an equilibrium.
+std::optional<StartState> start_state(const SpecializedScene& model);
 
 }  // namespace pogear

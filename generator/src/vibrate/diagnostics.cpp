@@ -178,7 +178,7 @@ Diagnostics derivation_diagnostics(const Derivation& d) {
 
 Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedSystem& sys) {
   const Derivation& d = model.derivation;
-  const GiNaC::exmap values = parameter_folding(model.scene, d, false);
+  const GiNaC::exmap& values = model.values.numbers;
   // The specialized system's own M, exact in the tunable parameters, at their values: the numbers
   // numeric_system computes by another formula (the tests compare them), without solving again.
   // L1 holds inertias and radii only, which the folding leaves at the model's values.
@@ -187,10 +187,10 @@ Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedS
   // At the derivation's values (the scene's overrides), not the folded ones: a rigid scene folds
   // the stiffnesses away, yet the frequency below which it holds is that of its gear.
   add_natural_frequency(out, d, d.values, !model.friction.empty());
-  if (sys.nonlinear) {
+  if (const auto refusal = rt::solver_refusal(rt::Solver::exact, {.nonlinear = sys.nonlinear})) {
     out.suggested_solver = out.adaptive_solver;
-    out.reason = fmt::format("the scene is nonlinear (a quadratic load), which exact stepping does not integrate; its "
-                             "linear part is {}", out.adaptive_solver == "implicit" ? "stiff" : "not stiff");
+    out.reason = fmt::format("the scene is nonlinear (a quadratic load), {}; its linear part is {}", refusal->reason,
+                             out.adaptive_solver == "implicit" ? "stiff" : "not stiff");
   }
   return out;
 }

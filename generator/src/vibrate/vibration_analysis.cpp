@@ -71,7 +71,7 @@ ModesInput modes_input(const std::string& path, const std::optional<std::string>
   const std::string which = damping.empty() ? std::string("none (the scene's effects have no damping)")
                             : damping.size() == 1 ? damping[0] + ", as the scene calls for"
                                                   : damping[0] + " and " + damping[1] + ", as the scene calls for";
-  GiNaC::exmap values = parameter_folding(scene, d, false);
+  GiNaC::exmap values = scene_values(scene, d).numbers;
   std::vector<int> e = stuck(d.topology);
   return {std::move(d), std::move(values), which, std::move(e), scene_elements_left_open(scene, engaged.has_value())};
 }

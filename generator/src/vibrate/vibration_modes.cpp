@@ -239,8 +239,8 @@ std::vector<GiNaC::ex> characteristic_polynomial(const ModalModel& e, const GiNa
 }
 
 // The roots of sum_k a[k] lambda^k of degree 1 or 2 in closed form, ascending at `values`. (The
-// cubic's trigonometric form took GiNaC over ten minutes to normalize for a 5-body gear, so a
-// gear of three elastic modes gets its characteristic polynomial only.)
+// cubic's trigonometric form is beyond what GiNaC normalizes in reasonable time, so a gear of
+// three elastic modes gets its characteristic polynomial only.)
 std::vector<GiNaC::ex> characteristic_roots(const std::vector<GiNaC::ex>& a, const GiNaC::exmap& values) {
   using GiNaC::ex;
   if (a.size() == 2) return {GiNaC::normal(-a[0] / a[1])};
