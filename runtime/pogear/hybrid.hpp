@@ -51,8 +51,9 @@ struct HybridMethod {
   SolverOptions options;
 };
 
-// The hybrid run: steps, locates events and resolves modes. One object per run (not shared between
-// threads). Its engine (hybrid.ipp) is compiled once, into libpogear_runtime.
+// The hybrid run: steps, locates events and resolves modes (hybrid_driver.hpp). An engine keeps the
+// modes and discretizations it has met from one run to the next; it is not shared between threads.
+// Its definitions (hybrid.ipp) are compiled once, into libpogear_runtime.
 using SampleObserver = std::function<bool(double, const HybridSample&)>;
 using EventObserver = std::function<void(const HybridEvent&)>;
 
