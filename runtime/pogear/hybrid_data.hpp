@@ -24,8 +24,13 @@ struct ModeCache {
   std::map<std::uint32_t, ModeMatrices> modes;
   std::map<std::pair<std::uint32_t, double>, ExactMatrices> discretizations;
   std::map<std::pair<std::uint32_t, double>, StepProof> proofs;  // clear_of_events' maps
-  std::map<std::pair<std::uint32_t, double>, int> taylor_uses;    // step lengths taken by Taylor series
+  // How often each step length was taken by the Taylor series: sorted by (mode, length) as the maps,
+  // in a vector whose capacity is reserved, so that a new length costs no allocation.
+  std::vector<std::pair<std::pair<std::uint32_t, double>, int>> taylor_uses;
 };
+
+// The bound on the step lengths each cache keeps (uneven steps after events): beyond it, it starts anew.
+inline constexpr std::size_t kStepLengthsKept = 256;
 
 // A point of a step's trajectory: the state x, the stepper's own state z there (the exact method's
 // state augmented with the slip integrals; unused by the others), the known inputs v and the event
@@ -79,6 +84,7 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   d.nu = static_cast<Eigen::Index>(sys.inputs.size());
   d.nw = d.nu + d.ne;
   d.horizon = horizon;
+  d.cache.taylor_uses.reserve(kStepLengthsKept + 1);
   d.S = Eigen::MatrixXd::Zero(d.ne, d.nx);
   d.S.topRows(d.nf) = sys.S;
   const auto ne = static_cast<std::size_t>(d.ne);

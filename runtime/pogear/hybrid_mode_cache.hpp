@@ -2,6 +2,7 @@
 // computed on first use, kept in the workspace's ModeCache.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -55,7 +56,7 @@ inline const ExactMatrices& discretization(const HybridSystem& sys, HybridData& 
   auto& cache = d.cache.discretizations;
   auto it = near_step(cache, mask, h);
   if (it == cache.end()) {
-    if (cache.size() > 256) cache.clear();  // uneven steps after events: keep the cache bounded
+    if (cache.size() > kStepLengthsKept) cache.clear();
     const auto& m = mode_of(sys, d.cache, mask);
     it = cache.emplace(std::make_pair(mask, h), exact_matrices(m.augmented_A, m.augmented_B, h, d.nx)).first;
     note_accuracy(d, it->second, h);
@@ -70,7 +71,7 @@ inline const StepProof& step_proof_of(const HybridSystem& sys, HybridData& d, st
   auto& cache = d.cache.proofs;
   auto it = near_step(cache, mask, h);
   if (it == cache.end()) {
-    if (cache.size() > 256) cache.clear();  // bounded, as the discretizations
+    if (cache.size() > kStepLengthsKept) cache.clear();
     const auto& m = mode_of(sys, d.cache, mask);
     Eigen::MatrixXd C = d.S, D = Eigen::MatrixXd::Zero(d.ne, d.nw);
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
@@ -89,10 +90,15 @@ inline const StepProof& step_proof_of(const HybridSystem& sys, HybridData& d, st
 // How often the mode has taken a step of h (or of a length within 1e-9 h of it) by its Taylor series,
 // this one included.
 inline int count_taylor_use(ModeCache& cache, std::uint32_t mask, double h) {
-  auto it = near_step(cache.taylor_uses, mask, h);
-  if (it == cache.taylor_uses.end()) {
-    if (cache.taylor_uses.size() > 256) cache.taylor_uses.clear();  // bounded, as the discretizations
-    it = cache.taylor_uses.emplace(std::make_pair(mask, h), 0).first;
+  auto& uses = cache.taylor_uses;
+  const auto key = std::make_pair(mask, h * (1 - 1e-9));
+  auto it = std::lower_bound(uses.begin(), uses.end(), key, [](const auto& e, const auto& k) { return e.first < k; });
+  if (it == uses.end() || it->first.first != mask || !(it->first.second <= h * (1 + 1e-9))) {
+    if (uses.size() > kStepLengthsKept) uses.clear();
+    // Sorted by (mode, length): the first entry not below (mask, h).
+    it = uses.insert(std::lower_bound(uses.begin(), uses.end(), std::make_pair(mask, h),
+                                      [](const auto& e, const auto& k) { return e.first < k; }),
+                     std::make_pair(std::make_pair(mask, h), 0));
   }
   return ++it->second;
 }
