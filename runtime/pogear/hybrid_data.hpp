@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "pogear/event_proof.hpp"
-#include "pogear/hybrid.hpp"
+#include "pogear/hybrid_modes.hpp"
+#include "pogear/hybrid_observe.hpp"
+#include "pogear/solver.hpp"
 
 namespace pogear::rt::hybrid {
 
