@@ -138,7 +138,9 @@ inline StepProof step_proof(const ModalForm& f, const Eigen::MatrixXd& A, const 
   return p;
 }
 
-// One step's slow parts and fast amplitudes (scratch reused from step to step).
+// One step's slow parts and fast amplitudes (scratch reused from step to step). The fast modes'
+// count differs from step length to step length: parts and amplitude keep the largest size met
+// (at most 2 n and n), their heads in use, so that steps of other lengths stay off the heap.
 struct SlowMotion {
   Eigen::VectorXd z, slow, parts, amplitude;
 };
@@ -150,10 +152,11 @@ inline void slow_motion(const StepProof& p, const Eigen::VectorXd& x0, const Eig
   s.z << x0, v0, v1, x1;
   s.slow.setZero(p.slow.rows());
   detail::small_matvec_add(p.slow, p.slow.cols(), s.z.data(), s.slow.data());
-  s.parts.setZero(p.amplitude.rows());
+  const Eigen::Index na = p.amplitude.rows() / 2;
+  if (s.parts.size() < 2 * na) s.parts.resize(2 * na);
+  if (s.amplitude.size() < na) s.amplitude.resize(na);
+  s.parts.head(2 * na).setZero();
   detail::small_matvec_add(p.amplitude, p.amplitude.cols(), s.z.data(), s.parts.data());
-  const Eigen::Index na = s.parts.size() / 2;
-  s.amplitude.resize(na);
   for (Eigen::Index a = 0; a < na; ++a)
     s.amplitude(a) = std::sqrt(s.parts(2 * a) * s.parts(2 * a) + s.parts(2 * a + 1) * s.parts(2 * a + 1));
 }
@@ -162,7 +165,7 @@ inline void slow_motion(const StepProof& p, const Eigen::VectorXd& x0, const Eig
 // between them) stays positive over the step h: its slow cubic less the fast part's bound does.
 inline bool stays_positive(const StepProof& p, const SlowMotion& s, Eigen::Index i, double sign, double b0, double b1,
                            double h) {
-  const double omega = p.reach.row(i).dot(s.amplitude), db = (b1 - b0) / h;
+  const double omega = p.reach.row(i).dot(s.amplitude.head(p.reach.cols())), db = (b1 - b0) / h;
   const double s0 = sign * s.slow(4 * i) + b0 - omega, s1 = sign * s.slow(4 * i + 1) + b1 - omega;
   return s0 > 0 && s1 > 0 && !cubic_dips(s0, s1, sign * s.slow(4 * i + 2) + db, sign * s.slow(4 * i + 3) + db, h);
 }

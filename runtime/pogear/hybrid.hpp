@@ -10,37 +10,12 @@
 
 #include "pogear/api.hpp"
 #include "pogear/hybrid_modes.hpp"
+#include "pogear/hybrid_observe.hpp"
 #include "pogear/run_support.hpp"
 #include "pogear/signals.hpp"
 #include "pogear/solver.hpp"
 
 namespace pogear::rt {
-
-enum class ElementState { open, slipping, stuck };
-inline const char* state_name(ElementState s) {
-  return s == ElementState::open ? "open" : s == ElementState::slipping ? "slipping" : "stuck";
-}
-
-struct HybridEvent {
-  double t = 0;
-  int element = 0;
-  ElementState from = ElementState::open, to = ElementState::open;
-};
-
-// What the run knows at a sample: state, the full input w (stuck torques recovered), slips, the
-// energy each element has dissipated, and the mode (bit k set when element k is stuck).
-struct HybridSample {
-  const Eigen::VectorXd& x;
-  const Eigen::VectorXd& w;
-  const Eigen::VectorXd& slip;
-  const Eigen::VectorXd& energy;
-  std::uint32_t mode;
-};
-
-// Chattering guard: a run stops when one element changes state more often than this within one
-// sample period, or more than this many times (elements + 1) events are located within one.
-// Physical shifts change each element a few times in a whole run; a Zeno sequence exceeds any bound.
-inline constexpr int max_events_per_sample = 100;
 
 // How a run steps within a mode: exact (a sample period per step where no event can fall in it,
 // shorter steps near events, events on the exact trajectory), or dopri5 / implicit with their
@@ -51,11 +26,9 @@ struct HybridMethod {
   SolverOptions options;
 };
 
-// The hybrid run: steps, locates events and resolves modes. One object per run (not shared between
-// threads). Its engine (hybrid.ipp) is compiled once, into libpogear_runtime.
-using SampleObserver = std::function<bool(double, const HybridSample&)>;
-using EventObserver = std::function<void(const HybridEvent&)>;
-
+// The hybrid run: steps, locates events and resolves modes (hybrid_driver.hpp). An engine keeps the
+// modes and discretizations it has met from one run to the next; it is not shared between threads.
+// Its definitions (hybrid.ipp) are compiled once, into libpogear_runtime.
 POGEAR_RT_ABI_BEGIN
 
 class HybridEngineCore;

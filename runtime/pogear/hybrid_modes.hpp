@@ -60,16 +60,16 @@ struct ModeMatrices {
   std::vector<int> stuck;  // element indices, in order
   Eigen::MatrixXd A, B, Kx, Kv;
   Eigen::MatrixXd projector;  // onto H x = 0
-  Eigen::MatrixXd augmented_A, augmented_B;  // with the slip integrals (see Engine::energy_step)
+  Eigen::MatrixXd augmented_A, augmented_B;  // with the slip integrals (see ExactStepper::add_energy)
   // augmented_A balanced, D^-1 augmented_A D with D = diag(balance) (powers of 2, so exact), and the
   // largest absolute row sum of it; and D^-1 augmented_B. Forces in N next to speeds in rad/s make
   // augmented_A's norm 1e7 where its spectral radius is 3e4: balanced, a short Taylor series of
-  // the flow converges without cancellation (Engine::flow).
+  // the flow converges without cancellation (ExactStepper::flow).
   Eigen::VectorXd balance;
   Eigen::MatrixXd balanced_A, balanced_B;
   double balanced_norm = 0;
-  double event_step = std::numeric_limits<double>::infinity();  // event_check_step(A), set by the engine
-  ModalForm modal;  // of A and B, set by the engine (HybridEngine::mode_of)
+  double event_step = std::numeric_limits<double>::infinity();  // event_check_step(A), set by mode_of
+  ModalForm modal;  // of A and B, set by mode_of (hybrid_mode_cache.hpp)
   bool singular = false;
 };
 
@@ -140,7 +140,7 @@ inline ModeMatrices mode_matrices(const HybridSystem& sys, std::uint32_t mask) {
     }
   }
   // Augmented with sigma' = S x and rho' = sigma: the integrals that make each element's dissipated
-  // energy exact over a step (Engine::energy_step).
+  // energy exact over a step (ExactStepper::add_energy).
   const Eigen::Index na = nx + 2 * ne;
   m.augmented_A = Eigen::MatrixXd::Zero(na, na);
   m.augmented_A.topLeftCorner(nx, nx) = m.A;

@@ -1,5 +1,6 @@
 // Checks that stepping fixed-size states never touches the heap (generated simulators run millions
-// of steps), using Eigen's runtime malloc guard.
+// of steps), using Eigen's runtime malloc guard; and that the hybrid engine's exact stepping does not
+// either once its caches hold a mode's step, counting every call into the C heap.
 // The CMake target defines EIGEN_RUNTIME_NO_MALLOC for all its files (they must agree on Eigen's
 // configuration); the fallback keeps this file meaningful when compiled on its own.
 #ifndef EIGEN_RUNTIME_NO_MALLOC
@@ -7,7 +8,59 @@
 #endif
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <cstdlib>
+#include <pogear/hybrid.hpp>
 #include <pogear/runtime.hpp>
+#include <vector>
+
+// The hybrid engine is compiled into libpogear_runtime, where Eigen's guard is not compiled in: its
+// allocations are counted at the C heap instead. glibc lets a program replace malloc and its family
+// (malloc(3), "Replacing malloc"); these forward to glibc's own allocator, counting while asked to.
+// Every C++ allocation (operator new, Eigen's aligned_malloc) ends in one of them.
+#if defined(__GLIBC__)
+extern "C" {
+void* __libc_malloc(std::size_t);
+void* __libc_calloc(std::size_t, std::size_t);
+void* __libc_realloc(void*, std::size_t);
+void* __libc_memalign(std::size_t, std::size_t);
+}
+namespace {
+std::atomic<bool> heap_counting{false};
+std::atomic<long> heap_calls{0};
+void count_heap_call() {
+  if (heap_counting.load(std::memory_order_relaxed)) heap_calls.fetch_add(1, std::memory_order_relaxed);
+}
+}  // namespace
+extern "C" {
+void* malloc(std::size_t n) {
+  count_heap_call();
+  return __libc_malloc(n);
+}
+void* calloc(std::size_t n, std::size_t size) {
+  count_heap_call();
+  return __libc_calloc(n, size);
+}
+void* realloc(void* p, std::size_t n) {
+  count_heap_call();
+  return __libc_realloc(p, n);
+}
+void* aligned_alloc(std::size_t alignment, std::size_t n) {
+  count_heap_call();
+  return __libc_memalign(alignment, n);
+}
+void* memalign(std::size_t alignment, std::size_t n) {
+  count_heap_call();
+  return __libc_memalign(alignment, n);
+}
+int posix_memalign(void** p, std::size_t alignment, std::size_t n) {
+  count_heap_call();
+  *p = __libc_memalign(alignment, n);
+  return *p ? 0 : ENOMEM;
+}
+}
+#define POGEAR_TEST_COUNTS_HEAP 1
+#endif
 
 namespace rt = pogear::rt;
 
@@ -76,3 +129,98 @@ TEST(NoAlloc, SteppersAndExactWithFixedSizes) {
   EXPECT_TRUE(x.allFinite());
   EXPECT_TRUE(std::isfinite(sum));
 }
+
+#if defined(POGEAR_TEST_COUNTS_HEAP)
+namespace {
+
+// Counts the calls into the C heap for a scope.
+struct HeapCount {
+  HeapCount() {
+    heap_calls = 0;
+    heap_counting = true;
+  }
+  ~HeapCount() { heap_counting = false; }
+  long calls() const { return heap_calls.load(); }
+};
+
+}  // namespace
+
+TEST(NoAlloc, HeapCountIsActive) {
+  HeapCount count;
+  {
+    Eigen::VectorXd v(3);
+    std::vector<int> u(5);
+    v.setZero();
+    u[0] = 1;
+  }
+  EXPECT_EQ(count.calls(), 2);  // proves the count sees Eigen's and the standard library's allocations
+}
+
+// An exact hybrid run: once a mode has been stepped through a whole sample period (its
+// discretization and event proof for that step cached), its later periods allocate nothing. Body 1
+// spins against bodies 2 and 3 (an elastic shaft between them) through a clutch that engages, locks,
+// and breaks away under a load step. The sample period is longer than each mode's event_step, so
+// that whole-period steps go through the event proof; the breakpoints fall on sample times.
+TEST(NoAlloc, HybridExactStepping) {
+  const double J1 = 0.1, J2 = 0.1, J3 = 0.1, k = 60, c = 0.05, sample = 0.03125, horizon = 4;
+  rt::HybridSystem sys;
+  sys.M = Eigen::MatrixXd::Zero(4, 4);  // x = [omega1, omega2, twist, omega3]
+  sys.M.row(1) << 0, -c / J2, -k / J2, c / J2;
+  sys.M.row(2) << 0, 1, 0, -1;
+  sys.M.row(3) << 0, c / J3, k / J3, -c / J3;
+  sys.N = Eigen::MatrixXd::Zero(4, 3);  // w = [tau1, load on body 3, clutch torque]
+  sys.N(0, 0) = 1 / J1;
+  sys.N(3, 1) = -1 / J3;
+  sys.N(0, 2) = -1 / J1;
+  sys.N(1, 2) = 1 / J2;
+  sys.S = Eigen::MatrixXd(1, 4);
+  sys.S << 1, -1, 0, 0;
+  sys.elements.push_back({"C", 5, 1.2, rt::Table{{0.125, 0.375}, {0, 1}}});
+  sys.inputs = {rt::Constant{0.5}, rt::Step{0, 30, 2}};
+  ASSERT_GT(sample, 0.25 * std::numbers::pi / std::sqrt(k * (1 / J2 + 1 / J3)));  // the stuck mode's is longer still
+  Eigen::VectorXd x0 = Eigen::VectorXd::Zero(4);
+  x0(0) = 30;
+
+  rt::HybridEngine engine(sys, horizon, rt::HybridMethod{rt::Solver::exact, {}});
+  const auto n = static_cast<std::size_t>(horizon / sample) + 2;
+  std::vector<double> t, events;
+  std::vector<long> calls;
+  std::vector<std::uint32_t> mode;
+  t.reserve(n);
+  calls.reserve(n);
+  mode.reserve(n);
+  events.reserve(1000);
+  rt::RunStatus status;
+  {
+    HeapCount count;
+    status = engine.run(
+        x0, sample,
+        [&](double ts, const rt::HybridSample& s) {
+          t.push_back(ts);
+          calls.push_back(count.calls());
+          mode.push_back(s.mode);
+          return true;
+        },
+        [&](const rt::HybridEvent& e) { events.push_back(e.t); });
+  }
+  ASSERT_TRUE(status.ok) << status.message;
+  ASSERT_EQ(t.size() + 1, n);
+  ASSERT_GE(events.size(), 3u);  // engages, locks, breaks away
+  auto has_event = [&](std::size_t i) {  // in the sample period (t[i-1], t[i]]
+    for (const double e : events)
+      if (e > t[i - 1] && e <= t[i]) return true;
+    return false;
+  };
+  std::size_t checked = 0, stuck = 0;
+  for (std::size_t i = 2; i < t.size(); ++i) {
+    if (has_event(i) || has_event(i - 1) || mode[i] != mode[i - 1] || mode[i - 1] != mode[i - 2]) continue;
+    EXPECT_EQ(calls[i] - calls[i - 1], 0) << "heap calls in the sample period ending at t = " << t[i];
+    ++checked;
+    stuck += mode[i] != 0;
+  }
+  // Most periods are such later periods of a mode, the clutch slipping and stuck.
+  EXPECT_GT(checked, t.size() / 2);
+  EXPECT_GT(stuck, 10u);
+  EXPECT_GT(checked - stuck, 10u);
+}
+#endif

@@ -1,0 +1,177 @@
+// The hybrid engine's workspace (HybridData): a run's element states, mode and energy, the cache of
+// the modes met, and every scratch vector, sized once from a HybridSystem; and the elements' laws.
+#pragma once
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "pogear/event_proof.hpp"
+#include "pogear/hybrid_modes.hpp"
+#include "pogear/hybrid_observe.hpp"
+#include "pogear/solver.hpp"
+
+namespace pogear::rt::hybrid {
+
+using hybrid_detail::ModeMatrices;
+
+// What the run has computed per mode and per step length, kept from run to run.
+struct ModeCache {
+  std::map<std::uint32_t, ModeMatrices> modes;
+  std::map<std::pair<std::uint32_t, double>, ExactMatrices> discretizations;
+  std::map<std::pair<std::uint32_t, double>, StepProof> proofs;  // clear_of_events' maps
+  // How often each step length was taken by the Taylor series: sorted by (mode, length) as the maps,
+  // in a vector whose capacity is reserved, so that a new length costs no allocation.
+  std::vector<std::pair<std::pair<std::uint32_t, double>, int>> taylor_uses;
+};
+
+// The bound on the step lengths each cache keeps (uneven steps after events): beyond it, it starts anew.
+inline constexpr std::size_t kStepLengthsKept = 256;
+
+// A point of a step's trajectory: the state x, the stepper's own state z there (the exact method's
+// state augmented with the slip integrals; unused by the others), the known inputs v and the event
+// functions g.
+struct EventPoint {
+  Eigen::VectorXd x, z, v, g;
+};
+
+// Elements 0..nf-1 are the brakes and clutches, nf..ne-1 the controllers' torque limits.
+struct HybridData {
+  int ne = 0, nf = 0;
+  Eigen::Index nx = 0, nu = 0, nw = 0;  // states, known inputs u, all inputs w = [u; T]
+  double horizon = 0;
+  Eigen::MatrixXd S;  // the slips of all elements (a controller's row zero: it has no slip)
+  std::vector<double> breaks;  // of the inputs and commands
+
+  Eigen::VectorXd x, energy;
+  std::vector<ElementState> state;
+  std::vector<int> dir;  // the direction of a slipping element's slip (of a controller: of its limit)
+  std::uint32_t mask = 0;  // bit k set when element k is stuck
+  std::vector<char> watched;  // the elements with an event function over the current step
+  std::vector<int> events_in_sample;  // the chattering guard (max_events_per_sample)
+  int locations_in_sample = 0;
+  long steps = 0;
+  std::optional<std::pair<double, double>> inaccurate;  // the step and error of an untrusted exponential
+  ModeCache cache;
+
+  // Scratch, sized here: the driver's step start (inputs v0, event functions g0, g_a at a bracket's
+  // start), its step end and points within the step; the event functions' rates; the samples' state,
+  // energy, w and slips; mode resolution's working copies; T the stuck torques (its head).
+  Eigen::VectorXd v0, g0, g_a, T, dT, dx, p0, p1, dp, dv, r0, r1, v, sample_x, sample_energy, sample_w, sample_slip,
+      slip, projected;
+  EventPoint end, mid, side;
+  std::vector<ElementState> old_state;
+};
+
+inline EventPoint make_event_point(const HybridData& d) {
+  EventPoint p;
+  p.x.resize(d.nx);
+  p.z.resize(d.nx + 2 * d.ne);  // the exact method's augmented state
+  p.v.resize(d.nw);
+  p.g.resize(d.ne);
+  return p;
+}
+
+inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
+  HybridData d;
+  d.nf = static_cast<int>(sys.S.rows());
+  d.ne = d.nf + static_cast<int>(sys.limits.size());
+  d.nx = sys.M.rows();
+  d.nu = static_cast<Eigen::Index>(sys.inputs.size());
+  d.nw = d.nu + d.ne;
+  d.horizon = horizon;
+  d.cache.taylor_uses.reserve(kStepLengthsKept + 1);
+  d.S = Eigen::MatrixXd::Zero(d.ne, d.nx);
+  d.S.topRows(d.nf) = sys.S;
+  const auto ne = static_cast<std::size_t>(d.ne);
+  d.x.resize(d.nx);
+  d.energy.setZero(d.ne);
+  d.state.assign(ne, ElementState::open);
+  d.old_state.assign(ne, ElementState::open);
+  d.dir.assign(ne, 0);
+  d.watched.assign(ne, 0);
+  d.events_in_sample.assign(ne, 0);
+  for (Eigen::VectorXd* e : {&d.g0, &d.g_a, &d.p0, &d.p1, &d.dp, &d.r0, &d.r1, &d.T, &d.dT, &d.sample_energy,
+                             &d.sample_slip, &d.slip})
+    e->resize(d.ne);
+  for (Eigen::VectorXd* w : {&d.v0, &d.dv, &d.v, &d.sample_w}) w->resize(d.nw);
+  for (Eigen::VectorXd* x : {&d.dx, &d.sample_x, &d.projected}) x->resize(d.nx);
+  d.end = d.mid = d.side = make_event_point(d);
+  return d;
+}
+
+// Why data does not fit the system, or nullptr: a run on data sized for another system would read
+// out of bounds.
+inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
+  const Eigen::Index nx = sys.M.rows(), ne = sys.S.rows() + static_cast<Eigen::Index>(sys.limits.size());
+  if (sys.M.cols() != nx || sys.N.rows() != nx || sys.S.cols() != nx)
+    return "the system's matrices M, N and S do not agree on the number of states";
+  if (sys.S.rows() != static_cast<Eigen::Index>(sys.elements.size()))
+    return "the system has not one slip row per brake or clutch";
+  if (sys.N.cols() != static_cast<Eigen::Index>(sys.inputs.size()) + ne)
+    return "the system has not one input column per input, brake or clutch, and torque limit";
+  if (ne > 32) return "more than 32 brakes, clutches and torque limits (a mode is a 32-bit set)";
+  if (d.nx != nx || d.ne != ne || d.nf != sys.S.rows() || d.nw != sys.N.cols() || d.S.rows() != ne ||
+      d.S.cols() != nx || d.x.size() != nx || d.energy.size() != ne || d.state.size() != static_cast<std::size_t>(ne) ||
+      d.dir.size() != d.state.size() || d.g0.size() != ne || d.v.size() != d.nw || d.dx.size() != nx)
+    return "the hybrid workspace was sized for another system";
+  return nullptr;
+}
+
+// The elements' laws: a controller's limits and law, a friction element's command and torque.
+inline bool is_limit(const HybridData& d, int k) { return k >= d.nf; }
+inline const TorqueLimitData& limit(const HybridSystem& sys, const HybridData& d, int k) {
+  return sys.limits[static_cast<std::size_t>(k - d.nf)];
+}
+inline const std::string& element_name(const HybridSystem& sys, const HybridData& d, int k) {
+  return is_limit(d, k) ? limit(sys, d, k).name : sys.elements[static_cast<std::size_t>(k)].name;
+}
+// A controller's torque at the limit it reached in direction dir.
+inline double held_torque(const HybridSystem& sys, const HybridData& d, int k) {
+  return d.dir[static_cast<std::size_t>(k)] > 0 ? limit(sys, d, k).torque_max : limit(sys, d, k).torque_min;
+}
+// A controller's law at state x and known inputs v.
+template <class X, class V>
+double law(const HybridSystem& sys, const HybridData& d, int k, const X& x, const V& v) {
+  return limit(sys, d, k).law_x.dot(x) + limit(sys, d, k).law_w.dot(v);
+}
+// An element's command: a controller's is 1 throughout (it is never open).
+inline double command(const HybridSystem& sys, const HybridData& d, int k, double t) {
+  return is_limit(d, k) ? 1.0 : value(sys.elements[static_cast<std::size_t>(k)].command, t);
+}
+// The torque per unit command of element k while it slips: its capacity, or zero for a one-way
+// element overrunning in its free direction.
+inline double torque_scale(const HybridSystem& sys, const HybridData& d, int k) {
+  const auto K = static_cast<std::size_t>(k);
+  return sys.elements[K].one_way && d.dir[K] > 0 ? 0.0 : sys.elements[K].capacity;
+}
+// Whether element k's command is zero from t until the next breakpoint (it is linear there).
+inline bool open_after(const HybridSystem& sys, const HybridData& d, int k, double t) {
+  if (is_limit(d, k)) return false;
+  const auto next = std::upper_bound(d.breaks.begin(), d.breaks.end(), t);
+  const double t_next = next == d.breaks.end() ? std::max(d.horizon, t) : *next;
+  return command(sys, d, k, t) == 0 && command(sys, d, k, t + 0.5 * (t_next - t)) == 0;
+}
+
+// v = w at time t: the inputs, slipping torques c p(t) dir, held controller torques, stuck torques
+// left at zero. `before` asks for the left limit (a step that ends on a breakpoint).
+inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t, bool before, Eigen::VectorXd& v) {
+  const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
+  v.resize(d.nw);
+  for (Eigen::Index i = 0; i < d.nu; ++i) v(i) = value(sys.inputs[static_cast<std::size_t>(i)], at);
+  for (int k = 0; k < d.ne; ++k) {
+    const auto K = static_cast<std::size_t>(k);
+    // + 0.0: an open element's torque is 0, not -0, in the CSV.
+    v(d.nu + k) = d.state[K] == ElementState::stuck ? 0.0
+                  : is_limit(d, k)                 ? held_torque(sys, d, k)
+                                                   : torque_scale(sys, d, k) * command(sys, d, k, at) * d.dir[K] + 0.0;
+  }
+}
+
+}  // namespace pogear::rt::hybrid

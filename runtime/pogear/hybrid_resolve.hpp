@@ -1,0 +1,137 @@
+// Mode resolution: which elements stick at an instant (stick–slip resolution, the state projected onto
+// the stuck elements' constraints), and which have an event function over a step (watch).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "pogear/hybrid_mode_cache.hpp"
+
+namespace pogear::rt::hybrid {
+
+inline void record(double t, int k, ElementState from, ElementState to, const EventObserver& on_event) {
+  if (from != to) on_event(HybridEvent{t, k, from, to});
+}
+
+// How far element k's torque Tk lies beyond what it can hold, as a ratio above 1 (at most 1 when it
+// holds): a friction element's |T| over its static capacity at its command (infinite for a one-way
+// element pulled forward), a controller's excess over its range.
+inline double overload(const HybridSystem& sys, const HybridData& d, int k, double Tk, double t) {
+  if (is_limit(d, k)) {
+    const double lo = limit(sys, d, k).torque_min, hi = limit(sys, d, k).torque_max;
+    const double range = std::isfinite(hi - lo) ? hi - lo : std::max({1.0, std::abs(std::isfinite(hi) ? hi : lo)});
+    return Tk > hi ? 1 + (Tk - hi) / range : Tk < lo ? 1 + (lo - Tk) / range : 0.0;
+  }
+  const auto& e = sys.elements[static_cast<std::size_t>(k)];
+  const double capacity = e.static_ratio * e.capacity * command(sys, d, k, t);
+  const double Tj = std::abs(Tk);
+  if (e.one_way && Tk > 0) return std::numeric_limits<double>::infinity();
+  return capacity > 0 ? Tj / capacity : (Tj > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+}
+
+// The consistent mode at time t, from d.x and the element states: every element that is stuck, or
+// whose slip is zero (or just reached zero: `trigger`), is tried stuck; the one whose torque exceeds
+// what it holds by the largest factor is released (slipping in its torque's direction) and the rest
+// solved again, until every stuck torque is held. Elements released at an instant stay released
+// within it, so the loop ends after at most one pass per element. Sets d.mask and d.state, projects
+// d.x onto the mode's constraints and reports each change of state; false (with `error`) when the
+// stuck elements over-constrain the gear or an element chatters.
+inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int trigger, const EventObserver& on_event,
+                         std::string& error) {
+  d.old_state = d.state;
+  std::uint32_t mask = 0;
+  d.slip.noalias() = d.S * d.x;
+  // An element without command until the next breakpoint holds nothing: it is no candidate (at rest
+  // every slip is zero, and open elements tried stuck could over-constrain the gear). A controller
+  // is always tried within its limits: it leaves saturation whenever its law allows.
+  for (int k = 0; k < d.ne; ++k) {
+    const auto K = static_cast<std::size_t>(k);
+    if (is_limit(d, k) ||
+        (!open_after(sys, d, k, t) && (d.state[K] == ElementState::stuck || d.slip(k) == 0 || k == trigger)))
+      mask |= 1u << k;
+    else if (d.slip(k) != 0)
+      d.dir[K] = d.slip(k) > 0 ? 1 : -1;
+  }
+  for (int round = 0; round <= d.ne; ++round) {
+    const auto& m = mode_of(sys, d.cache, mask);
+    if (m.singular) {
+      std::string names;
+      for (int k : m.stuck) names += (names.empty() ? "" : ", ") + element_name(sys, d, k);
+      error = "the stuck elements " + names + " constrain the gear more than once at t = " + detail::num(t) +
+              " s (their torques are undetermined); engage fewer elements at a time";
+      return false;
+    }
+    for (int k = 0; k < d.ne; ++k)
+      d.state[static_cast<std::size_t>(k)] = (mask >> k) & 1u ? ElementState::stuck : ElementState::slipping;
+    known_inputs(sys, d, t, false, d.v);
+    const Eigen::VectorXd* x = &d.x;
+    if (!m.stuck.empty()) {
+      d.projected.noalias() = m.projector * d.x;
+      x = &d.projected;
+    }
+    d.T.noalias() = m.Kx * *x;
+    d.T.noalias() += m.Kv * d.v;
+    int worst = -1;
+    double worst_ratio = 1;
+    for (std::size_t j = 0; j < m.stuck.size(); ++j) {
+      const double ratio = overload(sys, d, m.stuck[j], d.T(static_cast<Eigen::Index>(j)), t);
+      if (ratio > worst_ratio) {
+        worst_ratio = ratio;
+        worst = m.stuck[j];
+      }
+    }
+    if (worst < 0) {
+      d.mask = mask;
+      if (!m.stuck.empty()) d.x.swap(d.projected);
+      break;
+    }
+    const auto W = static_cast<std::size_t>(worst);
+    for (std::size_t j = 0; j < m.stuck.size(); ++j)
+      if (m.stuck[j] == worst) {
+        const double Tw = d.T(static_cast<Eigen::Index>(j));
+        d.dir[W] = is_limit(d, worst) ? (Tw > limit(sys, d, worst).torque_max ? 1 : -1) : (Tw > 0 ? 1 : -1);
+      }
+    mask &= ~(1u << worst);
+  }
+  for (int k = 0; k < d.ne; ++k) {
+    const auto K = static_cast<std::size_t>(k);
+    if (d.state[K] != ElementState::stuck && open_after(sys, d, k, t)) d.state[K] = ElementState::open;
+    if (d.old_state[K] != d.state[K]) {
+      record(t, k, d.old_state[K], d.state[K], on_event);
+      if (++d.events_in_sample[K] > max_events_per_sample) {
+        error = "chattering: " + element_name(sys, d, k) + " changed state more than " +
+                std::to_string(max_events_per_sample) + " times within one sample period, at t = " + detail::num(t) +
+                " s; shorten the sample period if the changes are real, or check the engagement commands";
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// Marks the elements with an event function over [t, t_end] (no breakpoint inside): those whose
+// command is not zero throughout. The others are open from t on (a change of state reported), their
+// direction that of their slip.
+inline void watch(const HybridSystem& sys, HybridData& d, double t, double t_end, const EventObserver& on_event) {
+  for (int k = 0; k < d.ne; ++k) {
+    const auto K = static_cast<std::size_t>(k);
+    const bool open = command(sys, d, k, t) == 0 && command(sys, d, k, std::nextafter(t_end, t)) == 0;
+    if (open && d.state[K] != ElementState::stuck) {
+      const double s = d.S.row(k).dot(d.x);
+      d.dir[K] = s > 0 ? 1 : s < 0 ? -1 : d.dir[K];
+      if (d.state[K] != ElementState::open) {
+        record(t, k, d.state[K], ElementState::open, on_event);
+        d.state[K] = ElementState::open;
+      }
+    }
+    d.watched[K] = !open;
+  }
+}
+
+inline bool any_watched(const HybridData& d) {
+  return std::find(d.watched.begin(), d.watched.end(), 1) != d.watched.end();
+}
+
+}  // namespace pogear::rt::hybrid
