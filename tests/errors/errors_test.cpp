@@ -1229,6 +1229,18 @@ TEST_F(LoadsAndControllers, StartTorqueWithoutIntegral) {
                {{"omega_c = \"0*rpm\"", "Tc_mg1 = \"-5*N*m\""}});
 }
 
+TEST_F(LoadsAndControllers, StartTorqueOutsideTheLimits) {
+  const std::string controller =
+      "[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\", ki = \"2*N*m\", "
+      "torque_min = \"-20*N*m\", torque_max = \"50*N*m\" }\n";
+  expect_error(controller,
+               R"~(scene.toml:12:10: error: Tc_mg1 = 80 N m is above controller 'mg1''s torque_max, 50 N m; give a start torque within its limits)~",
+               {{"omega_c = \"0*rpm\"", "Tc_mg1 = \"80*N*m\""}});
+  expect_error(controller,
+               R"~(scene.toml:12:10: error: Tc_mg1 = -25 N m is below controller 'mg1''s torque_min, -20 N m; give a start torque within its limits)~",
+               {{"omega_c = \"0*rpm\"", "Tc_mg1 = \"-25*N*m\""}});
+}
+
 TEST_F(LoadsAndControllers, NotWithTunables) {
   expect_error("[loads]\nr = { linear = \"0.5*N*m*s\" }\n",
                R"~(scene.toml:7:11: error: a scene with [loads] or [controllers] has no tunable parameters yet; set the values in [parameters] and generate one simulator per value)~",
