@@ -798,6 +798,14 @@ TEST_F(Signals, SineWithoutFrequency) { expect_signal_error(R"({ sine = "10*Nm" 
     R"~(scene.toml:9:9: error: a sine needs frequency = "<f>*Hz")~"); }
 TEST_F(Signals, SineFrequencyInRpm) { expect_signal_error(R"({ sine = "10*Nm", frequency = "60*rpm" })",
     R"~(scene.toml:9:39: error: frequency is in cycles per second; give it in Hz or kHz, e.g. "50*Hz" (rpm would make it an angular speed, 2 pi times the frequency: 3000*rpm turns at 50*Hz))~"); }
+TEST_F(Signals, SineFrequencyNotPositive) {
+  expect_signal_error(R"({ sine = "10*Nm", frequency = "-5*Hz" })",
+    R"~(scene.toml:9:39: error: frequency is -5 Hz; a sine's frequency is positive (a constant input is { constant = ... }, and the sign of a sine is its amplitude's or its phase's))~");
+}
+TEST_F(Signals, SineFrequencyBeyondAGearsDynamics) {
+  expect_signal_error(R"({ sine = "10*Nm", frequency = "1e30*Hz" })",
+    R"~(scene.toml:9:39: error: frequency is 1e+30 Hz, above 1e+06 Hz, far beyond a gear's dynamics and what its sine can be computed at in double precision; give the frequency in Hz)~");
+}
 TEST_F(Signals, UnknownForm) { expect_signal_error(R"({ pulse = "10*Nm" })",
     R"~(scene.toml:9:9: error: a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., frequency = ... } or { table = "file.csv" })~"); }
 
