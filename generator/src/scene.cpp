@@ -316,7 +316,12 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
 
   if (const toml::node* n = root.get("outputs")) {
     s.outputs_where = r.loc(*n);
-    for (const auto& o : r.strings(*n, "outputs")) {
+    const std::vector<std::string> listed = r.strings(*n, "outputs");
+    // No outputs at all is what leaving the key out gives (every speed and force), not none.
+    if (listed.empty())
+      r.fail(*n, "outputs = [] names no output; name the speeds and forces to write, or leave outputs out for all of "
+                 "them");
+    for (const auto& o : listed) {
       const auto v = find_variable(topology, o, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
       if (!v) r.fail(*n, fmt::format("output '{}' is neither omega_<body>, F_<mesh> nor Tc_<controller>", o));
       if (std::find(s.outputs.begin(), s.outputs.end(), *v) != s.outputs.end())

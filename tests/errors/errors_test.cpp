@@ -909,6 +909,10 @@ TEST_F(Initial, WrongUnit) { expect_scene_error({{"omega_c = \"0*rpm\"", "omega_
 
 class Outputs : public ErrorTest {};
 
+TEST_F(Outputs, EmptyList) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\noutputs = []"}},
+      R"~(scene.toml:7:11: error: outputs = [] names no output; name the speeds and forces to write, or leave outputs out for all of them)~");
+}
 TEST_F(Outputs, NotAList) {
   expect_scene_error({{"compare_rigid = true", "compare_rigid = true\noutputs = \"omega_c\""}},
       R"~(scene.toml:7:11: error: outputs must be a list of strings, e.g. ["a", "b"])~");
