@@ -149,7 +149,10 @@ ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<
     ModesWithCampbell out;
     out.modes = vibration_modes(in.d, in.values, in.damping, in.engaged);
     out.modes.open_in_scene = in.open_in_scene;
-    out.campbell = campbell_diagram(in.d, in.values, out.modes, in.engaged, input, held, max_rpm, request.harmonics);
+    // A held body is held: the natural frequencies on the line are the held gear's.
+    const VibrationModes held_modes =
+        held.empty() ? out.modes : vibration_modes(in.d, in.values, in.damping, in.engaged, held);
+    out.campbell = campbell_diagram(in.d, in.values, held_modes, in.engaged, input, held, max_rpm, request.harmonics);
     return out;
   } catch (const std::domain_error& e) {
     throw InputError(where, e.what());
