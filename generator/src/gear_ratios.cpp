@@ -142,7 +142,7 @@ GearRatios gear_ratios(const Derivation& d, const std::string& input, const std:
           // Written in tooth counts when the model gives them, as the reports write the rigid model;
           // its value is then the tooth ratio itself, not its value at pitch radii rounded to doubles.
           r.ratio = teeth.empty() ? closed : closed.subs(teeth).normal();
-          const std::optional<GiNaC::ex> in_teeth = teeth.empty() ? std::nullopt : in_tooth_numbers(r.ratio, t);
+          const std::optional<GiNaC::ex> in_teeth = teeth.empty() ? std::nullopt : in_tooth_numbers(*r.ratio, t);
           r.value = to_double(in_teeth ? *in_teeth : value);
           if (!(std::abs(r.value - direct) <= 1e-7 * std::max(1.0, std::abs(direct))))
             throw std::logic_error(fmt::format("the closed-form ratio with {} engaged, {}, disagrees with R at the "
