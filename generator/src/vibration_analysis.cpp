@@ -11,6 +11,7 @@
 
 #include "engagement.hpp"
 #include "model_parameters.hpp"
+#include "output_file.hpp"
 #include "parameter_folding.hpp"
 #include "printer.hpp"
 #include "quantity.hpp"
@@ -229,6 +230,14 @@ SceneResponse response_of(const ResponseRequest& request) {
                                           name, scene.model.bodies.front().name));
     if (std::find(outputs.begin(), outputs.end(), *v) == outputs.end()) outputs.push_back(*v);
   }
+  // One CSV per pair, a row of four numbers per frequency, 25 bytes a number at most.
+  const double bytes = 100.0 * grid.points * static_cast<double>(inputs.size() * outputs.size());
+  if (bytes > static_cast<double>(max_csv_bytes))
+    throw InputError(where, fmt::format("the CSV files of this response may take up to {:.3g} GB ({} points for each "
+                                        "of {} input-output pairs); the limit is {:.3g} GB: give fewer --points, "
+                                        "inputs or outputs",
+                                        bytes / 1e9, grid.points, inputs.size() * outputs.size(),
+                                        static_cast<double>(max_csv_bytes) / 1e9));
   const std::vector<int> engaged =
       request.engaged ? parse_engaged(scene.model, *request.engaged, where) : std::vector<int>{};
   return SceneResponse{scene.name, frequency_response(scene, inputs, outputs, grid, engaged),
