@@ -23,7 +23,14 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
-[ -n "$out" ] || out="$root/bench/results$([ $quick = 1 ] && echo -quick)"
+# No command substitution that may fail in an assignment: under `set -e` it would end the script
+# without a word (bash 5.2).
+if [ -z "$out" ]; then
+  out="$root/bench/results"
+  if [ $quick = 1 ]; then out="$out-quick"; fi
+fi
+[ $do_build = 1 ] || { [ -n "$bin" ] && [ -n "$pogear" ]; } ||
+  { echo "error: --no-build needs --bin DIR and --pogear PATH" >&2; exit 1; }
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 
@@ -36,7 +43,6 @@ if [ $do_build = 1 ]; then
   bin=$build
   pogear=$build/pogear/pogear
 fi
-[ -n "$bin" ] && [ -n "$pogear" ] || { echo "error: --no-build needs --bin DIR and --pogear PATH" >&2; exit 1; }
 
 flags=(--out "$out" --check)
 [ $quick = 1 ] && flags+=(--quick)

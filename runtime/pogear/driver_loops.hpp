@@ -215,13 +215,18 @@ POGEAR_RT_INLINE RunStatus simulate_exact_lanes(const ExactDiscretization<NX, NU
 #if defined(POGEAR_RT_AVX2_DISPATCH)
 inline bool cpu_has_avx2() { return __builtin_cpu_supports("avx2"); }
 
-// The same run in AVX2 registers: 4 rows per operation (2 for a 2-state model, which has no more).
+// The same run in AVX2 registers: 4 rows per operation (2 for a 2-state model, which has no more),
+// the user's functions entered clean (CleanUpperCall).
 template <int NX, int NU, class Discretize, class UFun, class Obs>
 POGEAR_RT_TARGET_AVX2 RunStatus simulate_exact_avx2(const ExactDiscretization<NX, NU>& nominal, Discretize& discretize,
                                                     UFun& u, Eigen::Matrix<double, NX, 1>& x, double t0, double t_end,
                                                     double dt, const SolverOptions& opt, Obs& obs,
                                                     const std::vector<double>& breaks) {
-  return simulate_exact_lanes<NX <= 2 ? 2 : 4>(nominal, discretize, u, x, t0, t_end, dt, opt, obs, breaks);
+  CleanUpperCall<Discretize> clean_discretize{discretize};
+  CleanUpperCall<UFun> clean_u{u};
+  CleanUpperCall<Obs> clean_obs{obs};
+  return simulate_exact_lanes<NX <= 2 ? 2 : 4>(nominal, clean_discretize, clean_u, x, t0, t_end, dt, opt, clean_obs,
+                                               breaks);
 }
 #endif
 

@@ -70,7 +70,11 @@ struct ModeMatrices {
   double balanced_norm = 0;
   double event_step = std::numeric_limits<double>::infinity();  // event_check_step(A), set by mode_of
   ModalForm modal;  // of A and B, set by mode_of (hybrid_mode_cache.hpp)
+  // The stuck torques cannot be determined: the stuck rows are dependent (they constrain the gear
+  // more than once), or, with `ill_conditioned`, independent but across inertias so disparate that
+  // double precision cannot separate them (the torques would carry no correct digit).
   bool singular = false;
+  bool ill_conditioned = false;
 };
 
 inline ModeMatrices mode_matrices(const HybridSystem& sys, std::uint32_t mask) {
@@ -106,17 +110,34 @@ inline ModeMatrices mode_matrices(const HybridSystem& sys, std::uint32_t mask) {
       NS.col(j) = N0.col(nu + stuck_friction[static_cast<std::size_t>(j)]);
       Bv.col(nu + stuck_friction[static_cast<std::size_t>(j)]).setZero();
     }
-    const Eigen::MatrixXd HN = H * NS;
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(HN);
-    // H N_S = -H L^-1 H^T: its rank is that of the stuck rows. Dependent rows over-constrain the
-    // gear and leave their torques undetermined (the caller reports it).
-    if (lu.rank() < ns) {
+    // H N_S = -H L^-1 H^T has the rank of the stuck rows H, since L is definite. Dependent rows
+    // over-constrain the gear and leave their torques undetermined (the caller reports it). The
+    // rank is decided on H itself, each row scaled to a largest entry of 1: H N_S carries the
+    // inertias' spread on its diagonal (1/J: 1e9 against 1e-9 for brakes on trains of 1e-9 and
+    // 1e9 kg m^2), where a relative pivot threshold would drop the small pivots of independent rows.
+    Eigen::MatrixXd Hs = H;
+    for (Eigen::Index j = 0; j < ns; ++j)
+      if (const double big = Hs.row(j).cwiseAbs().maxCoeff(); big > 0) Hs.row(j) /= big;
+    if (Eigen::FullPivLU<Eigen::MatrixXd>(Hs).rank() < ns) {
       m.singular = true;
       return m;
     }
-    Kx_f = -lu.solve(H * M0);
-    Kv_f = -lu.solve(H * Bv);
-    m.projector -= NS * lu.solve(H);
+    // Solved as D (D H N_S D)^-1 D, D in powers of 2 (exact) giving a unit diagonal: independent
+    // elements on separate trains then solve to the last bit. Rows that couple bodies of disparate
+    // inertias stay ill-conditioned after it; past an error of 1e-8 the torques are refused.
+    const Eigen::MatrixXd HN = H * NS;
+    Eigen::VectorXd d(ns);
+    for (Eigen::Index j = 0; j < ns; ++j)
+      d(j) = HN(j, j) != 0 && std::isfinite(HN(j, j)) ? std::ldexp(1.0, -std::ilogb(HN(j, j)) / 2) : 1.0;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(d.asDiagonal() * HN * d.asDiagonal());
+    if (!(lu.rcond() * 1e-8 >= std::numeric_limits<double>::epsilon())) {
+      m.singular = m.ill_conditioned = true;
+      return m;
+    }
+    auto solve = [&](const Eigen::MatrixXd& X) -> Eigen::MatrixXd { return d.asDiagonal() * lu.solve(d.asDiagonal() * X); };
+    Kx_f = -solve(H * M0);
+    Kv_f = -solve(H * Bv);
+    m.projector -= NS * solve(H);
   }
   m.A = M0;
   m.B = Bv;

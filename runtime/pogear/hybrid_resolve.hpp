@@ -59,8 +59,12 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
     if (m.singular) {
       std::string names;
       for (int k : m.stuck) names += (names.empty() ? "" : ", ") + element_name(sys, d, k);
-      error = "the stuck elements " + names + " constrain the gear more than once at t = " + detail::num(t) +
-              " s (their torques are undetermined); engage fewer elements at a time";
+      error = m.ill_conditioned
+                  ? "the stuck elements " + names + " join bodies of inertias too disparate for double precision " +
+                        "to determine their torques at t = " + detail::num(t) +
+                        " s; check the inertias (a tiny one beside a huge one)"
+                  : "the stuck elements " + names + " constrain the gear more than once at t = " + detail::num(t) +
+                        " s (their torques are undetermined); engage fewer elements at a time";
       return false;
     }
     for (int k = 0; k < d.ne; ++k)

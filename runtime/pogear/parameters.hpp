@@ -14,6 +14,11 @@
 
 namespace pogear::rt {
 
+// The magnitudes (SI) a parameter may have other than zero, in model files and through `--param`
+// alike: physical gears span about 1e-12 to 1e12, and products of a few such factors stay finite
+// within these bounds; beyond them the models' matrices overflow or underflow.
+inline constexpr double kSmallestParameter = 1e-30, kLargestParameter = 1e30;
+
 // A unit `--param` accepts for a parameter: VALUE*UNIT means VALUE times `si`.
 struct ParameterUnit {
   std::string_view unit;

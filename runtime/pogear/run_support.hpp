@@ -61,6 +61,11 @@ struct ModalForm {
 };
 POGEAR_RT_API ModalForm modal_form(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
 
+// What to do about a run whose energy exceeded what the passive gear can hold, for the solver that
+// ran it: a step or tolerance for the integrators; for exact stepping, which is stable at any step,
+// the parameters, since only rounding of extreme values makes it grow.
+POGEAR_RT_API std::string divergence_advice(Solver solver);
+
 // One system's run around its driver: the rk4 step check, the CSV file of each repetition, the
 // divergence message, the timing and the closing report or error, all under the label
 // SCENE<suffix> and into OUT/SCENE<suffix>.csv.

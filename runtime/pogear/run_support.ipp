@@ -67,6 +67,10 @@ POGEAR_RT_API bool set_parameters(const std::vector<std::pair<std::string, std::
     if ((field->sign == "positive" && !(*v > 0)) || (field->sign == "non-negative" && !(*v >= 0)))
       return fail("--param " + name + "=" + text + ": " + name + " must be " + std::string(field->sign) +
                   "; give " + accepted);
+    if (*v != 0 && !(std::abs(*v) >= kSmallestParameter && std::abs(*v) <= kLargestParameter))
+      return fail("--param " + name + "=" + text + " is outside the range pogear computes with, " +
+                  detail::num(kSmallestParameter) + " to " + detail::num(kLargestParameter) +
+                  " in magnitude (SI); check the value and its unit");
     *field->value = *v;
   }
   return true;
@@ -150,12 +154,22 @@ POGEAR_RT_API void SystemRunLog::row(double t, const double* y, long n) {
   csv_->end_row();
 }
 
+POGEAR_RT_API std::string divergence_advice(Solver solver) {
+  switch (solver) {
+    case Solver::rk4: return "use a smaller --step, or --solver exact or implicit";
+    case Solver::dopri5: return "use a tighter --tolerance, or --solver exact or implicit";
+    case Solver::implicit: return "use a tighter --tolerance, or --solver exact";
+    case Solver::exact: break;
+  }
+  return "exact stepping is stable at any step, so the growth is rounding: check the parameters for values far "
+         "from the gear's (--param, [parameters]) and the stiffness ratio `pogear derive` reports";
+}
+
 POGEAR_RT_API void SystemRunLog::diverged(double t, double ratio) {
   char times[32];
   std::snprintf(times, sizeof times, "%.3g", ratio * ratio);
   diverged_ = "the solution diverged at t = " + detail::num(t) + ": its energy is " + times +
-              " times what the initial state and the inputs can supply; use a tighter --tolerance (or a "
-              "smaller --step for rk4), or --solver exact or implicit";
+              " times what the initial state and the inputs can supply; " + divergence_advice(run_.solver);
 }
 
 POGEAR_RT_API bool SystemRunLog::end(RunStatus& st) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <utility>
 
 // Lanes: the step kernels below compute W results at once as GCC/Clang vector extensions (W = 2 is
 // one SSE2 register, W = 4 one AVX register), and as plain doubles (W = 1) elsewhere. The arithmetic
@@ -26,6 +27,25 @@
 namespace pogear::rt {
 
 namespace detail {
+
+#if defined(POGEAR_RT_AVX2_DISPATCH)
+// A user's function (input, observer, discretization) as the AVX2 copies call it: with the upper
+// halves of the YMM registers cleared first. Compiled as SSE and entered with them dirty, it pays
+// Intel cores' SSE/AVX transition penalty on its vector instructions, and GCC leaves out the
+// vzeroupper before a call into its own translation unit whose registers it knows (-fipa-ra).
+// Plain inline asm needs no AVX target here; the clobbers keep no value in a vector register
+// across it. Used only where the CPU has AVX2, so the instruction exists.
+template <class F>
+struct CleanUpperCall {
+  F& f;
+  template <class... A>
+  POGEAR_RT_INLINE decltype(auto) operator()(A&&... a) {
+    asm volatile("vzeroupper" ::: "xmm0", "xmm1", "xmm2", "xmm3", "xmm4", "xmm5", "xmm6", "xmm7", "xmm8", "xmm9",
+                 "xmm10", "xmm11", "xmm12", "xmm13", "xmm14", "xmm15");
+    return f(std::forward<A>(a)...);
+  }
+};
+#endif
 
 #if defined(__GNUC__)
 typedef double Lanes2 __attribute__((vector_size(16)));

@@ -204,7 +204,11 @@ POGEAR_RT_TARGET_AVX2 RunStatus simulate_exact_batch_avx2(const ExactDiscretizat
                                                           UFun& u, BatchState<NX, B>& X, double t0, double t_end,
                                                           double dt, const SolverOptions& opt, Obs& obs,
                                                           const std::vector<double>& breaks) {
-  return simulate_exact_batch_lanes<B % 4 == 0 ? 4 : 2, B>(nominal, M, N, lo, u, X, t0, t_end, dt, opt, obs, breaks);
+  // The user's functions entered clean (CleanUpperCall); sweep_exact_peaks has no observer to call.
+  CleanUpperCall<UFun> clean_u{u};
+  CleanUpperCall<Obs> clean_obs{obs};
+  return simulate_exact_batch_lanes<B % 4 == 0 ? 4 : 2, B>(nominal, M, N, lo, clean_u, X, t0, t_end, dt, opt, clean_obs,
+                                                           breaks);
 }
 #endif
 

@@ -212,6 +212,12 @@ TEST_F(Cli, ResponseUnknownOutput) {
       R"~(scene.toml: error: --output 'omega_x' is neither omega_<body> nor F_<mesh> of the model; give the velocity of a body or the force of a mesh, e.g. omega_c)~");
 }
 
+TEST_F(Cli, ResponseTooLarge) {
+  expect_pogear_error("response scene.toml --input tau_c,tau_s,tau_r --output omega_c,omega_p,omega_s,omega_r "
+                      "--points 1000000", 2,
+      R"~(scene.toml: error: the CSV files of this response may take up to 1.2 GB (1000000 points for each of 12 input-output pairs); the limit is 1.07 GB: give fewer --points, inputs or outputs)~");
+}
+
 TEST_F(Cli, ResponseEmptyRange) {
   expect_pogear_error("response scene.toml --input tau_c --output omega_r --from '10*Hz' --to '1*Hz'", 2,
       R"~(scene.toml: error: the frequency range --from 10*Hz --to 1*Hz is empty; give --from below --to)~");

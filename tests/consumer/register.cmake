@@ -20,3 +20,12 @@ add_test(NAME consumer_package
 # Installing needs pogear built first (ctest does not build); the consumer compiles an Eigen-heavy
 # simulator (~15 s), hence the generous timeout.
 set_tests_properties(consumer_package PROPERTIES LABELS consumer TIMEOUT 600)
+
+# A renamed scene leaves no header of its old name behind for a program to compile against.
+add_test(NAME simulator_stale_outputs
+  COMMAND "${CMAKE_COMMAND}" "-DPOGEAR=$<TARGET_FILE:pogear>"
+    "-DSCRIPT=${PROJECT_SOURCE_DIR}/cmake/pogear_generate_simulator.cmake"
+    "-DSCENE=${PROJECT_SOURCE_DIR}/models/scenes/paper_one_stage.toml"
+    "-DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/simulator_stale_outputs"
+    -P "${CMAKE_CURRENT_LIST_DIR}/stale_outputs_test.cmake")
+set_tests_properties(simulator_stale_outputs PROPERTIES LABELS consumer)

@@ -89,5 +89,24 @@ TEST(LatexText, TitleAndNamesOfALatexReportAreEscaped) {
   EXPECT_NE(tex.find("\\text{(mesh p\\_s)}"), std::string::npos) << tex;
 }
 
+// A Markdown viewer renders raw HTML, $ math, emphasis and links: a title shows as written.
+TEST(MarkdownText, EverySpecialCharacterShowsAsItself) {
+  EXPECT_EQ(markdown_text("<img src=x onerror=alert(1)> $\\int$ *a* _b_ [l](u) `c` a|b ~~s~~ #1 \\ & x"),
+            "&lt;img src=x onerror=alert(1)&gt; \\$\\\\int\\$ \\*a\\* \\_b\\_ \\[l\\](u) \\`c\\` a\\|b "
+            "\\~\\~s\\~\\~ \\#1 \\\\ &amp; x");
+  EXPECT_EQ(markdown_text("plain text, 1.5 (ok) - yes!"), "plain text, 1.5 (ok) - yes!");
+  EXPECT_EQ(markdown_text("two\nlines"), "two lines");
+}
+
+TEST(MarkdownText, TitleOfAMarkdownReportIsEscaped) {
+  std::string model = read_text(source_path("tests/errors/gear.toml"));
+  const auto pos = model.find("name = \"gear\"");
+  ASSERT_NE(pos, std::string::npos);
+  model.insert(pos + std::string("name = \"gear\"").size(), "\ntitle = \"<b>bold</b> $x^2$ *em*\"");
+  const Derivation d = derive_topology(parse_topology_text(model, "gear.toml"), std::nullopt, SourceLocation{"gear.toml", 0, 0});
+  const std::string md = report_markdown(d);
+  EXPECT_EQ(md.substr(0, md.find('\n')), "# gear: &lt;b&gt;bold&lt;/b&gt; \\$x^2\\$ \\*em\\*") << md;
+}
+
 }  // namespace
 }  // namespace pogear::test

@@ -204,6 +204,47 @@ TEST(Ratios, AModelGivenByTeethHasItsRatiosInToothCounts) {
   EXPECT_TRUE(brake_seen);
 }
 
+// The value of a ratio in tooth counts is the tooth fraction correctly rounded, not its value at
+// the pitch radii m Z / 2, which are doubles: with a module of 0.7 mm (no binary fraction) those
+// radii are rounded, and so would the ratio be, by an ulp.
+TEST(Ratios, AToothRatioIsTheCorrectlyRoundedFraction) {
+  std::string text = read_text(source_path("models/gearshift_planetary.toml"));
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"name = \"s\"                        # sun, with the engine's inertia\naxis = \"central\"",
+                                            "name = \"s\"\naxis = \"central\"\nteeth = 37\nmodule = \"0.7*mm\""},
+        {"axis = { carrier = \"c\", distance = \"r_c\" }", "axis = { carrier = \"c\", distance = \"r_c\" }\nteeth = 17\nmodule = \"0.7*mm\""},
+        {"wheels = [ { name = \"r\", radius = \"r_r\", internal = true } ]",
+         "wheels = [ { name = \"r\", teeth = 71, module = \"0.7*mm\", internal = true } ]"},
+        {"r_s = \"50*mm\"", ""}, {"r_p = \"12.5*mm\"", ""}, {"r_r = \"75*mm\"", ""}}) {
+    const std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  const Derivation d = derive_topology(parse_topology_text(text, "teeth.toml"), std::nullopt, SourceLocation{"teeth.toml", 0, 0});
+  int ratios = 0;
+  for (const auto& [in, out] : {std::pair<std::string, std::string>{"s", "c"}, {"c", "s"}, {"r", "s"}, {"s", "r"}}) {
+    const GearRatios g = gear_ratios(d, in, out, SourceLocation{"test", 0, 0});
+    for (const EngagementRatio& e : g.engagements) {
+      if (e.status != EngagementStatus::ratio) continue;
+      ASSERT_TRUE(e.ratio);
+      GiNaC::exmap counts;
+      for (GiNaC::const_preorder_iterator it = e.ratio->preorder_begin(); it != e.ratio->preorder_end(); ++it)
+        if (GiNaC::is_a<GiNaC::symbol>(*it)) {
+          const std::string name = GiNaC::ex_to<GiNaC::symbol>(*it).get_name();
+          ASSERT_TRUE(name == "Z_s" || name == "Z_p" || name == "Z_r") << *e.ratio;
+          counts[*it] = name == "Z_s" ? 37 : name == "Z_p" ? 17 : 71;
+        }
+      const GiNaC::ex fraction = e.ratio->subs(counts);
+      ASSERT_TRUE(GiNaC::is_a<GiNaC::numeric>(fraction) && GiNaC::ex_to<GiNaC::numeric>(fraction).is_rational());
+      // CLN rounds a rational to the nearest double.
+      EXPECT_EQ(e.value, GiNaC::ex_to<GiNaC::numeric>(fraction).to_double())
+          << in << " to " << out << " with " << engaged_names(d.topology, e.engaged, ",") << ": " << *e.ratio;
+      ++ratios;
+    }
+  }
+  EXPECT_GE(ratios, 4);
+}
+
 // With B2 a one-way brake (a low sprag on the rear carrier, holding it against turning back), the
 // Simpson gear's 1st (C1 B2) holds in drive and freewheels in coast, the textbook "no engine
 // braking in 1st"; its reverse (C2 B2) would need the sprag to hold the other way: no drive, which

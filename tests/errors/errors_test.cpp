@@ -798,6 +798,14 @@ TEST_F(Signals, SineWithoutFrequency) { expect_signal_error(R"({ sine = "10*Nm" 
     R"~(scene.toml:9:9: error: a sine needs frequency = "<f>*Hz")~"); }
 TEST_F(Signals, SineFrequencyInRpm) { expect_signal_error(R"({ sine = "10*Nm", frequency = "60*rpm" })",
     R"~(scene.toml:9:39: error: frequency is in cycles per second; give it in Hz or kHz, e.g. "50*Hz" (rpm would make it an angular speed, 2 pi times the frequency: 3000*rpm turns at 50*Hz))~"); }
+TEST_F(Signals, SineFrequencyNotPositive) {
+  expect_signal_error(R"({ sine = "10*Nm", frequency = "-5*Hz" })",
+    R"~(scene.toml:9:39: error: frequency is -5 Hz; a sine's frequency is positive (a constant input is { constant = ... }, and the sign of a sine is its amplitude's or its phase's))~");
+}
+TEST_F(Signals, SineFrequencyBeyondAGearsDynamics) {
+  expect_signal_error(R"({ sine = "10*Nm", frequency = "1e30*Hz" })",
+    R"~(scene.toml:9:39: error: frequency is 1e+30 Hz, above 1e+06 Hz, far beyond a gear's dynamics and what its sine can be computed at in double precision; give the frequency in Hz)~");
+}
 TEST_F(Signals, UnknownForm) { expect_signal_error(R"({ pulse = "10*Nm" })",
     R"~(scene.toml:9:9: error: a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., frequency = ... } or { table = "file.csv" })~"); }
 
@@ -901,6 +909,10 @@ TEST_F(Initial, WrongUnit) { expect_scene_error({{"omega_c = \"0*rpm\"", "omega_
 
 class Outputs : public ErrorTest {};
 
+TEST_F(Outputs, EmptyList) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\noutputs = []"}},
+      R"~(scene.toml:7:11: error: outputs = [] names no output; name the speeds and forces to write, or leave outputs out for all of them)~");
+}
 TEST_F(Outputs, NotAList) {
   expect_scene_error({{"compare_rigid = true", "compare_rigid = true\noutputs = \"omega_c\""}},
       R"~(scene.toml:7:11: error: outputs must be a list of strings, e.g. ["a", "b"])~");
@@ -1241,6 +1253,18 @@ TEST_F(LoadsAndControllers, StartTorqueWithoutIntegral) {
   expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\" }\n",
                R"~(scene.toml:12:10: error: controller 'mg1' has no integral (ki = 0) to start at a given torque; its torque at t = 0 is kp times the speed error: drop Tc_mg1)~",
                {{"omega_c = \"0*rpm\"", "Tc_mg1 = \"-5*N*m\""}});
+}
+
+TEST_F(LoadsAndControllers, StartTorqueOutsideTheLimits) {
+  const std::string controller =
+      "[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\", ki = \"2*N*m\", "
+      "torque_min = \"-20*N*m\", torque_max = \"50*N*m\" }\n";
+  expect_error(controller,
+               R"~(scene.toml:12:10: error: Tc_mg1 = 80 N m is above controller 'mg1''s torque_max, 50 N m; give a start torque within its limits)~",
+               {{"omega_c = \"0*rpm\"", "Tc_mg1 = \"80*N*m\""}});
+  expect_error(controller,
+               R"~(scene.toml:12:10: error: Tc_mg1 = -25 N m is below controller 'mg1''s torque_min, -20 N m; give a start torque within its limits)~",
+               {{"omega_c = \"0*rpm\"", "Tc_mg1 = \"-25*N*m\""}});
 }
 
 TEST_F(LoadsAndControllers, NotWithTunables) {

@@ -70,7 +70,7 @@ TEST_F(RunChecks, DivergedSolution) {
   ::testing::internal::CaptureStderr();
   EXPECT_EQ(run_interpreted(m, run), 3);
   expect_documented(::testing::internal::GetCapturedStderr(),
-      R"~(demo: error: the solution diverged at t = 0.169: its energy is 4.08 times what the initial state and the inputs can supply; use a tighter --tolerance (or a smaller --step for rk4), or --solver exact or implicit; the CSV keeps what was computed and is marked incomplete)~" "\n");
+      R"~(demo: error: the solution diverged at t = 0.169: its energy is 4.08 times what the initial state and the inputs can supply; use a tighter --tolerance, or --solver exact or implicit; the CSV keeps what was computed and is marked incomplete)~" "\n");
   const std::string csv = read_text("out/demo.csv");
   EXPECT_NE(csv.find("\n# incomplete: the solution diverged at t = "), std::string::npos);
 }

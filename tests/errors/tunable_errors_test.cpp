@@ -69,6 +69,11 @@ TEST_F(TunableErrors, ParamOutOfRange) {
       R"~(./demo: error: --param J_c=-1: J_c must be positive; give a number in SI units, or NUMBER*kg*meters^2, or NUMBER*kg*m^2)~" "\n");
 }
 
+TEST_F(TunableErrors, ParamOutsideTheModelsRange) {
+  expect_documented(param_error("\"J_c\", \"K_ps\"", "J_c=1e-300"),
+      R"~(./demo: error: --param J_c=1e-300 is outside the range pogear computes with, 1e-30 to 1e+30 in magnitude (SI); check the value and its unit)~" "\n");
+}
+
 // Values that are accepted, and what they mean.
 TEST(TunableParam, AcceptsSINumbersAndTheUnitsListed) {
   double k = 0;

@@ -10,6 +10,8 @@
 
 #include "pogear/command_line.hpp"
 #include "pogear/drivers.hpp"
+#include "pogear/parameters.hpp"
+#include "pogear/run_support.hpp"
 
 namespace rt = pogear::rt;
 namespace fs = std::filesystem;
@@ -88,6 +90,47 @@ TEST(Options, ParamsAreCollectedAsGiven) {
   EXPECT_FALSE(parse({"--param", "J_c"}).ok);
   EXPECT_FALSE(parse({"--param", "=1"}).ok);
   EXPECT_FALSE(parse({"--param"}).ok);
+}
+
+// --param takes the magnitudes model files take (1e-30 to 1e30 SI, or zero): a value the model
+// reader would refuse cannot come in at run time either.
+TEST(Options, ParamsOutsideTheModelsRangeAreRefused) {
+  double J = 1, g = 0;
+  const std::vector<rt::ParameterField> fields{{"J_p", &J, {{"g*cm^2", 1e-7}}, "positive"}, {"grade", &g, {}, ""}};
+  auto set = [&](const std::string& name, const std::string& text, std::string* err = nullptr) {
+    testing::internal::CaptureStderr();
+    const bool ok = rt::set_parameters({{name, text}}, fields, "sim");
+    const std::string e = testing::internal::GetCapturedStderr();
+    if (err) *err = e;
+    return ok;
+  };
+  std::string err;
+  EXPECT_FALSE(set("J_p", "1e-300", &err));
+  EXPECT_NE(err.find("sim: error: --param J_p=1e-300 is outside the range pogear computes with"), std::string::npos)
+      << err;
+  EXPECT_EQ(J, 1);
+  EXPECT_FALSE(set("J_p", "1e-24*g*cm^2"));  // 1e-31 kg m^2 once converted
+  EXPECT_FALSE(set("grade", "-2e30"));
+  EXPECT_TRUE(set("J_p", "1e-30"));
+  EXPECT_EQ(J, 1e-30);
+  EXPECT_TRUE(set("J_p", "3*g*cm^2"));
+  EXPECT_DOUBLE_EQ(J, 3e-7);
+  EXPECT_TRUE(set("grade", "0"));
+  EXPECT_TRUE(set("grade", "-1e30"));
+}
+
+// A diverged run's advice names what can help the solver that ran it: never a tolerance or
+// another step for exact stepping, which has neither.
+TEST(Options, DivergenceAdviceFitsTheSolver) {
+  EXPECT_NE(rt::divergence_advice(rt::Solver::rk4).find("--step"), std::string::npos);
+  EXPECT_NE(rt::divergence_advice(rt::Solver::dopri5).find("--tolerance"), std::string::npos);
+  EXPECT_NE(rt::divergence_advice(rt::Solver::implicit).find("--tolerance"), std::string::npos);
+  const std::string exact = rt::divergence_advice(rt::Solver::exact);
+  EXPECT_EQ(exact.find("--tolerance"), std::string::npos) << exact;
+  EXPECT_EQ(exact.find("--solver exact"), std::string::npos) << exact;
+  EXPECT_NE(exact.find("parameters"), std::string::npos) << exact;
+  for (rt::Solver s : rt::all_solvers) EXPECT_EQ(rt::divergence_advice(s).find(std::string(rt::solver_name(s)) + " or"),
+                                                 std::string::npos);
 }
 
 // pogear runs a compiled simulator with command_line(run): every setting comes back as it was,

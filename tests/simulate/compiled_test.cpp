@@ -2,6 +2,8 @@
 // the derivation), and one matrix exponential over the whole horizon built from the numbers
 // that `pogear derive --format json` reports. Also: generated/ is what the generator writes.
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
 #include <fstream>
 
 #include <unsupported/Eigen/MatrixFunctions>
@@ -149,6 +151,31 @@ TEST_P(SimulateCommand, FinalStateMatchesOneMatrixExponentialOfTheDerivedNumbers
 }
 
 INSTANTIATE_TEST_SUITE_P(Paper, SimulateCommand, ::testing::Values("paper_one_stage", "paper_two_stage"));
+
+// Files of an earlier run of the scene that this run does not write (events of brakes since taken
+// out, a shift figure) are listed, and left alone: pogear cannot tell them from a user's file.
+TEST(SimulateOutputs, FilesOfAnEarlierRunAreListedNotRemoved) {
+  const auto dir = temp_dir("stale_outputs");
+  const auto an_hour_ago = std::filesystem::file_time_type::clock::now() - std::chrono::hours(1);
+  for (const std::string f : {"paper_one_stage.csv", "paper_one_stage.events.csv", "paper_one_stage.shift.svg",
+                              "paper_one_stage.notes.txt"}) {
+    write_text((dir / f).string(), "from an earlier run\n");
+    std::filesystem::last_write_time(dir / f, an_hour_ago);
+  }
+  const Command sim = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " +
+                                  source_path("models/scenes/paper_one_stage.toml") + " -o " + dir.string() +
+                                  " --interpreted");
+  ASSERT_EQ(sim.status, 0) << sim.out << sim.err;
+  for (const std::string f : {"paper_one_stage.events.csv", "paper_one_stage.shift.svg"}) {
+    EXPECT_NE(sim.out.find("note: " + (dir / f).string() + " is from an earlier run; this run did not write it\n"),
+              std::string::npos) << sim.out;
+    EXPECT_EQ(read_text((dir / f).string()), "from an earlier run\n");
+  }
+  // Written by this run, or no name of pogear's: not listed.
+  EXPECT_EQ(sim.out.find("paper_one_stage.csv is from"), std::string::npos) << sim.out;
+  EXPECT_EQ(sim.out.find("notes.txt"), std::string::npos) << sim.out;
+  EXPECT_NE(read_text((dir / "paper_one_stage.csv").string()), "from an earlier run\n");
+}
 
 // A reviewer traces each number of the generated code to a parameter: the header lists every
 // parameter in SI with its unit, its text and where it was written (the model, or the scene that

@@ -36,8 +36,8 @@ TEST(Divergence, Dopri5AtTolerance02IsReportedAsDiverged) {
   const std::string err = ::testing::internal::GetCapturedStderr();
   const std::string expected =
       "paper_one_stage: error: the solution diverged at t = 0.165: its energy is 4.06 times what the initial state "
-      "and the inputs can supply; use a tighter --tolerance (or a smaller --step for rk4), or --solver exact or "
-      "implicit; the CSV keeps what was computed and is marked incomplete\n";
+      "and the inputs can supply; use a tighter --tolerance, or --solver exact or implicit; the CSV keeps what was "
+      "computed and is marked incomplete\n";
   EXPECT_EQ(err, expected);  // docs/errors.md shows it for the demo scene (RunChecks.DivergedSolution)
   const Csv csv = read_csv((dir / "paper_one_stage.csv").string());
   EXPECT_TRUE(csv.incomplete);

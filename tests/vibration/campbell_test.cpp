@@ -115,5 +115,46 @@ TEST(Campbell, CommandDrawsTheDiagramAndReportsTheCrossings) {
   }
 }
 
+// A held body stands still, so the natural frequencies a harmonic meets on the line are those of
+// the gear with that body held: the same as with a brake on it engaged (modes --engaged), not the
+// free gear's. With sl held they are 1856.0 and 1987.2 Hz, which scipy's eigenproblem of the
+// constrained gear gave too.
+TEST(Campbell, AHeldBodyIsHeldInTheNaturalFrequencies) {
+  const auto dir = test_dir("campbell_held");
+  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " modes " + source_path("models/ravigneaux.toml") +
+                                " --campbell " + (dir / "c.svg").string() + " --input ss --hold sl --to 8000*rpm");
+  ASSERT_EQ(c.status, 0) << c.err;
+  EXPECT_NE(c.out.find("natural frequencies of the gear with sl held [Hz]: 1856"), std::string::npos) << c.out;
+
+  std::string text = read_text(source_path("models/ravigneaux.toml"));
+  const std::size_t at = text.find("[parameters]");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at, "[[brake]]\nname = \"hold\"\nbody = \"sl\"\ncapacity = \"T_hold\"\n\n");
+  text += "\nT_hold = \"100*N*m\"\n";
+  const Derivation braked =
+      derive_topology(parse_topology_text(text, "braked.toml"), std::nullopt, SourceLocation{"braked.toml", 0, 0});
+  const VibrationModes engaged = vibration_modes(braked, braked.values, "none", {0});
+  std::vector<double> expected;
+  for (const VibrationMode& m : engaged.modes)
+    if (m.kind != ModeKind::rigid && (expected.empty() || m.frequency_hz > expected.back() * (1 + degenerate_tolerance)))
+      expected.push_back(m.frequency_hz);
+  ASSERT_GE(expected.size(), 2u);
+  EXPECT_NEAR(expected[0], 1856.0, 0.05);
+  EXPECT_NEAR(expected[1], 1987.2, 0.05);
+
+  const Derivation d = ravigneaux();
+  const VibrationModes held = vibration_modes(d, d.values, "none", {}, {body(d, "sl")});
+  EXPECT_EQ(held.held, std::vector<std::string>{"sl"});
+  const CampbellDiagram line = campbell_diagram(d, d.values, held, {}, body(d, "ss"), {body(d, "sl")}, 8000, 1);
+  ASSERT_EQ(line.natural_hz.size(), expected.size());
+  // The same eigenproblem reached two ways (a brake's group, a held body's): equal to rounding.
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(line.natural_hz[i], expected[i], 1e-9 * expected[i]);
+  const double hz_per_rpm = line.meshes.front().hz_per_rpm;
+  ASSERT_GE(line.crossings.size(), 2u);
+  EXPECT_NEAR(line.crossings[0].input_rpm, expected[0] / hz_per_rpm, 1e-9 * line.crossings[0].input_rpm);
+  EXPECT_NEAR(line.crossings[0].input_rpm, 6805.3, 0.05);
+  EXPECT_NEAR(line.crossings[1].input_rpm, 7286.3, 0.05);
+}
+
 }  // namespace
 }  // namespace pogear::test

@@ -126,6 +126,27 @@ TEST(Response, CommandWritesACsvAndABodeFigurePerPair) {
   EXPECT_NE(c.out.find("resonance peak"), std::string::npos) << c.out;
 }
 
+// A figure shows about a thousand points across: 100,000 frequencies draw about as large a figure
+// as 1,000, with the resonance peaks still in it; the CSV keeps them all.
+TEST(Response, FiguresOfLongGridsAreThinnedToWhatTheyCanShow) {
+  const auto dir = test_dir("response_thinned");
+  std::uintmax_t svg_bytes[2] = {};
+  for (int i = 0; i < 2; ++i) {
+    const int points = i == 0 ? 1000 : 100000;
+    const auto sub = dir / std::to_string(points);
+    const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " response " +
+                                  source_path("models/scenes/paper_one_stage.toml") +
+                                  " --input tau_c --output omega_r --from 10*Hz --to 2*kHz --points " +
+                                  std::to_string(points) + " -o " + sub.string());
+    ASSERT_EQ(c.status, 0) << c.err;
+    const std::string csv = read_text(sub / "paper_one_stage.response.tau_c.omega_r.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), points + 1);
+    svg_bytes[i] = std::filesystem::file_size(sub / "paper_one_stage.response.tau_c.omega_r.svg");
+  }
+  // Unthinned, the 100,000-point figure is some 60 times the 1,000-point one.
+  EXPECT_LT(svg_bytes[1], 3 * svg_bytes[0]) << svg_bytes[0] << " and " << svg_bytes[1] << " bytes";
+}
+
 // Every value the response writes agrees with an independent evaluation in long double (dense LU of
 // jwI - M) to response_accuracy, over every input-output pair of the one-stage scene from 1 Hz to
 // 10 kHz; and the values that rounding ruins are left out: from the motor to the countershaft g the

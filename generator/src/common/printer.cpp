@@ -352,6 +352,23 @@ std::string latex_text(std::string_view text) {
   return out;
 }
 
+std::string markdown_text(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    // CommonMark escapes any ASCII punctuation with a backslash; these are the ones that can start
+    // emphasis, code, a link, math ($), a table cell, strike-through, an escape or close a heading.
+    else if (std::string_view("\\`*_[]#|$~").find(c) != std::string_view::npos) (out += '\\') += c;
+    // A line break would end the heading; other control characters have no place in a report.
+    else if (u < 0x20 || u == 0x7f) out += ' ';
+    else out += c;
+  }
+  return out;
+}
+
 std::string cpp_double(double v) {
   std::string s = fmt::format("{}", v);
   if (s.find_first_of(".eEn") == std::string::npos) s += ".0";

@@ -25,6 +25,8 @@ std::string latex_symbol(const std::string& name);
 // Text for LaTeX's text mode (a title, a body's name in \text{}): every character LaTeX gives a
 // meaning (\ { } $ & % # _ ^ ~) written so that it prints as itself.
 std::string latex_text(std::string_view text);
+// Text for Markdown (a title, a name): no HTML, math, emphasis or link it could start renders.
+std::string markdown_text(std::string_view text);
 
 // Shortest decimal that reads back as the same double, always with a '.' or an exponent.
 std::string cpp_double(double v);

@@ -139,13 +139,15 @@ GearRatios gear_ratios(const Derivation& d, const std::string& input, const std:
           // parser's 1e-9 (relative) and not exactly: a check of the closed form's algebra, which
           // a wrong sign or a lost term would fail by far more than that.
           const double direct = to_double(sense * kernel_basis(exact_matrix(C, d.values), rows, {in}, elim)(out, 0));
-          r.value = to_double(value);
+          // Written in tooth counts when the model gives them, as the reports write the rigid model;
+          // its value is then the tooth ratio itself, not its value at pitch radii rounded to doubles.
+          r.ratio = teeth.empty() ? closed : closed.subs(teeth).normal();
+          const std::optional<GiNaC::ex> in_teeth = teeth.empty() ? std::nullopt : in_tooth_numbers(*r.ratio, t);
+          r.value = to_double(in_teeth ? *in_teeth : value);
           if (!(std::abs(r.value - direct) <= 1e-7 * std::max(1.0, std::abs(direct))))
             throw std::logic_error(fmt::format("the closed-form ratio with {} engaged, {}, disagrees with R at the "
                                                "model's values, {}", engaged_names(t, S, ","), r.value, direct));
           r.status = value.is_zero() ? EngagementStatus::output_held : EngagementStatus::ratio;
-          // Written in tooth counts when the model gives them, as the reports write the rigid model.
-          r.ratio = teeth.empty() ? closed : closed.subs(teeth).normal();
           if (r.status == EngagementStatus::ratio) r.one_way = one_way_holds(t, Rn, S, in, out);
         }
       }

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "pogear/parameters.hpp"
+
 namespace pogear {
 
 // In dependency order, so that `b_p = "b_c"` works wherever b_c stands in the file.
@@ -89,10 +91,9 @@ void check_parameter_roles(const Topology& t) {
     if (role.positive ? !(v > 0.0) : !(v >= 0.0))
       throw InputError(p->where, fmt::format("parameter '{}' is {} and must be {} (it is {})", role.name, role.what,
                                              role.positive ? "positive" : "zero or positive", v));
-    // Physical gears span 1e-12 (small inertias, damping) to 1e12 (stiffness) in SI. Products of
-    // a few such factors stay finite within these bounds; beyond them, ranks and the elastic
-    // model's matrices overflow or underflow to garbage (a 1e200 m radius gave "rank of R 0").
-    constexpr double smallest = 1e-30, largest = 1e30;
+    // The range `--param` holds tunables to as well (runtime/pogear/parameters.hpp): beyond it,
+    // ranks and the elastic model's matrices overflow or underflow to garbage.
+    constexpr double smallest = pogear::rt::kSmallestParameter, largest = pogear::rt::kLargestParameter;
     if (v != 0.0 && !(v >= smallest && v <= largest))
       throw InputError(p->where, fmt::format("parameter '{}' is {} of {} (SI), outside the range pogear computes "
                                              "with, {:g} to {:g}; check the value and its unit",

@@ -297,6 +297,14 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
           r.fail(value, fmt::format("controller '{}' has no integral (ki = 0) to start at a given torque; its torque at "
                                     "t = 0 is kp times the speed error: drop {}", c.name, name));
         s.initial[*v] = r.quantity(value, torque_dimension(), name);
+        // A limited controller's torque never leaves its limits; a start outside them would be
+        // clamped at the first step, which is not the start asked for.
+        const double start = s.initial[*v];
+        if (start > c.torque_max || start < c.torque_min)
+          r.fail(value, fmt::format("{} = {} N m is {} controller '{}''s {}, {} N m; give a start torque within its limits",
+                                    name, start, start > c.torque_max ? "above" : "below", c.name,
+                                    start > c.torque_max ? "torque_max" : "torque_min",
+                                    start > c.torque_max ? c.torque_max : c.torque_min));
       } else if (v->kind == VariableKind::velocity) {
         s.initial[*v] = r.quantity(value, angular_velocity_dimension(), name);
       } else {
@@ -310,7 +318,12 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
 
   if (const toml::node* n = root.get("outputs")) {
     s.outputs_where = r.loc(*n);
-    for (const auto& o : r.strings(*n, "outputs")) {
+    const std::vector<std::string> listed = r.strings(*n, "outputs");
+    // No outputs at all is what leaving the key out gives (every speed and force), not none.
+    if (listed.empty())
+      r.fail(*n, "outputs = [] names no output; name the speeds and forces to write, or leave outputs out for all of "
+                 "them");
+    for (const auto& o : listed) {
       const auto v = find_variable(topology, o, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
       if (!v) r.fail(*n, fmt::format("output '{}' is neither omega_<body>, F_<mesh> nor Tc_<controller>", o));
       if (std::find(s.outputs.begin(), s.outputs.end(), *v) != s.outputs.end())

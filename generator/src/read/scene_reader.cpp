@@ -73,7 +73,15 @@ double SceneReader::frequency_hz(const toml::node& n, std::string_view what) con
                             what, unit));
   Dimension hz;
   hz.exponent[2] = -1;
-  return evaluated(n, hz, what).si;
+  const double f = evaluated(n, hz, what).si;
+  if (!(f > 0)) fail(n, fmt::format("{} is {} Hz; a sine's frequency is positive (a constant input is {{ constant = ... }}, "
+                                    "and the sign of a sine is its amplitude's or its phase's)", what, f));
+  // Beyond it no gear's dynamics respond, and the phase 2 pi f t loses its digits within a run.
+  constexpr double highest = 1e6;
+  if (f > highest)
+    fail(n, fmt::format("{} is {:g} Hz, above {:g} Hz, far beyond a gear's dynamics and what its sine can be computed "
+                        "at in double precision; give the frequency in Hz", what, f, highest));
+  return f;
 }
 
 double SceneReader::coefficient(const toml::node& n, const Dimension& dim, std::string_view what,

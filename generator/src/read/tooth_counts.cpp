@@ -129,4 +129,19 @@ GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s) 
   return out;
 }
 
+std::optional<GiNaC::ex> in_tooth_numbers(const GiNaC::ex& e, const Topology& t) {
+  std::map<std::string, int> teeth;
+  for (const Body& b : t.bodies)
+    for (const Wheel& w : b.wheels)
+      if (w.teeth > 0) teeth["Z_" + w.name] = w.teeth;
+  GiNaC::exmap numbers;
+  for (GiNaC::const_preorder_iterator i = e.preorder_begin(); i != e.preorder_end(); ++i) {
+    if (!GiNaC::is_a<GiNaC::symbol>(*i)) continue;
+    const auto it = teeth.find(GiNaC::ex_to<GiNaC::symbol>(*i).get_name());
+    if (it == teeth.end()) return std::nullopt;
+    numbers[*i] = it->second;
+  }
+  return e.subs(numbers, GiNaC::subs_options::no_pattern);
+}
+
 }  // namespace pogear

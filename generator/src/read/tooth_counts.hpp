@@ -4,6 +4,8 @@
 
 #include <ginac/ginac.h>
 
+#include <optional>
+
 #include "names/symbols.hpp"
 #include "read/topology.hpp"
 
@@ -18,5 +20,10 @@ void add_pitch_radii(Topology& t);
 // meshes (`m` when there is one set, else m_1, m_2, ... in the order of the wheels) and Z_w named
 // after the wheel. Empty when no wheel has teeth. The symbols are for printing only.
 GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s);
+
+// e, written in tooth counts by tooth_count_substitutions, with each Z_w replaced by wheel w's
+// tooth count: the exact value of a ratio of teeth, where the pitch radii m Z / 2 were rounded to
+// doubles. Nothing when e keeps another symbol (a module that did not cancel).
+std::optional<GiNaC::ex> in_tooth_numbers(const GiNaC::ex& e, const Topology& t);
 
 }  // namespace pogear

@@ -366,7 +366,7 @@ std::string report_latex(const Derivation& d, const Diagnostics& diagnostics) {
 
 std::string report_markdown(const Derivation& d, const Diagnostics& diagnostics) {
   const MathDisplay w{"$$\n", "\n$$\n\n", "## ", "\n\n"};
-  return "# " + title_of(d) + "\n\n" + math_body(d, diagnostics, w);
+  return "# " + markdown_text(title_of(d)) + "\n\n" + math_body(d, diagnostics, w);
 }
 
 std::string report_json(const Derivation& d, const Diagnostics& diagnostics) {

@@ -45,6 +45,27 @@ std::vector<std::vector<double>> bode_rows(const std::vector<double>& f, const s
   return rows;
 }
 
+// Rows for a figure: a figure shows no more than a thousand or so points across, so a longer
+// list keeps, of each run of consecutive rows, the lowest and the highest magnitude (peaks and
+// notches survive, in order). The CSV keeps every row.
+std::vector<std::vector<double>> thinned_for_figure(std::vector<std::vector<double>> rows) {
+  constexpr std::size_t most = 2000;
+  if (rows.size() <= most) return rows;
+  const std::size_t run = (rows.size() + most / 2 - 1) / (most / 2);
+  std::vector<std::vector<double>> kept;
+  for (std::size_t begin = 0; begin < rows.size(); begin += run) {
+    const std::size_t end = std::min(rows.size(), begin + run);
+    std::size_t lo = begin, hi = begin;
+    for (std::size_t k = begin; k < end; ++k) {
+      if (rows[k][1] < rows[lo][1]) lo = k;
+      if (rows[k][1] > rows[hi][1]) hi = k;
+    }
+    kept.push_back(rows[std::min(lo, hi)]);
+    if (lo != hi) kept.push_back(rows[std::max(lo, hi)]);
+  }
+  return kept;
+}
+
 bool any_accurate(const std::vector<bool>& accurate) {
   return std::find(accurate.begin(), accurate.end(), true) != accurate.end();
 }
@@ -52,9 +73,9 @@ bool any_accurate(const std::vector<bool>& accurate) {
 std::string bode_script(const std::string& scene_name, const TransferFunction& t) {
   std::string s;
   s += gnuplot_svg_preamble(900, 700);
-  s += gnuplot_datablock("elastic", bode_rows(t.frequency_hz, t.value, t.accurate));
+  s += gnuplot_datablock("elastic", thinned_for_figure(bode_rows(t.frequency_hz, t.value, t.accurate)));
   const bool rigid = !t.rigid.empty() && any_accurate(t.rigid_accurate);
-  if (rigid) s += gnuplot_datablock("rigid", bode_rows(t.frequency_hz, t.rigid, t.rigid_accurate));
+  if (rigid) s += gnuplot_datablock("rigid", thinned_for_figure(bode_rows(t.frequency_hz, t.rigid, t.rigid_accurate)));
   s += "set datafile separator ','\nset logscale x\nset grid\nset key outside right top\nset format x '10^{%L}'\n";
   s += "set multiplot layout 2,1\n";
   s += fmt::format("set title '{}: {} to {}{}' noenhanced\n", scene_name, t.input_name, t.output_name,

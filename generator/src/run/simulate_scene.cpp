@@ -3,8 +3,10 @@
 #include "run/simulate_scene.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
@@ -20,6 +22,8 @@
 #include "run/simulator_cache.hpp"
 
 namespace pogear {
+
+namespace fs = std::filesystem;
 
 rt::SceneRun scene_run(const Scene& scene) {
   rt::SceneRun run;
@@ -52,6 +56,29 @@ void check_output_size(const SpecializedScene& model, bool allow_large) {
                                model.main.outputs.size() + 1, static_cast<double>(max_csv_bytes) / 1e9));
 }
 
+namespace {
+
+// The files an earlier run of the scene may have left in dir that this run did not write (one with
+// brakes since taken out leaves its events, one with compare_rigid its rigid CSV): listed, not
+// removed, since pogear cannot tell them from a file of the user's that bears such a name. A file
+// this run wrote was put in place after it started; the kernel stamps files from a coarse clock,
+// up to a few milliseconds behind the one read here, hence the second's margin.
+void list_stale_outputs(const std::string& name, const std::string& dir, fs::file_time_type started,
+                        std::ostream& out) {
+  started -= std::chrono::seconds(1);
+  for (const char* suffix : {".csv", ".rigid.csv", ".events.csv", ".rigid.events.csv", ".velocities.svg",
+                             ".forces.svg", ".shift.svg"}) {
+    const fs::path path = fs::path(dir) / (name + suffix);
+    std::error_code ec;
+    if (!fs::is_regular_file(fs::symlink_status(path, ec))) continue;
+    const fs::file_time_type written = fs::last_write_time(path, ec);
+    if (!ec && written < started)
+      out << "note: " << path.string() << " is from an earlier run; this run did not write it\n";
+  }
+}
+
+}  // namespace
+
 int run_compiled(const std::string& exe, const rt::SceneRun& run) {
   ChildRequest request;
   request.argv = rt::command_line(run);
@@ -75,6 +102,7 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   run.out_dir = options.out_dir;
   run.repeat = options.repeat;
   ensure_directory(options.out_dir);
+  const fs::file_time_type started = fs::file_time_type::clock::now();
   out << operation_summary(model) << std::flush;
   int status = 0;
   if (options.interpreted) {
@@ -85,6 +113,7 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   }
   if (status != 0) return status;
   for (const auto& svg : plot_scene(model, options.out_dir)) out << "wrote " << svg << "\n";
+  list_stale_outputs(model.scene.name, options.out_dir, started, out);
   return 0;
 }
 

@@ -7,6 +7,7 @@
 #include <ostream>
 #include <string>
 
+#include "common/output_file.hpp"
 #include "pogear/command_line.hpp"
 #include "specialize/specialization.hpp"
 
@@ -24,10 +25,6 @@ struct SimulateOptions {
 // The scene's settings as a run: its name, horizon, sample, solver, tolerances (the runtime's rule
 // for atol), step and max_steps; output to "." as the SceneRun default.
 rt::SceneRun scene_run(const Scene& scene);
-
-// CSV files are refused above this size unless the user opts in (`simulate --large-output`): a
-// sample period chosen by mistake would otherwise fill the disk before the run fails.
-inline constexpr std::uintmax_t max_csv_bytes = std::uintmax_t{1} << 30;
 
 // An upper bound of the bytes the scene's CSV files take: samples x columns x 25 (a double in its
 // shortest round-trip form has at most 24 characters, then a separator).

@@ -157,6 +157,11 @@ std::string campbell_text(const CampbellDiagram& c) {
     s += fmt::format("  {:<8} {} Hz per rpm  ({} teeth of {}, frame {})\n", m.mesh, six_digits(m.hz_per_rpm), m.teeth, m.wheel,
                      m.frame);
   if (!c.without_teeth.empty()) s += "  without tooth counts (not drawn): " + joined(c.without_teeth) + "\n";
+  if (!c.held.empty()) {
+    std::vector<std::string> hz;
+    for (double f : c.natural_hz) hz.push_back(six_digits(f));
+    s += fmt::format("natural frequencies of the gear with {} held [Hz]: {}\n", joined(c.held), joined(hz));
+  }
   if (c.crossings.empty()) {
     s += "no harmonic meets a natural frequency below " + six_digits(c.max_rpm) + " rpm\n";
     return s;

@@ -158,9 +158,12 @@ AnalysedSystem analysed_system(const SpecializedScene& model, const SpecializedS
     std::string names;
     for (const FrictionRun& f : model.friction) names += (names.empty() ? "" : ", ") + f.name;
     throw InputError(SourceLocation{model.scene.file, 0, 0},
-                     fmt::format("the engaged elements {} constrain the gear more than once (their torques are "
-                                 "undetermined); engage fewer of them",
-                                 names));
+                     m.ill_conditioned
+                         ? fmt::format("the engaged elements {} join bodies of inertias too disparate for double "
+                                       "precision to determine their torques; check the inertias", names)
+                         : fmt::format("the engaged elements {} constrain the gear more than once (their torques are "
+                                       "undetermined); engage fewer of them",
+                                       names));
   }
   // m.stuck lists the elements, then the controllers: the order of their torque columns.
   const Eigen::MatrixXd Dt = ns.D.middleCols(nu, ne), Nt = ns.N.middleCols(nu, ne);

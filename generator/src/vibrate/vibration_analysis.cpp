@@ -11,6 +11,7 @@
 
 #include "derive/engagement.hpp"
 #include "read/model_parameters.hpp"
+#include "common/output_file.hpp"
 #include "specialize/parameter_folding.hpp"
 #include "common/printer.hpp"
 #include "common/quantity.hpp"
@@ -149,7 +150,10 @@ ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<
     ModesWithCampbell out;
     out.modes = vibration_modes(in.d, in.values, in.damping, in.engaged);
     out.modes.open_in_scene = in.open_in_scene;
-    out.campbell = campbell_diagram(in.d, in.values, out.modes, in.engaged, input, held, max_rpm, request.harmonics);
+    // A held body is held: the natural frequencies on the line are the held gear's.
+    const VibrationModes held_modes =
+        held.empty() ? out.modes : vibration_modes(in.d, in.values, in.damping, in.engaged, held);
+    out.campbell = campbell_diagram(in.d, in.values, held_modes, in.engaged, input, held, max_rpm, request.harmonics);
     return out;
   } catch (const std::domain_error& e) {
     throw InputError(where, e.what());
@@ -226,6 +230,14 @@ SceneResponse response_of(const ResponseRequest& request) {
                                           name, scene.model.bodies.front().name));
     if (std::find(outputs.begin(), outputs.end(), *v) == outputs.end()) outputs.push_back(*v);
   }
+  // One CSV per pair, a row of four numbers per frequency, 25 bytes a number at most.
+  const double bytes = 100.0 * grid.points * static_cast<double>(inputs.size() * outputs.size());
+  if (bytes > static_cast<double>(max_csv_bytes))
+    throw InputError(where, fmt::format("the CSV files of this response may take up to {:.3g} GB ({} points for each "
+                                        "of {} input-output pairs); the limit is {:.3g} GB: give fewer --points, "
+                                        "inputs or outputs",
+                                        bytes / 1e9, grid.points, inputs.size() * outputs.size(),
+                                        static_cast<double>(max_csv_bytes) / 1e9));
   const std::vector<int> engaged =
       request.engaged ? parse_engaged(scene.model, *request.engaged, where) : std::vector<int>{};
   return SceneResponse{scene.name, frequency_response(scene, inputs, outputs, grid, engaged),

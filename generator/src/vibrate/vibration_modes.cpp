@@ -51,12 +51,12 @@ GiNaC::matrix grouped(const GiNaC::matrix& X, const IndexMap& rows, unsigned out
   return Y;
 }
 
-ModalModel modal_model(const Derivation& d, const std::vector<int>& engaged) {
+ModalModel modal_model(const Derivation& d, const std::vector<int>& engaged, const std::vector<int>& held) {
   const Topology& t = d.topology;
   const ElasticModel& e = d.elastic;
   const int n = static_cast<int>(t.bodies.size()), m = static_cast<int>(t.meshes.size());
   ModalModel mm{e.J, e.K, e.R, e.B_J, e.B_K, e.L, e.A, Eigen::MatrixXd::Identity(n, n), 0};
-  if (engaged.empty()) {
+  if (engaged.empty() && held.empty()) {
     // The gear's rank: the rigid model's when that is the gear's own, else numeric at the model's
     // values, as every rank decision of the reduction is.
     mm.rank = d.engaged.empty() ? d.rigid.rank : numeric_rank(evaluate_matrix(e.R, d.values));
@@ -73,12 +73,15 @@ ModalModel modal_model(const Derivation& d, const std::vector<int>& engaged) {
     const int a = root(f.first), b = root(f.is_brake() ? n : f.second);
     parent[std::min(a, b)] = parent[std::max(a, b)];  // the housing stays a root
   }
+  for (int h : held) parent[root(h)] = root(n);  // a held body is tied to the housing, as by a brake
   std::vector<int> group_of_root(n + 1, -1);
   int groups = 0;
   for (int i = 0; i < n; ++i)
     if (root(i) != root(n) && group_of_root[root(i)] < 0) group_of_root[root(i)] = groups++;
   if (groups == 0)
-    throw std::domain_error("the engaged brakes hold every body, so nothing can vibrate; engage fewer elements");
+    throw std::domain_error(held.empty() ? "the engaged brakes hold every body, so nothing can vibrate; engage fewer elements"
+                                         : "the held bodies and engaged brakes hold every body, so nothing can vibrate; "
+                                           "hold fewer bodies");
   // omega_i = a_i a_r q for the group's root r, which turns at q itself.
   IndexMap body(n), mesh(m), state(n + m);
   mm.P = Eigen::MatrixXd::Zero(n, groups);
@@ -264,19 +267,20 @@ std::string_view mode_kind_name(ModeKind kind) {
 }
 
 double lowest_natural_frequency(const Derivation& d, const GiNaC::exmap& values) {
-  const Eigenproblem p = solve_eigenproblem(modal_model(d, d.engaged), values);
+  const Eigenproblem p = solve_eigenproblem(modal_model(d, d.engaged, {}), values);
   if (p.rigid >= p.lambda.size()) throw std::domain_error("the model has no elastic mode");
   return frequency_hz(p.lambda(p.rigid));
 }
 
 VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, std::string damping,
-                               const std::vector<int>& engaged) {
-  const ModalModel mm = modal_model(d, engaged);
+                               const std::vector<int>& engaged, const std::vector<int>& held) {
+  const ModalModel mm = modal_model(d, engaged, held);
   const Eigenproblem p = solve_eigenproblem(mm, values);
   const Topology& t = d.topology;
   VibrationModes out;
   out.model = t.name;
   for (int k : engaged) out.engaged.push_back(t.friction_elements.at(k).name);
+  for (int b : held) out.held.push_back(t.bodies.at(b).name);
   for (const Body& b : t.bodies) out.bodies.push_back(b.name);
   for (const Mesh& m : t.meshes) out.meshes.push_back(m.name);
   out.damping = std::move(damping);

@@ -40,6 +40,7 @@ struct DampedMode {
 struct VibrationModes {
   std::string model;
   std::vector<std::string> engaged;  // brakes and clutches stuck, in file order; empty: all open
+  std::vector<std::string> held;     // bodies held at rest (a Campbell diagram's operating line)
   std::vector<std::string> bodies, meshes;
   std::vector<VibrationMode> modes;  // ascending frequency; a degenerate cluster is one entry per mode
   std::string damping;               // which damping the ratios are of, e.g. "none", "mesh damping"
@@ -63,12 +64,12 @@ inline constexpr double max_eigenvalue_spread = 1e8;
 
 // Modes of the elastic model at `values` (exact numbers for every parameter; damping parameters
 // at zero for damping left out), with the friction elements `engaged` (indices) stuck: the bodies
-// they tie move as one, the bodies a brake holds stay at rest (shape 0). Shapes, energies and the
+// they tie move as one, the bodies a brake holds and the `held` bodies stay at rest (shape 0). Shapes, energies and the
 // kinds are per body and mesh of the gear; the closed forms are of the engaged model's
 // det(R_q^T K R_q - lambda J_q). Throws std::domain_error when the frequencies cannot be computed
 // to the accuracy above, when the model has no mesh, and when the brakes hold every body.
 VibrationModes vibration_modes(const Derivation& d, const GiNaC::exmap& values, std::string damping,
-                               const std::vector<int>& engaged = {});
+                               const std::vector<int>& engaged = {}, const std::vector<int>& held = {});
 
 // The lowest nonzero natural frequency [Hz] at `values`, by the same computation, with the
 // derivation's engaged elements stuck.

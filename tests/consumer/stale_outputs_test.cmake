@@ -1,0 +1,60 @@
+# The `simulator_stale_outputs` test (cmake -P): pogear_add_simulator's build step, run for a scene
+# and then for the same scene renamed, leaves the new scene's header and main in the output
+# directory and not the old ones, and keeps every file it did not write.
+cmake_minimum_required(VERSION 3.25)
+
+foreach(var POGEAR SCRIPT SCENE WORK_DIR)
+  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
+    message(FATAL_ERROR "stale_outputs_test.cmake: pass -D${var}=...")
+  endif()
+endforeach()
+
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(out_dir "${WORK_DIR}/out")
+file(MAKE_DIRECTORY "${out_dir}")
+file(WRITE "${out_dir}/notes_of_my_own.hpp" "// a user's file\n")
+
+# The scene under two names; its model path made absolute so that the copies find it.
+file(READ "${SCENE}" text)
+get_filename_component(scene_dir "${SCENE}" DIRECTORY)
+string(REGEX MATCH "\nmodel = \"([^\"]+)\"" _ "${text}")
+if(NOT CMAKE_MATCH_1)
+  message(FATAL_ERROR "no model line in ${SCENE}")
+endif()
+get_filename_component(model "${CMAKE_MATCH_1}" ABSOLUTE BASE_DIR "${scene_dir}")
+string(REGEX REPLACE "\nmodel = \"[^\"]+\"" "\nmodel = \"${model}\"" text "${text}")
+foreach(name first_name second_name)
+  string(REGEX REPLACE "\nname = \"[^\"]+\"" "\nname = \"${name}\"" renamed "${text}")
+  file(WRITE "${WORK_DIR}/${name}.toml" "${renamed}")
+endforeach()
+
+function(generate name)
+  execute_process(COMMAND "${CMAKE_COMMAND}" "-DPOGEAR=${POGEAR}" "-DSCENE=${WORK_DIR}/${name}.toml"
+                          "-DOUT_DIR=${out_dir}" "-DMAIN=${out_dir}/pogear_simulator_main.cpp" -P "${SCRIPT}"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE output ERROR_VARIABLE output)
+  if(NOT rc STREQUAL "0")
+    message(FATAL_ERROR "generating ${name} failed (${rc}):\n${output}")
+  endif()
+endfunction()
+
+generate(first_name)
+foreach(f first_name.hpp first_name_main.cpp)
+  if(NOT EXISTS "${out_dir}/${f}")
+    message(FATAL_ERROR "the first build step did not write ${f}")
+  endif()
+endforeach()
+generate(second_name)
+foreach(f second_name.hpp second_name_main.cpp notes_of_my_own.hpp)
+  if(NOT EXISTS "${out_dir}/${f}")
+    message(FATAL_ERROR "after the rename, ${f} is missing")
+  endif()
+endforeach()
+foreach(f first_name.hpp first_name_main.cpp staging/first_name.hpp)
+  if(EXISTS "${out_dir}/${f}")
+    message(FATAL_ERROR "after the rename, the old scene's ${f} is still there")
+  endif()
+endforeach()
+file(READ "${out_dir}/pogear_simulator_main.cpp" main)
+if(NOT main STREQUAL "#include \"second_name_main.cpp\"\n")
+  message(FATAL_ERROR "the simulator's main includes '${main}'")
+endif()
