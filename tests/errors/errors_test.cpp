@@ -997,8 +997,8 @@ TEST(ErrorDocs, EveryEntryNamesItsTest) {
 TEST(ErrorDocs, EveryNamedTestExists) {
   std::string sources;
   // The stability suite checks the messages of runs it refuses (ExactRange) where it runs them, the
-  // runtime's suite those of the hybrid engine.
-  for (const char* dir : {"tests/errors", "tests/stability", "tests/runtime"})
+  // runtime's suite those of the hybrid engine, tests/commands those of the command line.
+  for (const char* dir : {"tests/errors", "tests/commands", "tests/stability", "tests/runtime"})
     for (const auto& e : fs::directory_iterator(source_path(dir)))
       if (e.path().extension() == ".cpp") sources += read_text(e.path());
   // Every `Suite.Name` in backquotes, both parts capitalized words (no std::regex: g++ 12 warns

@@ -6,6 +6,9 @@
 # enforces the last rule too (tests/stages/forbidden_include.cpp); this check names every offence
 # at once, and the first two, which the build cannot see.
 cmake_minimum_required(VERSION 3.25)
+if(NOT IS_DIRECTORY "${SOURCE_DIR}" OR NOT EXISTS "${STAGES_FILE}")
+  message(FATAL_ERROR "give -DSOURCE_DIR=<generator/src> and -DSTAGES_FILE=<generator/stages.cmake> before -P")
+endif()
 include(${STAGES_FILE})
 file(GLOB_RECURSE files RELATIVE ${SOURCE_DIR} ${SOURCE_DIR}/*.cpp ${SOURCE_DIR}/*.hpp)
 set(offences "")
