@@ -320,7 +320,7 @@ TEST_F(Engaged, RatiosOfOneBody) {
 TEST_F(Engaged, RedundantMeshes) {
   // The three explicit planets of models/three_planets.toml, with a brake on the ring.
   std::string model = read_text(source_path("models/three_planets.toml"));
-  model = edited(model, {{"[parameters]", "[[brake]]\nname = \"B\"\nbody = \"r\"\n\n[parameters]\nT_B = \"100*N*m\""}});
+  model = edited(model, {{"[parameters]", "[[brake]]\nname = \"B\"\nbody = \"r\"\n\n[parameters]\nTcap_B = \"100*N*m\""}});
   write_text("planets.toml", model);
   expect_pogear_error("derive planets.toml --engaged B", 2,
       R"~(planets.toml: error: the gear's meshes are redundant (rank of R 4 for 6 meshes), and pogear does not split their load with brakes or clutches engaged; leave --engaged out)~");

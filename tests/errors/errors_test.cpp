@@ -334,12 +334,12 @@ TEST_F(FrictionElements, MissingCapacity) {
 
 TEST_F(FrictionElements, NegativeCapacity) {
   expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n", "Tcap_B1 = \"-50*N*m\"",
-      R"~(gear.toml:62:8: error: parameter 'Tcap_B1' is a brake's torque capacity and must be positive (it is -50))~");
+      R"~(gear.toml:62:11: error: parameter 'Tcap_B1' is a brake's torque capacity and must be positive (it is -50))~");
 }
 
 TEST_F(FrictionElements, CapacityNotATorque) {
   expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\n", "Tcap_B1 = \"50*N\"",
-      R"~(gear.toml:62:8: error: parameter 'Tcap_B1' is a brake's torque capacity but has unit kg*m/s^2; it needs kg*m^2/s^2)~");
+      R"~(gear.toml:62:11: error: parameter 'Tcap_B1' is a brake's torque capacity but has unit kg*m/s^2; it needs kg*m^2/s^2)~");
 }
 
 TEST_F(FrictionElements, StaticRatioBelowOne) {
