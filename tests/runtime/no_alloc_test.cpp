@@ -33,27 +33,27 @@ void count_heap_call() {
 }
 }  // namespace
 extern "C" {
-void* malloc(std::size_t n) {
+void* malloc(std::size_t n) noexcept {
   count_heap_call();
   return __libc_malloc(n);
 }
-void* calloc(std::size_t n, std::size_t size) {
+void* calloc(std::size_t n, std::size_t size) noexcept {
   count_heap_call();
   return __libc_calloc(n, size);
 }
-void* realloc(void* p, std::size_t n) {
+void* realloc(void* p, std::size_t n) noexcept {
   count_heap_call();
   return __libc_realloc(p, n);
 }
-void* aligned_alloc(std::size_t alignment, std::size_t n) {
+void* aligned_alloc(std::size_t alignment, std::size_t n) noexcept {
   count_heap_call();
   return __libc_memalign(alignment, n);
 }
-void* memalign(std::size_t alignment, std::size_t n) {
+void* memalign(std::size_t alignment, std::size_t n) noexcept {
   count_heap_call();
   return __libc_memalign(alignment, n);
 }
-int posix_memalign(void** p, std::size_t alignment, std::size_t n) {
+int posix_memalign(void** p, std::size_t alignment, std::size_t n) noexcept {
   count_heap_call();
   *p = __libc_memalign(alignment, n);
   return *p ? 0 : ENOMEM;
