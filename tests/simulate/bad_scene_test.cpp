@@ -1,4 +1,5 @@
 // Bad scene files: each mistake gets a message with its position, never a crash.
+#include "report/model_errors.hpp"
 #include "sim_support.hpp"
 
 namespace pogear::test {
@@ -9,6 +10,10 @@ InputError scene_error(const std::string& text) {
     scene_model(text);
   } catch (const InputError& e) {
     return e;
+  } catch (const GeometryConflict& e) {  // the derivation's typed errors, as the command line prints them
+    return input_error_of(e);
+  } catch (const TiedVelocities& e) {
+    return input_error_of(e);
   }
   ADD_FAILURE() << "no error";
   return InputError({}, "");
