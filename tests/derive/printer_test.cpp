@@ -104,7 +104,7 @@ TEST(MarkdownText, TitleOfAMarkdownReportIsEscaped) {
   ASSERT_NE(pos, std::string::npos);
   model.insert(pos + std::string("name = \"gear\"").size(), "\ntitle = \"<b>bold</b> $x^2$ *em*\"");
   const Derivation d = derive_topology(parse_topology_text(model, "gear.toml"), std::nullopt, SourceLocation{"gear.toml", 0, 0});
-  const std::string md = report_markdown(d);
+  const std::string md = report_markdown(d, derivation_diagnostics(d));
   EXPECT_EQ(md.substr(0, md.find('\n')), "# gear: &lt;b&gt;bold&lt;/b&gt; \\$x^2\\$ \\*em\\*") << md;
 }
 
