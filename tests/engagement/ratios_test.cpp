@@ -215,7 +215,8 @@ TEST(Ratios, AToothRatioIsTheCorrectlyRoundedFraction) {
         {"axis = { carrier = \"c\", distance = \"r_c\" }", "axis = { carrier = \"c\", distance = \"r_c\" }\nteeth = 17\nmodule = \"0.7*mm\""},
         {"wheels = [ { name = \"r\", radius = \"r_r\", internal = true } ]",
          "wheels = [ { name = \"r\", teeth = 71, module = \"0.7*mm\", internal = true } ]"},
-        {"r_s = \"50*mm\"", ""}, {"r_p = \"12.5*mm\"", ""}, {"r_r = \"75*mm\"", ""}}) {
+        {"r_s = \"50*mm\"", ""}, {"r_p = \"12.5*mm\"", ""}, {"r_r = \"75*mm\"", ""},
+        {"r_c = \"62.5*mm\"", "r_c = \"18.9*mm\""}}) {  // (37 + 17) 0.7 mm / 2
     const std::size_t at = text.find(from);
     ASSERT_NE(at, std::string::npos) << from;
     text.replace(at, from.size(), to);
