@@ -1,6 +1,8 @@
 // The definitions of hybrid.hpp's HybridEngine: compiled into libpogear_runtime
 // (runtime/src/hybrid.cpp), or included inline by hybrid.hpp under POGEAR_RT_HEADER_ONLY. The engine
 // does not depend on a model's size, so no simulator compiles it again.
+#include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -53,6 +55,12 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   std::vector<Signal> all = sys.inputs;
   for (const auto& e : sys.elements) all.push_back(e.command);
   d.breaks = breakpoints(all, 0.0, d.horizon);
+  d.sine_period = shortest_sine_period(all);
+  d.hold_step = std::numeric_limits<double>::infinity();
+  if (c.method.solver == Solver::exact && std::isfinite(d.sine_period)) {
+    if (!(c.method.options.h > 0)) return RunStatus{false, "invalid step size h = " + detail::num(c.method.options.h), 0.0};
+    d.hold_step = c.method.options.h;
+  }
   d.x = x0;
   d.energy.setZero();
   std::fill(d.dir.begin(), d.dir.end(), 0);

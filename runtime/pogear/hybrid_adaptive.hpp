@@ -59,7 +59,9 @@ class AdaptiveStepper {
 
   // Restarts in the current mode at t (its stepper made anew when the mode changed). As for the
   // exact method, no step longer than the mode's event_step while an element is watched (TR-BDF2
-  // would otherwise step over oscillations it damps numerically).
+  // would otherwise step over oscillations it damps numerically), nor than a sixteenth of the
+  // shortest sine's period: a sine can drive a stuck element's torque while the state stays at rest,
+  // and the error control, which sees only the state, would step over its every crossing.
   void start(double t, double t_stop, bool stop_is_break) {
     const auto& m = mode_of(sys_, d_.cache, d_.mask);
     rhs_.mode = jacobian_.mode = &m;
@@ -71,7 +73,7 @@ class AdaptiveStepper {
       stepper_mask_ = d_.mask;
     }
     s_->start(t, d_.x);
-    h_max_ = any_watched(d_) ? std::min(opt_.h_max, m.event_step) : opt_.h_max;
+    h_max_ = any_watched(d_) ? std::min({opt_.h_max, m.event_step, d_.sine_period / 16}) : opt_.h_max;
     h_ = std::min(h_, h_max_);
     t_stop_ = t_stop;
     stop_is_break_ = stop_is_break;

@@ -47,7 +47,14 @@ struct HybridData {
   Eigen::Index nx = 0, nu = 0, nw = 0;  // states, known inputs u, all inputs w = [u; T]
   double horizon = 0;
   Eigen::MatrixXd S;  // the slips of all elements (a controller's row zero: it has no slip)
+  Eigen::VectorXd slip_norm;  // ||S_k||_1, the zero-slip rule's scale (slip_is_zero)
+  std::vector<Eigen::Index> speed_states;  // the system's speeds, or the states some slip reads
   std::vector<double> breaks;  // of the inputs and commands
+  // The shortest period of a sine among the inputs and commands (infinity without one), and the
+  // longest step over which the exact method may hold the inputs linear: the scene's step when a
+  // sine is present (its error is what the summary states), else unbounded.
+  double sine_period = std::numeric_limits<double>::infinity();
+  double hold_step = std::numeric_limits<double>::infinity();
 
   Eigen::VectorXd x, energy;
   std::vector<ElementState> state;
@@ -89,6 +96,11 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   d.cache.taylor_uses.reserve(kStepLengthsKept + 1);
   d.S = Eigen::MatrixXd::Zero(d.ne, d.nx);
   d.S.topRows(d.nf) = sys.S;
+  d.slip_norm = d.S.cwiseAbs().rowwise().sum();
+  d.speed_states = sys.speed_states;
+  if (d.speed_states.empty())
+    for (Eigen::Index j = 0; j < d.nx; ++j)
+      if (d.S.col(j).cwiseAbs().maxCoeff() > 0) d.speed_states.push_back(j);
   const auto ne = static_cast<std::size_t>(d.ne);
   d.x.resize(d.nx);
   d.energy.setZero(d.ne);
@@ -117,6 +129,8 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
   if (sys.N.cols() != static_cast<Eigen::Index>(sys.inputs.size()) + ne)
     return "the system has not one input column per input, brake or clutch, and torque limit";
   if (ne > 32) return "more than 32 brakes, clutches and torque limits (a mode is a 32-bit set)";
+  for (const Eigen::Index j : sys.speed_states)
+    if (j < 0 || j >= nx) return "a speed state of the system is not one of its states";
   if (d.nx != nx || d.ne != ne || d.nf != sys.S.rows() || d.nw != sys.N.cols() || d.S.rows() != ne ||
       d.S.cols() != nx || d.x.size() != nx || d.energy.size() != ne || d.state.size() != static_cast<std::size_t>(ne) ||
       d.dir.size() != d.state.size() || d.g0.size() != ne || d.v.size() != d.nw || d.dx.size() != nx)
@@ -159,6 +173,22 @@ inline bool open_after(const HybridSystem& sys, const HybridData& d, int k, doub
   return command(sys, d, k, t) == 0 && command(sys, d, k, t + 0.5 * (t_next - t)) == 0;
 }
 
+// The zero-slip rule: a slip is zero when it lies within the rounding of the speeds it is computed
+// from, |S_k x| <= 256 eps ||S_k||_1 max |x_j| over the gear's speeds (HybridSystem::speed_states).
+// A start or a projection computed in
+// floating point leaves slips of a few ulps of the speeds where the exact slip is zero (1.6e-13 rad/s
+// on a locked pair turning at a few hundred rad/s): an exact test would let such noise choose a
+// direction and apply the full kinetic torque in it. `speed` is max |x_j| (speed_scale).
+inline double speed_scale(const HybridData& d, const Eigen::VectorXd& x) {
+  double big = 0;
+  for (const Eigen::Index j : d.speed_states) big = std::max(big, std::abs(x(j)));
+  return big;
+}
+inline constexpr double kZeroSlipUlps = 256;
+inline bool slip_is_zero(const HybridData& d, int k, double slip, double speed) {
+  return std::abs(slip) <= kZeroSlipUlps * std::numeric_limits<double>::epsilon() * d.slip_norm(k) * speed;
+}
+
 // v = w at time t: the inputs, slipping torques c p(t) dir, held controller torques, stuck torques
 // left at zero. `before` asks for the left limit (a step that ends on a breakpoint).
 inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t, bool before, Eigen::VectorXd& v) {
@@ -171,6 +201,20 @@ inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t,
     v(d.nu + k) = d.state[K] == ElementState::stuck ? 0.0
                   : is_limit(d, k)                 ? held_torque(sys, d, k)
                                                    : torque_scale(sys, d, k) * command(sys, d, k, at) * d.dir[K] + 0.0;
+  }
+}
+
+// dv/dt at time t (its left limit when `before`): the inputs' slopes, the slipping torques' c p'(t)
+// dir; stuck torques and held controller torques 0.
+inline void known_input_slopes(const HybridSystem& sys, const HybridData& d, double t, bool before,
+                               Eigen::VectorXd& dv) {
+  const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
+  for (Eigen::Index i = 0; i < d.nu; ++i) dv(i) = slope(sys.inputs[static_cast<std::size_t>(i)], at);
+  for (int k = 0; k < d.ne; ++k) {
+    const auto K = static_cast<std::size_t>(k);
+    dv(d.nu + k) = d.state[K] == ElementState::stuck || is_limit(d, k)
+                       ? 0.0
+                       : torque_scale(sys, d, k) * slope(sys.elements[K].command, at) * d.dir[K];
   }
 }
 

@@ -129,6 +129,26 @@ RunStatus run_modes(const HybridSystem& sys, HybridData& d, Stepper& s, const de
         }
       }
     }
+    if (hit < 0 && !e.clear && !Stepper::lands_on_samples && any_watched(d)) {
+      // The samples within the step, from the dense output: no sample may show a mode past its event
+      // (a stuck torque beyond its capacity), even where the ends and the scan saw none.
+      double prev = 0;
+      g_a = &d.g0;
+      for (long j = k; hit < 0 && j < grid.count && grid.at(j) < e.t1; ++j) {
+        const double theta = grid.at(j) - t;
+        at(theta, d.mid);
+        hit = crossing(d, *g_a, d.mid.g);
+        if (hit >= 0) {
+          a = prev;
+          b = theta;
+          std::swap(d.end, d.mid);
+        } else {
+          d.g_a = d.mid.g;
+          g_a = &d.g_a;
+          prev = theta;
+        }
+      }
+    }
     if (hit < 0) {
       if (!e.before && unfit(d, d.end.x, error)) return fail(e.t1);
       if (!emit(e.t1, e.before, &e)) return stopped(e.t1);

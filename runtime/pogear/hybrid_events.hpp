@@ -91,18 +91,21 @@ inline int crossing(const HybridData& d, const Eigen::VectorXd& g0, const Eigen:
 }
 
 // Whether an event function, positive at both ends of the step [t, t + h] (x0, v0, g0 and x1, v1,
-// g1 there), may dip to zero in between: its cubic through the ends' values and rates does.
+// g1 there), may dip to zero in between: its cubic through the ends' values and rates does. The rates
+// take the inputs' own slopes at each end: a sine's secant over the step would flatten the very
+// swing that drives a stuck element's torque across its capacity.
 inline bool may_dip(const HybridSystem& sys, HybridData& d, const ModeMatrices& m, double t, double h, bool before,
                     const Eigen::VectorXd& x0, const Eigen::VectorXd& v0, const Eigen::VectorXd& g0,
                     const Eigen::VectorXd& x1, const Eigen::VectorXd& v1, const Eigen::VectorXd& g1) {
   const double t1 = t + h;
-  d.dv = (v1 - v0) / h;
   for (int k = 0; k < d.ne; ++k) {
     d.p0(k) = command(sys, d, k, t);
     d.p1(k) = command(sys, d, k, before ? std::nextafter(t1, t) : t1);
   }
   d.dp = (d.p1 - d.p0) / h;
+  known_input_slopes(sys, d, t, false, d.dv);
   event_rates(sys, d, m, x0, v0, d.p0, d.r0);
+  known_input_slopes(sys, d, t1, before, d.dv);
   event_rates(sys, d, m, x1, v1, d.p1, d.r1);
   for (int k = 0; k < d.ne; ++k)
     if (cubic_dips(g0(k), g1(k), d.r0(k), d.r1(k), h)) return true;

@@ -28,14 +28,15 @@ class ExactStepper {
     side_ = make_event_point(d);
   }
 
-  // A step from t toward t_stop (a sample time or a breakpoint): the whole of it when the mode's
-  // event_step allows or its proof is tried (once per stop: after a failed proof the rest of the
-  // period is not tried again), else equal steps of at most event_step, which share one
-  // discretization.
+  // A step from t toward t_stop (a sample time or a breakpoint), in equal steps of at most the hold
+  // step (a sine's linear hold: the scene's step) that share one discretization: the whole of one when
+  // the mode's event_step allows or its proof is tried (once per stop: after a failed proof the rest
+  // of the period is not tried again), else equal steps of at most event_step.
   void start(double t, double t_stop, bool stop_is_break) {
     t_stop_ = t_stop;
     stop_is_break_ = stop_is_break;
     h_ = t_stop - t;
+    if (h_ > d_.hold_step) h_ /= std::ceil(h_ / d_.hold_step - 1e-9);
     depth_ = 0;
     try_whole_ = false;
     check_ = mode_of(sys_, d_.cache, d_.mask).event_step;
@@ -52,12 +53,16 @@ class ExactStepper {
     v0_ = v0;
     if (try_whole_) {
       try_whole_ = false;
-      known_inputs(sys_, d_, t_stop_, stop_is_break_, end.v);
+      // The stop itself, or a hold step short of it.
+      const bool whole = h_ == t_stop_ - t;
+      const double t1 = whole ? t_stop_ : t + h_;
+      const bool before = whole && stop_is_break_;
+      known_inputs(sys_, d_, t1, before, end.v);
       advance(discretization(sys_, d_, d_.mask, h_), v0, end.v, end.z);
       ++d_.steps;
       end.x = end.z.head(d_.nx);
-      if (clear_of_events(m, t, h_, stop_is_break_, d_.x, v0, end.x, end.v)) {
-        e = StepEnd{t_stop_, h_, stop_is_break_, true};
+      if (clear_of_events(m, t, h_, before, d_.x, v0, end.x, end.v)) {
+        e = StepEnd{t1, h_, before, true};
         return true;
       }
       unproven_until_ = t_stop_;

@@ -47,6 +47,9 @@ struct HybridSystem {
   std::vector<FrictionElementData> elements;
   std::vector<TorqueLimitData> limits;
   std::vector<Signal> inputs;  // u
+  // The states that are speeds (rad/s): the scale of the zero-slip rule (hybrid_data.hpp). Empty:
+  // the states some slip reads.
+  std::vector<Eigen::Index> speed_states;
 };
 
 namespace hybrid_detail {

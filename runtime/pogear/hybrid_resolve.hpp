@@ -43,15 +43,17 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
   d.old_state = d.state;
   std::uint32_t mask = 0;
   d.slip.noalias() = d.S * d.x;
+  const double speed = speed_scale(d, d.x);
   // An element without command until the next breakpoint holds nothing: it is no candidate (at rest
   // every slip is zero, and open elements tried stuck could over-constrain the gear). A controller
-  // is always tried within its limits: it leaves saturation whenever its law allows.
+  // is always tried within its limits: it leaves saturation whenever its law allows. A slip is zero
+  // by the zero-slip rule (slip_is_zero), never by its rounding's sign.
   for (int k = 0; k < d.ne; ++k) {
     const auto K = static_cast<std::size_t>(k);
-    if (is_limit(d, k) ||
-        (!open_after(sys, d, k, t) && (d.state[K] == ElementState::stuck || d.slip(k) == 0 || k == trigger)))
+    const bool zero = is_limit(d, k) || slip_is_zero(d, k, d.slip(k), speed);
+    if (is_limit(d, k) || (!open_after(sys, d, k, t) && (d.state[K] == ElementState::stuck || zero || k == trigger)))
       mask |= 1u << k;
-    else if (d.slip(k) != 0)
+    else if (!zero)
       d.dir[K] = d.slip(k) > 0 ? 1 : -1;
   }
   for (int round = 0; round <= d.ne; ++round) {

@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cstdio>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,7 +50,8 @@ inline bool write_events(const SceneRun& run, const std::string& suffix, const s
 // Runs `sys` (a generated system struct whose last inputs are the elements' torques, with
 // slip_matrix) with brakes and clutches and torque-limited controllers, and writes
 // OUT/<name><suffix>.csv (the system's outputs, a controller's torque among them, then for each
-// brake and clutch T_<element> [N m], slip_<element> [rad/s], E_<element> [J], and the mode) and
+// brake and clutch T_<element> [N m], slip_<element> [rad/s, or rpm with run.speeds_in_rpm],
+// E_<element> [J], and the mode) and
 // OUT/<name><suffix>.events.csv, with the exact method, dopri5 or implicit (rk4 is refused). The
 // controllers' laws come from the system's torque_limit_laws. Returns 0, or 3 when the run failed.
 template <class System>
@@ -75,6 +77,8 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
       limits[static_cast<std::size_t>(l)].law_w = W.row(l);
     }
   }
+  for (Eigen::Index j = 0; j < nx; ++j)
+    if (sys.state_units[static_cast<std::size_t>(j)] == "rad/s") hs.speed_states.push_back(j);
   hs.elements = elements;
   hs.limits = std::move(limits);
   hs.inputs = signals;
@@ -84,16 +88,17 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   for (const char* prefix : {"T_", "slip_", "E_"})
     for (const auto& e : elements) {
       names.push_back(prefix + e.name);
-      units.emplace_back(prefix[0] == 'T' ? "N m" : prefix[0] == 's' ? "rad/s" : "J");
+      units.emplace_back(prefix[0] == 'T' ? "N m" : prefix[0] == 's' ? (run.speeds_in_rpm ? "rpm" : "rad/s") : "J");
     }
   names.emplace_back("mode");
   units.emplace_back("bits of the stuck elements");
   SystemRunLog log(run, suffix, names, units);
-  if (run.solver == Solver::rk4) {
-    std::fprintf(stderr,
-                 "%s%s: error: brakes and clutches are not simulated with rk4 (its fixed steps cannot locate their "
-                 "events); use --solver exact, dopri5 or implicit\n",
-                 run.name.c_str(), suffix.c_str());
+  // The one admissibility rule (solver.hpp), as pogear simulate words it.
+  const SystemTraits traits{.engages_friction = ne > 0, .limits_torque = nl > 0};
+  if (const auto refusal = solver_refusal(run.solver, traits)) {
+    const std::vector<Solver> solvers = admissible_solvers(traits);
+    std::fprintf(stderr, "%s%s: error: %s; use --solver %s\n", run.name.c_str(), suffix.c_str(),
+                 describe(*refusal).c_str(), solver_alternatives(solvers, false).c_str());
     return 3;
   }
 
@@ -109,6 +114,8 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
       energy_bound.emplace(Eigen::MatrixXd(L), hs.N, bounds, Eigen::VectorXd(x0), run.horizon);
   }
 
+  // 30 / pi rpm per rad/s, as the generator converts the speed outputs.
+  const double slip_scale = run.speeds_in_rpm ? 30 / std::numbers::pi : 1.0;
   typename System::Input w(nu + ne + nl);
   typename System::Output y(ny);
   Eigen::VectorXd row(ny + 3 * ne + 1);
@@ -129,7 +136,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
       sys.outputs(p, x, w, y);
       row.head(ny) = y;
       row.segment(ny, ne) = s.w.segment(nu, ne);
-      row.segment(ny + ne, ne) = s.slip.head(ne);
+      row.segment(ny + ne, ne) = slip_scale * s.slip.head(ne);
       row.segment(ny + 2 * ne, ne) = s.energy.head(ne);
       row(ny + 3 * ne) = static_cast<double>(s.mode);
       if (log.writes_csv()) log.row(t, row.data(), static_cast<long>(row.size()));

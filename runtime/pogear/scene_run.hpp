@@ -19,6 +19,9 @@ struct SceneRun {
   int repeat = 1;  // > 1 for timing: the median is reported
   bool quiet = false;
   bool help = false;  // --help: print the usage and the solvers, run nothing
+  // speed_unit = "rpm": the system's speed outputs come in rpm already; the brakes' and clutches'
+  // slips, which the run computes from the state, are written in rpm too.
+  bool speeds_in_rpm = false;
   // --param NAME=VALUE as given, in order; the generated main resolves them against its Params.
   std::vector<std::pair<std::string, std::string>> params;
 };

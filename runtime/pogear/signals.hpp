@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <variant>
@@ -53,6 +54,31 @@ using Signal = std::variant<Constant, Step, Ramp, Sine, Table>;
 
 inline double value(const Signal& s, double t) {
   return std::visit([t](const auto& sig) { return sig.value(t); }, s);
+}
+
+// The signal's slope at t (its right derivative where it kinks).
+inline double slope(const Signal& s, double t) {
+  if (const auto* r = std::get_if<Ramp>(&s)) return t < r->start_time ? 0.0 : r->slope;
+  if (const auto* sine = std::get_if<Sine>(&s)) {
+    const double w = 2 * std::numbers::pi * sine->frequency_hz;
+    return sine->amplitude * w * std::cos(w * t + sine->phase_rad);
+  }
+  if (const auto* tab = std::get_if<Table>(&s)) {
+    if (tab->t.empty() || !(t >= tab->t.front()) || t >= tab->t.back()) return 0.0;
+    const auto i = static_cast<std::size_t>(std::upper_bound(tab->t.begin(), tab->t.end(), t) - tab->t.begin());
+    return (tab->v[i] - tab->v[i - 1]) / (tab->t[i] - tab->t[i - 1]);
+  }
+  return 0.0;  // Constant, Step
+}
+
+// The shortest period of the signals' sines (of those that move), or infinity: the one input whose
+// value is not linear between breakpoints.
+inline double shortest_sine_period(const std::vector<Signal>& signals) {
+  double period = std::numeric_limits<double>::infinity();
+  for (const Signal& s : signals)
+    if (const auto* sine = std::get_if<Sine>(&s); sine && sine->amplitude != 0 && sine->frequency_hz != 0)
+      period = std::min(period, 1 / std::abs(sine->frequency_hz));
+  return period;
 }
 
 // Times in the open interval (t0, t1) where the signal or its slope jumps, sorted, without duplicates.

@@ -209,7 +209,7 @@ TEST_F(Cli, ResponseUnknownInput) {
 
 TEST_F(Cli, ResponseUnknownOutput) {
   expect_pogear_error("response scene.toml --input tau_c --output omega_x", 2,
-      R"~(scene.toml: error: --output 'omega_x' is neither omega_<body> nor F_<mesh> of the model; give the velocity of a body or the force of a mesh, e.g. omega_c)~");
+      R"~(scene.toml: error: --output 'omega_x' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene; give the velocity of a body, the force of a mesh or a controller's torque, e.g. omega_c)~");
 }
 
 TEST_F(Cli, ResponseTooLarge) {

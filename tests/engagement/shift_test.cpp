@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <tuple>
 
@@ -295,6 +296,57 @@ TEST(Shift, CompiledSimulatorAgreesWithTheInterpretedRunAcrossEvents) {
       EXPECT_NEAR(std::stod(ea[i][0]), std::stod(eb[i][0]), 1e-9) << i;
     }
   }
+}
+
+// speed_unit = "rpm": the slips are written in the speeds' unit (issue 31, item 16: they were
+// rad/s beside rpm speeds), 30 / pi times the rad/s run's, with every other column unchanged but
+// the speeds. The generated main asks the runtime for the same.
+TEST(Shift, SlipsFollowTheSpeedUnit) {
+  namespace fs = std::filesystem;
+  const fs::path dir = temp_dir("shift_rpm");
+  std::ifstream in(source_path("models/scenes/gearshift_planetary.toml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  const std::string relative = "model = \"../", horizon = "horizon = \"4*s\"";
+  scene.replace(scene.find(relative), relative.size(), "model = \"" + source_path("models") + "/");
+  scene.replace(scene.find(horizon), horizon.size(), "horizon = \"2.5*s\"");
+  std::ofstream(dir / "rad.toml") << scene;
+  std::ofstream(dir / "rpm.toml") << "speed_unit = \"rpm\"\n" + scene;
+  for (const std::string name : {"rad", "rpm"}) {
+    const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / (name + ".toml")).string() +
+                                  " --interpreted -o " + (dir / name).string());
+    ASSERT_EQ(c.status, 0) << c.err;
+  }
+  const Csv a = read_csv((dir / "rad" / "gearshift_planetary.csv").string());
+  const Csv b = read_csv((dir / "rpm" / "gearshift_planetary.csv").string());
+  ASSERT_EQ(a.header.size(), b.header.size());
+  ASSERT_EQ(a.rows.size(), b.rows.size());
+  int slips = 0;
+  for (std::size_t col = 1; col < a.header.size(); ++col) {
+    const bool slip = a.header[col].rfind("slip_", 0) == 0;
+    const bool speed = a.header[col].find(" [rad/s]") != std::string::npos;
+    if (slip) {
+      ++slips;
+      EXPECT_EQ(a.header[col].substr(a.header[col].find(' ')), " [rad/s]");
+      EXPECT_EQ(b.header[col].substr(b.header[col].find(' ')), " [rpm]");
+    }
+    const double factor = slip || speed ? 30 / std::numbers::pi : 1.0;
+    double scale = 0;
+    for (const auto& row : a.rows) scale = std::max(scale, std::abs(factor * row[col]));
+    for (std::size_t i = 0; i < a.rows.size(); ++i)
+      // The same run in other units: the conversion's rounding, applied to the output matrix or to
+      // the value (a few ulps of the column's scale).
+      EXPECT_NEAR(b.rows[i][col], factor * a.rows[i][col], 1e-14 * scale) << a.header[col] << " at row " << i;
+  }
+  EXPECT_EQ(slips, 2);
+  const Command g = run_command(std::string(POGEAR_EXECUTABLE) + " generate " + (dir / "rpm.toml").string() + " -o " +
+                                (dir / "gen").string());
+  ASSERT_EQ(g.status, 0) << g.err;
+  std::ifstream main_file(dir / "gen" / "gearshift_planetary_main.cpp");
+  std::stringstream main_text;
+  main_text << main_file.rdbuf();
+  EXPECT_NE(main_text.str().find("run.speeds_in_rpm = true;"), std::string::npos);
 }
 
 }  // namespace

@@ -1098,6 +1098,27 @@ TEST_F(EngagementCommands, TunableCapacity) {
                {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"Tcap_B1\"]"}});
 }
 
+// A capacity or static ratio defined through a tunable would keep its number while --param moved
+// the tunable (issue 31, item 3: T_B = "T_base" held 48.1 N m at any T_base): refused, naming it.
+TEST_F(EngagementCommands, CapacityThroughATunable) {
+  const std::string model = edited(shift_model(), {{"Tcap_B1 = \"50*N*m\"", "T_base = \"50*N*m\"\nTcap_B1 = \"T_base\""}});
+  expect_documented(
+      scene_error(edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"T_base\"]"}}) +
+                      "\n[engagement]\nB1 = \"1\"\n",
+                  model),
+      R"~(scene.toml:7:11: error: 'Tcap_B1', the torque capacity of B1, is defined through tunable 'T_base', and a simulation takes capacities at the scene's value; drop 'T_base' from tunable, or give 'Tcap_B1' a value of its own)~");
+}
+
+TEST_F(EngagementCommands, StaticRatioThroughATunable) {
+  const std::string model = edited(shift_model(), {{"body = \"r\"", "body = \"r\"\nstatic_ratio = \"mu_s\""},
+                                                   {"Tcap_B1 = \"50*N*m\"", "Tcap_B1 = \"50*N*m\"\nmu_s = \"1.2\""}});
+  expect_documented(
+      scene_error(edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"mu_s\"]"}}) +
+                      "\n[engagement]\nB1 = \"1\"\n",
+                  model),
+      R"~(scene.toml:7:11: error: the static_ratio of B1 (mu_s) depends on tunable 'mu_s', and a simulation takes static ratios at the scene's value; drop 'mu_s' from tunable)~");
+}
+
 // Scenes with loads and speed controllers: scene.toml with a [loads] or [controllers] table after
 // its last line (gear.toml's bodies are c, p, s, r, g).
 class LoadsAndControllers : public ErrorTest {

@@ -81,6 +81,51 @@ TEST(ResolveMode, ClutchBeyondItsStaticCapacitySlipsInItsTorquesDirection) {
   EXPECT_EQ(d.v(2), 5);  // the kinetic torque c p, in the slip's direction
 }
 
+// The zero-slip rule (docs/friction-elements.md): a slip within 256 ulps of the speeds it is
+// computed from is zero. A locked pair at 300 rad/s whose second speed carries a rounding error of
+// 1e-15 relative has a slip of 3e-13 rad/s: the clutch holds (before, the noise's sign chose a
+// slipping direction and the full kinetic torque). A slip of 1e-9 rad/s is real and slips.
+TEST(ResolveMode, SlipWithinTheRoundingOfItsSpeedsIsZero) {
+  const HybridSystem sys = chain({1, 3}, {8, 0}, {5}, 1.5);
+  hybrid::HybridData d = hybrid::make_hybrid_data(sys, 1.0);
+  const Eigen::Vector2d x(300, 300 * (1 - 1e-15));
+  ASSERT_NE(x(0) - x(1), 0.0);
+  const Resolved held = resolve(sys, d, x);
+  ASSERT_TRUE(held.ok) << held.error;
+  EXPECT_EQ(d.mask, 1u);
+  EXPECT_EQ(d.state[0], ElementState::stuck);
+
+  hybrid::HybridData e = hybrid::make_hybrid_data(sys, 1.0);
+  const Resolved slips = resolve(sys, e, Eigen::Vector2d(300, 300 - 1e-9));
+  ASSERT_TRUE(slips.ok) << slips.error;
+  EXPECT_EQ(e.mask, 0u);
+  EXPECT_EQ(e.dir[0], 1);
+}
+
+// A brake on a body whose speed is -1.4e-17 rad/s by rounding while the gear's other body turns at
+// 100 rad/s: the brake starts stuck, carrying the body's torque, not its full capacity backward.
+TEST(ResolveMode, BrakeOnABodyAtRestByRoundingStartsStuck) {
+  HybridSystem sys;
+  sys.M = Eigen::MatrixXd::Zero(2, 2);
+  sys.N = Eigen::MatrixXd::Zero(2, 3);
+  sys.N(0, 0) = 1;
+  sys.N(1, 1) = 0.5;
+  sys.N(1, 2) = -0.5;
+  sys.S = Eigen::MatrixXd(1, 2);
+  sys.S << 0, 1;
+  sys.elements = {{"B", 50, 1.2, Constant{1}}};
+  sys.inputs = {Constant{0}, Constant{4}};
+  sys.speed_states = {0, 1};  // both states are speeds: the scale is the gear's, 100 rad/s
+  hybrid::HybridData d = hybrid::make_hybrid_data(sys, 1.0);
+  const Resolved r = resolve(sys, d, Eigen::Vector2d(100, -1.4e-17));
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(d.mask, 1u);
+  EXPECT_EQ(d.x(1), 0.0);  // projected onto the constraint
+  const auto& m = hybrid::mode_of(sys, d.cache, d.mask);
+  hybrid::known_inputs(sys, d, 0.0, false, d.v);
+  EXPECT_NEAR((m.Kx * d.x + m.Kv * d.v)(0), 4, 1e-14);  // the input torque, to rounding
+}
+
 TEST(ResolveMode, TwoBrakesOnOneBodyOverConstrainIt) {
   HybridSystem sys;
   sys.M = Eigen::MatrixXd::Zero(1, 1);

@@ -236,6 +236,20 @@ TEST(InitialState, SteadyStartStaysAtTheEquilibrium) {
   }
 }
 
+// start = "steady" where nothing drives at t = 0: rest is the equilibrium, also without bearing
+// friction (issue 31, item 14: it was refused as "no equilibrium"). The torque arrives later.
+TEST(InitialState, SteadyStartAtRestWithoutTorque) {
+  std::string text = with_line(scene_text("paper_one_stage"), "omega_c = \"0*rpm\"", "start = \"steady\"");
+  text = with_line(text, "tau_c = { constant = \"100*Nm\" }", "tau_c = { step = \"100*Nm\", at = \"0.5*s\" }");
+  text = with_line(text, "effects = [\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\", \"mesh_forces\"]",
+                   "effects = [\"mesh_compliance\", \"mesh_damping\", \"mesh_forces\"]");
+  const SpecializedScene m = scene_model(text);
+  for (const SpecializedSystem* sys : {&m.main, &*m.rigid}) {
+    const NumericSystem ref = numeric_system(m, *sys);
+    EXPECT_EQ(ref.x0.cwiseAbs().maxCoeff(), 0.0) << sys->kind;
+  }
+}
+
 // Loads start with the gear. Steady: the constant and linear parts of a road load on the ring
 // enter the rigid equilibrium, M x0 + N u0 = 0 with the specialized M (the loads' damping) and N
 // (the constant part, the input TL_r), and the run stays there; also without bearing friction,

@@ -3,6 +3,7 @@
 // H at that frequency; and the command line's files and peaks.
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <filesystem>
 #include <limits>
 #include <numbers>
@@ -384,6 +385,44 @@ TEST(Response, ALimitedControllerRespondsAsItsLinearLoop) {
                                            source_path("tests/vibration/free.toml"));
   const std::vector<TransferFunction> f = frequency_response(free_gear, inputs, outputs, grid);
   EXPECT_LT(std::abs(a[0].value[0]), 0.01 * std::abs(f[0].value[0]));
+}
+
+// A controller's torque is a response output (issue 31, item 14): the PI law's small-signal
+// torque, Tc = -(kp + ki / (j w)) omega_a, against the response of omega_a itself.
+TEST(Response, AControllersTorqueIsAnOutput) {
+  const Scene scene = parse_scene_text("name = \"loop\"\nmodel = \"pair.toml\"\nkeep = [\"a\"]\n"
+                                       "effects = [\"mesh_compliance\", \"mesh_damping\", \"bearing_friction\"]\n"
+                                       "[controllers]\nspeed = { body = \"a\", set_point = \"100*rad/s\", "
+                                       "kp = \"0.5*N*m*s/rad\", ki = \"20*N*m/rad\" }\n",
+                                       source_path("tests/vibration/loop.toml"));
+  const std::vector<Variable> inputs{*find_variable(scene.model, "tau_b")};
+  const auto torque = find_variable(scene.model, "Tc_speed");
+  ASSERT_TRUE(torque.has_value());
+  const std::vector<Variable> outputs{*find_variable(scene.model, "omega_a"), *torque};
+  const std::vector<TransferFunction> h = frequency_response(scene, inputs, outputs, FrequencyGrid{0.1, 1e3, 80});
+  ASSERT_EQ(h.size(), 2u);
+  EXPECT_EQ(h[1].output_name, "Tc_speed");
+  std::size_t checked = 0;
+  for (std::size_t k = 0; k < h[0].value.size(); ++k) {
+    if (!h[0].accurate[k] || !h[1].accurate[k]) continue;
+    ++checked;
+    const std::complex<double> jw(0, 2 * std::numbers::pi * h[0].frequency_hz[k]);
+    const std::complex<double> law = -(0.5 + 20.0 / jw) * h[0].value[k];
+    // Two outputs of one solve, related by the controller's law: rounding, within the accuracy promised.
+    EXPECT_LE(std::abs(h[1].value[k] - law), response_accuracy * std::abs(law)) << h[0].frequency_hz[k] << " Hz";
+  }
+  EXPECT_GT(checked, 70u);
+  // And the command takes it (it was refused as "neither omega_<body> nor F_<mesh>").
+  const auto dir = test_dir("response_controller");
+  write_text(dir / "loop.toml", "name = \"loop\"\nmodel = \"" + source_path("tests/vibration/pair.toml") +
+                                    "\"\nkeep = [\"a\"]\neffects = [\"mesh_compliance\", \"mesh_damping\", "
+                                    "\"bearing_friction\"]\n[controllers]\nspeed = { body = \"a\", set_point = "
+                                    "\"100*rad/s\", kp = \"0.5*N*m*s/rad\", ki = \"20*N*m/rad\" }\n");
+  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " response " + (dir / "loop.toml").string() +
+                                " --input tau_b --output Tc_speed --points 50 -o " + dir.string());
+  ASSERT_EQ(c.status, 0) << c.err;
+  const std::string csv = read_text(dir / "loop.response.tau_b.Tc_speed.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "f [Hz],magnitude [(N m)/(N m)],magnitude [dB],phase [deg]");
 }
 
 TEST(Response, UndampedSceneHasUnboundedPeaksAtItsNaturalFrequencies) {

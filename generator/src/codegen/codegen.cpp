@@ -242,6 +242,7 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   m += code("  run.solver = pogear::rt::parse_solver(scene::default_solver).value();\n");
   m += code("  pogear::rt::set_tolerance(run.options, scene::default_tolerance);\n");
   m += code("  run.options.h = scene::default_step;\n  run.options.max_steps = scene::default_max_steps;\n");
+  if (model.scene.speeds_in_rpm) m += code("  run.speeds_in_rpm = true;\n");
   m += code("  if (const int exit = pogear::rt::read_command_line(argc, argv, run, Solvers::list); exit >= 0) return exit;\n");
   m += code("  scene::{}::Params params;\n", main_struct);
   m += code("  if (!pogear::rt::set_parameters(run.params, {{{}}}, argv[0])) return 1;\n",

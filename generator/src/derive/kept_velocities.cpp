@@ -41,6 +41,14 @@ std::vector<std::string> body_names(const Topology& t, const std::vector<int>& b
     const GiNaC::matrix Q = kernel_basis(R, independent_rows(Rn, other), valid[0], other);
     const Eigen::MatrixXd Qn = evaluate_matrix(Q, values);
     bool found = false;
+    // A kept body at rest in every rigid motion (held, or locked to the housing) is named alone:
+    // with one kept velocity there is no pair to name, and "tied together" would mislead.
+    for (std::size_t a = 0; a < kept.size() && !found; ++a)
+      if (Qn.row(kept[a]).isZero(0.0)) {
+        found = true;
+        tied.first = t.bodies[kept[a]].name;
+        tied.tie = TiedVelocities::Tie::at_rest;
+      }
     for (std::size_t a = 0; a < kept.size() && !found; ++a)
       for (std::size_t b = a + 1; b < kept.size() && !found; ++b) {
         Eigen::MatrixXd pair(2, Qn.cols());

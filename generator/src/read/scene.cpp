@@ -80,6 +80,18 @@ void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
 }
 
 // What loads and controllers cannot be combined with (yet), each refused at the line that asks for it.
+// The tunable that parameter `name` is or is defined through (directly or through other
+// parameters), or "". The model's evaluation has ruled out cycles.
+std::string tunable_behind(const Topology& t, const std::vector<std::string>& tunable, const std::string& name) {
+  if (std::find(tunable.begin(), tunable.end(), name) != tunable.end()) return name;
+  const auto p = std::find_if(t.parameters.begin(), t.parameters.end(), [&](const Parameter& q) { return q.name == name; });
+  if (p == t.parameters.end()) return "";
+  for (const std::string& ref : referenced_names(p->text))
+    if (ref != name)
+      if (std::string found = tunable_behind(t, tunable, ref); !found.empty()) return found;
+  return "";
+}
+
 void check_loads_and_controllers(const Scene& s) {
   if (s.loads.empty() && s.controllers.empty()) return;
   if (!s.tunable.empty())
@@ -386,6 +398,20 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                        fmt::format("'{}' is the torque capacity of {}, which a simulation takes at the scene's value; "
                                    "it cannot be tunable: set it in [parameters] instead",
                                    f.capacity_parameter, f.name));
+    // Through other parameters just the same: the simulator would keep the capacity's number while
+    // --param moved the tunable (T_B = "T_base" with T_base tunable held 48.1 N m at any T_base).
+    if (const std::string t = tunable_behind(topology, s.tunable, f.capacity_parameter); !t.empty())
+      throw InputError(s.tunable_where,
+                       fmt::format("'{}', the torque capacity of {}, is defined through tunable '{}', and a simulation "
+                                   "takes capacities at the scene's value; drop '{}' from tunable, or give '{}' a value "
+                                   "of its own",
+                                   f.capacity_parameter, f.name, t, t, f.capacity_parameter));
+    for (const std::string& name : referenced_names(f.static_ratio))
+      if (const std::string t = tunable_behind(topology, s.tunable, name); !t.empty())
+        throw InputError(s.tunable_where,
+                         fmt::format("the static_ratio of {} ({}) depends on tunable '{}', and a simulation takes "
+                                     "static ratios at the scene's value; drop '{}' from tunable",
+                                     f.name, f.static_ratio, t, t));
   }
   // A command is piecewise linear: its extremes over the run are at 0, the horizon and its breakpoints.
   for (const EngagementSpec& e : s.engagement) {

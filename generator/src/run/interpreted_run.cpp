@@ -31,7 +31,7 @@ struct InterpretedSystem {
   using InputMatrix = Eigen::MatrixXd;
   struct Params {};
   NumericSystem ns;
-  std::vector<std::string> output_names, output_units;
+  std::vector<std::string> output_names, output_units, state_units;
   Eigen::SparseMatrix<double> C, D, E;
 
   // A quadratic load's torque -c s |s| at the state x.
@@ -84,6 +84,7 @@ std::vector<rt::TorqueLimitData> torque_limits(const SpecializedScene& model, co
 int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run,
                         const std::string& suffix) {
   InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
+  is.state_units = sys.state_units;
   if (!sys.friction_elements.empty() || !sys.limited_controllers.empty())
     return rt::run_hybrid_system(is, {}, sys.input_signals, friction_data(model), torque_limits(model, sys), is.ns.x0,
                                  run, suffix);

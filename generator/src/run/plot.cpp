@@ -52,7 +52,7 @@ std::string shift_script(const SpecializedScene& model, const std::vector<std::v
     panel(model.scene.name + ": angular velocities", model.scene.speeds_in_rpm ? "n [rpm]" : "{/Symbol w} [rad/s]",
           speeds, speed_names, false);
   panel("brake and clutch torques", "T [N m]", torques, torque_names, false);
-  panel("slips", "slip [rad/s]", slips, slip_names, true);
+  panel("slips", model.scene.speeds_in_rpm ? "slip [rpm]" : "slip [rad/s]", slips, slip_names, true);
   return script + "unset multiplot\n";
 }
 

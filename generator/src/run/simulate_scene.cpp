@@ -34,6 +34,7 @@ rt::SceneRun scene_run(const Scene& scene) {
   rt::set_tolerance(run.options, scene.tolerance);
   run.options.h = scene.step;
   run.options.max_steps = scene.max_steps;
+  run.speeds_in_rpm = scene.speeds_in_rpm;
   return run;
 }
 

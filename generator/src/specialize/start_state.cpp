@@ -94,8 +94,15 @@ StartState start_from_rigid_model(const SpecializedScene& model, const GiNaC::ex
         for (std::size_t b = 0; b < c1.size(); ++b)
           if (!c1[b].is_zero())
             damped(i, j) = damped(i, j) - rv.Q1(static_cast<unsigned>(b), i) * c1[b] * rv.Q1(static_cast<unsigned>(b), j);
-    try {
-      x = exact_solve(damped, exact_product(rv.Q1.transpose(), as_column(driving_tau)).mul_scalar(-1));
+    const GiNaC::matrix drive = exact_product(rv.Q1.transpose(), as_column(driving_tau)).mul_scalar(-1);
+    bool undriven = true;
+    for (unsigned j = 0; j < k; ++j) undriven = undriven && drive(j, 0).is_zero();
+    // Nothing drives at t = 0: rest is an equilibrium, with or without bearing friction (without,
+    // every constant speed is one too; the steady start is the one that does not move).
+    if (undriven) {
+      for (unsigned j = 0; j < k; ++j) x(j, 0) = 0;
+    } else try {
+      x = exact_solve(damped, drive);
     } catch (const std::domain_error&) {
       throw InputError(sc.start_where,
                        "start = \"steady\": the gear has no equilibrium (a rigid motion meets no bearing friction, so "

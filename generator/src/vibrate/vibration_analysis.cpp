@@ -223,10 +223,11 @@ SceneResponse response_of(const ResponseRequest& request) {
     if (std::find(inputs.begin(), inputs.end(), *v) == inputs.end()) inputs.push_back(*v);
   }
   for (const std::string& name : request.outputs) {
-    const auto v = find_variable(scene.model, name, {VariableKind::velocity, VariableKind::force});
+    const auto v = find_variable(scene.model, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
     if (!v)
-      throw InputError(where, fmt::format("--output '{}' is neither omega_<body> nor F_<mesh> of the model; give the "
-                                          "velocity of a body or the force of a mesh, e.g. omega_{}",
+      throw InputError(where, fmt::format("--output '{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the "
+                                          "scene; give the velocity of a body, the force of a mesh or a controller's "
+                                          "torque, e.g. omega_{}",
                                           name, scene.model.bodies.front().name));
     if (std::find(outputs.begin(), outputs.end(), *v) == outputs.end()) outputs.push_back(*v);
   }
