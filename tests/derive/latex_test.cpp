@@ -1,11 +1,16 @@
-// The LaTeX reports compile with pdflatex (every shipped model, and names and a title full of
-// LaTeX's special characters), and the Markdown report carries the same mathematics.
+// The LaTeX reports compile with pdflatex and fit their page (every shipped model, a gear with
+// matrices too wide for it, names and a title full of LaTeX's special characters), and the Markdown
+// report carries the same mathematics.
+#include <algorithm>
 #include <filesystem>
+#include <map>
+#include <regex>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "common/latex_layout.hpp"
 #include "../support/commands.hpp"
 #include "../support/files.hpp"
 
@@ -22,13 +27,62 @@ std::vector<fs::path> shipped_models() {
   return models;
 }
 
-// pdflatex on DIR/NAME.tex, in batch mode: the status and the end of its log when it failed.
+// The width estimate counts what prints: a fraction its wider part, a matrix its widest entries.
+TEST(LatexLayout, WidthCountsWhatPrints) {
+  EXPECT_EQ(latex_width("J_{c} + \\frac{J_{p} r_{c}^{2}}{r_{p}^{2}}"), 10u);  // J c, +, J p r c 2
+  EXPECT_EQ(latex_width("\\mathbf{R} = \\begin{bmatrix}\n  r_{s} & -r_{p} \\\\\n  0 & r_{r} \\\\\n\\end{bmatrix}"), 13u);
+  EXPECT_EQ(latex_width("\\left(\\omega_{c}\\right)"), 4u);
+  EXPECT_EQ(latex_width("\\text{(mesh ps)}"), 9u);  // a space in text counts
+}
+
+// What fits is left alone; a group or fraction wider than the width opens up for TeX to break.
+TEST(LatexLayout, WideGroupsAndFractionsBecomeBreakable) {
+  const std::string narrow = "\\frac{J_{p}}{r_{p}^{2}} \\left(a + b\\right)";
+  EXPECT_EQ(latex_breakable(narrow, 20), narrow);
+  EXPECT_EQ(latex_breakable("c \\left(a_{1} + a_{2} + a_{3} + a_{4}\\right)^{2}", 10),
+            "c \\bigl(a_{1} + a_{2} + a_{3} + a_{4}\\bigr)^{2}");
+  EXPECT_EQ(latex_breakable("\\frac{\\left(a_{1} + a_{2} + a_{3} + a_{4}\\right)}{r_{p}}", 10),
+            "\\frac{1}{r_{p}} \\bigl(a_{1} + a_{2} + a_{3} + a_{4}\\bigr)");
+  EXPECT_EQ(latex_breakable("\\frac{a_{1} + a_{2} + a_{3}}{b_{1} + b_{2} + b_{3}}", 10),
+            "\\bigl(a_{1} + a_{2} + a_{3}\\bigr) \\big/ \\bigl(b_{1} + b_{2} + b_{3}\\bigr)");
+  // A product wider than the width may break between its factors.
+  EXPECT_EQ(latex_breakable("x + J_{a} J_{b} J_{c} J_{d} J_{e} J_{f}", 10),
+            "x + J_{a}\\allowbreak J_{b}\\allowbreak J_{c}\\allowbreak J_{d}\\allowbreak J_{e}\\allowbreak J_{f}");
+}
+
+TEST(LatexLayout, ASymmetricMatrixListsItsEntriesOnAndAboveTheDiagonal) {
+  const MatrixEntries s = latex_matrix_entries("\\mathbf{L}_1", {{"a", "b"}, {"b", "0"}});
+  EXPECT_TRUE(s.symmetric);
+  EXPECT_EQ(s.formulas, (std::vector<std::string>{"(\\mathbf{L}_1)_{1,1} = a", "(\\mathbf{L}_1)_{1,2} = b"}));
+  const MatrixEntries r = latex_matrix_entries("\\mathbf{R}", {{"a", "0", "c"}});
+  EXPECT_FALSE(r.symmetric);
+  EXPECT_EQ(r.formulas, (std::vector<std::string>{"(\\mathbf{R})_{1,1} = a", "(\\mathbf{R})_{1,3} = c"}));
+}
+
+// Wider than this, an overfull line is a fault of the layout: a few points do not show on paper,
+// and TeX reports overfull boxes of a fraction of a point from the rounding of glue.
+constexpr double overfull_tolerance_pt = 5;
+
+// The widths, in pt, of the overfull lines a pdflatex log reports.
+std::vector<double> overfull_widths(const std::string& log) {
+  static const std::regex overfull(R"(Overfull \\hbox \(([0-9.]+)pt too wide\))");
+  std::vector<double> widths;
+  for (std::sregex_iterator it(log.begin(), log.end(), overfull), end; it != end; ++it) widths.push_back(std::stod((*it)[1]));
+  return widths;
+}
+
+// pdflatex on DIR/NAME.tex, in batch mode, once: the status and the end of its output when it
+// failed, and no line wider than the page by more than the tolerance.
 void expect_compiles(const fs::path& dir, const std::string& name) {
   const Command c = run_command("pdflatex -interaction=nonstopmode -halt-on-error " + name + ".tex < /dev/null", dir);
-  std::string log = c.out;
-  if (log.size() > 3000) log = log.substr(log.size() - 3000);
-  EXPECT_EQ(c.status, 0) << name << ".tex:\n" << log;
+  std::string out = c.out;
+  if (out.size() > 3000) out = out.substr(out.size() - 3000);
+  EXPECT_EQ(c.status, 0) << name << ".tex:\n" << out;
   EXPECT_TRUE(fs::exists(dir / (name + ".pdf"))) << name;
+  const std::vector<double> overfull = overfull_widths(read_text(dir / (name + ".log")));
+  const double worst = overfull.empty() ? 0 : *std::max_element(overfull.begin(), overfull.end());
+  EXPECT_LE(worst, overfull_tolerance_pt) << name << ".tex has a line " << worst << " pt wider than the page ("
+                                          << overfull.size() << " overfull in " << (dir / (name + ".log")).string() << ")";
 }
 
 void expect_pdflatex() {
@@ -36,20 +90,55 @@ void expect_pdflatex() {
   ASSERT_EQ(run_command("command -v pdflatex").status, 0) << "pdflatex is missing: run scripts/install-deps.sh";
 }
 
-TEST(LatexReports, EveryShippedModelsDeriveAndModesReportsCompile) {
+// `pogear COMMAND MODEL ARGS --format latex` written to DIR/NAME.tex, then compiled.
+void expect_report_fits(const fs::path& dir, const std::string& command, const fs::path& model, const std::string& args,
+                        const std::string& name) {
+  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " " + command + " " + model.string() + args +
+                                " --format latex -o " + (dir / (name + ".tex")).string());
+  ASSERT_EQ(c.status, 0) << command << " " << model << ": " << c.err;
+  expect_compiles(dir, name);
+}
+
+// The input and output body of each shipped model with brakes or clutches, for `pogear ratios`.
+const std::map<std::string, std::string> ratio_bodies{
+    {"gearshift_planetary", " --input s --output c"},
+    {"power_split", " --input c --output r"},
+    {"simpson_3speed", " --input i --output o"},
+};
+
+bool has_friction_elements(const fs::path& model) {
+  const std::string text = read_text(model);
+  return text.find("[[brake]]") != std::string::npos || text.find("[[clutch]]") != std::string::npos;
+}
+
+// Issue 31: the derive report of a large gear ran 1283 pt off the page (L1, A1, the forces), the
+// closed forms of modes ran off it, and the ratio table was a tabular that could run off it too.
+TEST(LatexReports, EveryShippedModelsReportsCompileAndFitThePage) {
   expect_pdflatex();
   const fs::path dir = test_dir("latex");
   const std::vector<fs::path> models = shipped_models();
   ASSERT_GE(models.size(), 8u);
   for (const fs::path& model : models) {
     const std::string name = model.stem().string();
-    for (const std::string command : {"derive", "modes"}) {
-      const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " " + command + " " + model.string() +
-                                    " --format latex -o " + (dir / (name + "." + command + ".tex")).string());
-      ASSERT_EQ(c.status, 0) << command << " " << name << ": " << c.err;
-      expect_compiles(dir, name + "." + command);
-    }
+    for (const std::string command : {"derive", "modes"}) expect_report_fits(dir, command, model, "", name + "." + command);
+    if (!has_friction_elements(model)) continue;
+    ASSERT_TRUE(ratio_bodies.count(name)) << name << " has brakes or clutches: give its input and output in ratio_bodies";
+    expect_report_fits(dir, "ratios", model, ratio_bodies.at(name), name + ".ratios");
   }
+}
+
+// A gear of 10 bodies (scripts/make_chain.sh 3, four degrees of freedom): its L1 and A1 are too
+// wide for the page and are written entry by entry, the symmetric ones on and above the diagonal.
+TEST(LatexReports, MatricesTooWideForThePageAreWrittenEntryByEntry) {
+  expect_pdflatex();
+  const fs::path dir = test_dir("latex_chain");
+  const Command chain = run_command("bash " + source_path("scripts/make_chain.sh") + " 3 > chain.toml", dir);
+  ASSERT_EQ(chain.status, 0) << chain.err;
+  expect_report_fits(dir, "derive", dir / "chain.toml", "", "chain");
+  const std::string tex = read_text(dir / "chain.tex");
+  EXPECT_NE(tex.find("$\\mathbf{L}_1$ entry by entry"), std::string::npos);
+  EXPECT_NE(tex.find("(\\mathbf{A}_1)_{1,2} = "), std::string::npos);
+  EXPECT_EQ(tex.find("(\\mathbf{A}_1)_{2,1} = "), std::string::npos);
 }
 
 // A title and names with every character LaTeX treats specially in text (tests/errors/gear.toml with
@@ -75,14 +164,20 @@ TEST(LatexReports, SpecialCharactersInTitleAndNamesCompile) {
   expect_compiles(dir, "special");
 }
 
-// The displayed mathematics of one report, in order: \[ ... \] in LaTeX, $$ ... $$ in Markdown.
-std::vector<std::string> displays(const std::string& text, const std::string& open, const std::string& close) {
+// The displayed mathematics of one report, in order: in LaTeX \[ ... \] and, for a formula wider
+// than the line, the longformula environment; $$ ... $$ in Markdown.
+std::vector<std::string> displays(const std::string& text, const std::vector<std::pair<std::string, std::string>>& delimiters) {
   std::vector<std::string> out;
-  for (auto at = text.find(open); at != std::string::npos; at = text.find(open, at)) {
-    const auto end = text.find(close, at + open.size());
+  for (std::size_t at = 0;;) {
+    std::size_t first = std::string::npos;
+    const std::pair<std::string, std::string>* pair = nullptr;
+    for (const auto& d : delimiters)
+      if (const auto found = text.find(d.first, at); found < first) first = found, pair = &d;
+    if (!pair) break;
+    const auto end = text.find(pair->second, first + pair->first.size());
     if (end == std::string::npos) break;
-    out.push_back(text.substr(at + open.size(), end - at - open.size()));
-    at = end + close.size();
+    out.push_back(text.substr(first + pair->first.size(), end - first - pair->first.size()));
+    at = end + pair->second.size();
   }
   return out;
 }
@@ -93,7 +188,9 @@ TEST(LatexReports, MarkdownHasTheSameMathematics) {
     const Command latex = run_command(command + "latex"), markdown = run_command(command + "markdown");
     ASSERT_EQ(latex.status, 0) << latex.err;
     ASSERT_EQ(markdown.status, 0) << markdown.err;
-    const std::vector<std::string> a = displays(latex.out, "\\[\n", "\n\\]"), b = displays(markdown.out, "$$\n", "\n$$");
+    const std::vector<std::string> a =
+        displays(latex.out, {{"\\[\n", "\n\\]"}, {"\\begin{longformula}\n", "\n\\end{longformula}"}});
+    const std::vector<std::string> b = displays(markdown.out, {{"$$\n", "\n$$"}});
     EXPECT_GE(a.size(), 4u) << model;
     EXPECT_EQ(a, b) << model;
     // Both carry the parameter table and the diagnostics.

@@ -405,17 +405,6 @@ std::string latex_vector(const std::vector<std::string>& v) {
   return "\\begin{bmatrix} " + joined(v, " \\\\ ") + " \\end{bmatrix}";
 }
 
-std::string latex_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
-  auto line = [](const std::vector<std::string>& r) {
-    std::string s;
-    for (std::size_t i = 0; i < r.size(); ++i) s += (i ? " & " : "") + latex_text(r[i]);
-    return s + " \\\\\n";
-  };
-  std::string s = "\\begin{tabular}{" + std::string(header.size(), 'l') + "}\n" + line(header) + "\\hline\n";
-  for (const auto& r : rows) s += line(r);
-  return s + "\\end{tabular}\n\n";
-}
-
 std::string markdown_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
   auto line = [](const std::vector<std::string>& r) {
     std::string s = "|";

@@ -39,8 +39,8 @@ std::string text_matrix(const std::string& label, const std::vector<std::vector<
 std::string latex_matrix(const std::vector<std::vector<std::string>>& m);
 std::string latex_vector(const std::vector<std::string>& v);
 
-// Tables of plain text cells (names, values as written), each cell escaped for its format.
-std::string latex_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
+// A table of plain text cells (names, values as written), each cell escaped for Markdown; LaTeX's
+// is latex_table (latex_layout.hpp), which fits the page.
 std::string markdown_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
 
 // A measured or computed number for a report line: 6 significant digits (the eigenproblems and

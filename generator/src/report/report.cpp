@@ -10,6 +10,7 @@
 #include "common/block_triangular_solve.hpp"
 #include "common/exact_algebra.hpp"
 #include "common/json_text.hpp"
+#include "common/latex_layout.hpp"
 #include "derive/parameter_table.hpp"
 #include "common/printer.hpp"
 #include "read/tooth_counts.hpp"
@@ -147,11 +148,41 @@ std::string title_of(const Derivation& d) {
   return d.topology.title.empty() ? d.topology.name : d.topology.name + ": " + d.topology.title;
 }
 
-// LaTeX and Markdown share the mathematics; only the wrapping differs.
+// One row of an aligned display: `lhs &= rhs`, then a remark (\text{...}) or nothing.
+struct AlignedRow {
+  std::string lhs, rhs, remark;
+};
+
+// LaTeX and Markdown share the mathematics; only the wrapping differs. What is wider than LaTeX's
+// line (latex_layout.hpp) is made breakable, or split into one display per entry or row, in both:
+// only LaTeX has a page to fit, but the two carry the same mathematics.
 struct MathDisplay {
   std::string math_open, math_close, heading_open, heading_close;
   bool latex = false;
-  std::string display(const std::string& math) const { return math_open + math + math_close; }
+  std::string display(const std::string& math) const {
+    return latex ? latex_display(math) : math_open + latex_fitted(math) + math_close;
+  }
+  // `label = [...]`, or where that is wider than the line its nonzero entries one display each.
+  std::string matrix(const std::string& label, const std::vector<std::vector<std::string>>& m) const {
+    if (!latex_matrix_too_wide(label, m)) return display(label + " = " + latex_matrix(m));
+    const MatrixEntries entries = latex_matrix_entries(label, m);
+    std::string s = paragraph("$" + label + "$ entry by entry, too wide for the page" +
+                              (entries.symmetric ? "; it is symmetric, the entries below the diagonal are those above it" : "") +
+                              "; the entries not listed are zero:");
+    for (const std::string& e : entries.formulas) s += display(e);
+    return s;
+  }
+  // The rows in one aligned display while it fits the line, else one display per row.
+  std::string aligned(const std::vector<AlignedRow>& rows) const {
+    std::string block = "\\begin{aligned}\n";
+    for (const AlignedRow& r : rows)
+      block += "  " + r.lhs + " &= " + r.rhs + (r.remark.empty() ? "" : " && " + r.remark) + " \\\\\n";
+    block += "\\end{aligned}";
+    if (latex_width(block) <= latex_line_width) return display(block);
+    std::string s;
+    for (const AlignedRow& r : rows) s += display(r.lhs + " = " + r.rhs + (r.remark.empty() ? "" : " \\quad " + r.remark));
+    return s;
+  }
   std::string heading(const std::string& text) const { return heading_open + text + heading_close; }
   std::string paragraph(const std::string& text) const { return text + "\n\n"; }
   // A table of plain text cells (names, values as written).
@@ -159,6 +190,13 @@ struct MathDisplay {
     return latex ? latex_table(header, rows) : markdown_table(header, rows);
   }
 };
+
+// F_<mesh> = ..., T_<element> = ...: the forces and torques the rigid model recovers.
+std::vector<AlignedRow> recovery_rows(const Printed& p) {
+  std::vector<AlignedRow> rows;
+  for (std::size_t i = 0; i < p.reactions.size(); ++i) rows.push_back({p.reactions[i], p.force_recovery[i], ""});
+  return rows;
+}
 
 std::string math_body(const Derivation& d, const Diagnostics& diagnostics, const MathDisplay& w) {
   const Printed p = print_all(d, Notation::latex);
@@ -168,16 +206,16 @@ std::string math_body(const Derivation& d, const Diagnostics& diagnostics, const
   s += w.display("\\boldsymbol{\\omega} = " + latex_vector(p.velocities) + ", \\quad \\boldsymbol{\\tau} = " +
                  latex_vector(p.torques) + ", \\quad \\mathbf{F} = " + latex_vector(p.forces));
   s += w.heading("Radius matrix");
-  s += w.display("\\mathbf{R} = " + latex_matrix(p.R));
+  s += w.matrix("\\mathbf{R}", p.R);
   if (!p.geometry.empty()) {
     s += w.paragraph("Geometry relations of the layout, each from the contact of one mesh:");
-    std::string g = "\\begin{aligned}\n";
+    std::vector<AlignedRow> rows;
     for (std::size_t i = 0; i < p.geometry.size(); ++i) {
-      std::string rel = p.geometry[i];
+      const std::string& rel = p.geometry[i];
       const auto eq = rel.find(" = ");
-      g += "  " + rel.substr(0, eq) + " &= " + rel.substr(eq + 3) + " && \\text{(mesh " + latex_text(p.geometry_mesh[i]) + ")} \\\\\n";
+      rows.push_back({rel.substr(0, eq), rel.substr(eq + 3), "\\text{(mesh " + latex_text(p.geometry_mesh[i]) + ")}"});
     }
-    s += w.display(g + "\\end{aligned}");
+    s += w.aligned(rows);
   }
   if (!p.angled.empty()) {
     std::string a = "Pinions meshing at an angle, each such row taken in the carrier's frame:";
@@ -211,7 +249,7 @@ std::string math_body(const Derivation& d, const Diagnostics& diagnostics, const
     s += w.paragraph("Each engaged brake or clutch is stuck: its row $\\mathbf{e}_k$ ($\\mathbf{e}_k \\boldsymbol{\\omega}$ "
                      "is its slip) joins the constraints, $\\mathbf{C} = [\\mathbf{R}; \\mathbf{E}_S]$, and the rigid "
                      "model below is that of this mode; its torques $T$ are recovered with the mesh forces.");
-    s += w.display("\\mathbf{E}_S = " + latex_matrix(p.E));
+    s += w.matrix("\\mathbf{E}_S", p.E);
   }
   s += w.heading("Rigid reduced model");
   s += w.paragraph(fmt::format("Rank of $\\mathbf{{{}}}$: {}; kept velocities $\\mathbf{{x}}_1 = ({})$, "
@@ -221,18 +259,18 @@ std::string math_body(const Derivation& d, const Diagnostics& diagnostics, const
   if (p.teeth)
     s += w.paragraph("In tooth counts: each pitch radius is $r = m Z / 2$, each length the geometry fixes follows "
                      "its relation, and the module $m$ cancels between meshing wheels.");
-  s += w.display("\\mathbf{Q}_1 = " + latex_matrix(p.Q1));
+  s += w.matrix("\\mathbf{Q}_1", p.Q1);
   if (!p.closed_form.empty()) {
     s += w.display("\\mathbf{L}_1 = \\begin{bmatrix} J_{1} & J_{3} \\\\ J_{3} & J_{2} \\end{bmatrix}, \\quad "
                    "\\mathbf{A}_1 = \\begin{bmatrix} b_{1} & b_{3} \\\\ b_{3} & b_{2} \\end{bmatrix}, \\quad "
                    "\\mathbf{B}_1 = \\mathbf{Q}_1^{\\mathsf{T}}");
-    std::string c = "\\begin{aligned}\n";
+    std::vector<AlignedRow> rows;
     for (const auto& [name, value] : p.closed_form)
-      c += fmt::format("  {}_{{{}}} &= {} \\\\\n", name.substr(0, 1), name.substr(1), value);
-    s += w.display(c + "\\end{aligned}");
+      rows.push_back({fmt::format("{}_{{{}}}", name.substr(0, 1), name.substr(1)), value, ""});
+    s += w.aligned(rows);
   } else {
-    s += w.display("\\mathbf{L}_1 = " + latex_matrix(p.L1));
-    s += w.display("\\mathbf{A}_1 = " + latex_matrix(p.A1));
+    s += w.matrix("\\mathbf{L}_1", p.L1);
+    s += w.matrix("\\mathbf{A}_1", p.A1);
     s += w.display("\\mathbf{B}_1 = \\mathbf{Q}_1^{\\mathsf{T}}");
   }
   s += w.heading(p.engaged.empty() ? "Mesh forces from the rigid model"
@@ -241,9 +279,7 @@ std::string math_body(const Derivation& d, const Diagnostics& diagnostics, const
     s += w.paragraph("$\\mathbf{R}\\mathbf{R}^{\\mathsf{T}}$ is singular (redundant meshes): the rigid model "
                      "splits the load as $\\mathbf{F} = \\mathbf{K}\\mathbf{R}(\\mathbf{R}^{\\mathsf{T}}\\mathbf{K}\\mathbf{R})^{+}\\mathbf{g}$, "
                      "with weights at the model's parameter values:");
-    std::string f = "\\begin{aligned}\n";
-    for (std::size_t i = 0; i < p.reactions.size(); ++i) f += fmt::format("  {} &= {} \\\\\n", p.reactions[i], p.force_recovery[i]);
-    s += w.display(f + "\\end{aligned}");
+    s += w.aligned(recovery_rows(p));
   } else {
     // With elements engaged the constraints are C = [R; E_S] and the torques T join F.
     const std::string C = p.engaged.empty() ? "\\mathbf{R}" : "\\mathbf{C}";
@@ -252,9 +288,7 @@ std::string math_body(const Derivation& d, const Diagnostics& diagnostics, const
                      "\\mathbf{J}\\mathbf{Q}_1\\dot{\\mathbf{x}}_1 - \\mathbf{B}_J\\mathbf{Q}_1\\mathbf{x}_1)$. "
                      "On the rigid model the bracket lies in the range of $" + C + "^{\\mathsf{T}}$, so this equals "
                      "$(" + C + "_S^{\\mathsf{T}})^{-1}$ applied to the rows $S$ = (" + latex_text(force_bodies(d)) + ") of the bracket:");
-    std::string f = "\\begin{aligned}\n";
-    for (std::size_t i = 0; i < p.reactions.size(); ++i) f += fmt::format("  {} &= {} \\\\\n", p.reactions[i], p.force_recovery[i]);
-    s += w.display(f + "\\end{aligned}");
+    s += w.aligned(recovery_rows(p));
   }
   s += w.heading("Parameters");
   s += w.table({"parameter", "as given", "value (SI)", "defined at"}, parameter_report_rows(d.parameters));
@@ -355,8 +389,7 @@ std::string report_latex(const Derivation& d, const Diagnostics& diagnostics) {
   const MathDisplay w{"\\[\n", "\n\\]\n", "\\subsection*{", "}\n", true};
   std::string s;
   s += "% Generated by pogear derive from " + latex_text(d.topology.file) + ". Compile with pdflatex.\n";
-  s += "\\documentclass{article}\n\\usepackage{amsmath,amssymb}\n\\usepackage[margin=2cm,landscape]{geometry}\n";
-  s += "\\setcounter{MaxMatrixCols}{64}\n\\allowdisplaybreaks\n\\begin{document}\n";
+  s += latex_preamble();
   std::string title = title_of(d);
   s += "\\section*{" + latex_text(title) + "}\n";
   s += math_body(d, diagnostics, w);

@@ -10,6 +10,7 @@
 #include "derive/engagement.hpp"
 #include "common/exact_algebra.hpp"
 #include "common/json_text.hpp"
+#include "common/latex_layout.hpp"
 #include "common/gnuplot.hpp"
 #include "common/printer.hpp"
 
@@ -192,13 +193,17 @@ std::string campbell_latex(const CampbellDiagram& c) {
   s += fmt::format("Input {}{}{}; 0 to {} rpm, harmonics 1 to {}.\n\n", tex(c.input),
                    c.held.empty() ? "" : ", held " + tex(joined(c.held)),
                    c.engaged.empty() ? "" : ", engaged " + tex(joined(c.engaged)), six_digits(c.max_rpm), c.harmonics);
-  s += "\\begin{tabular}{lrrll}\nmesh & Hz per rpm & teeth & wheel & frame \\\\ \\hline\n";
+  // Long tables run over pages, in columns that fit the page.
+  const std::vector<std::string> lines_header{"mesh", "Hz per rpm", "teeth", "wheel", "frame"};
+  std::vector<std::vector<std::string>> lines;
   for (const MeshLine& m : c.meshes)
-    s += fmt::format("{} & {} & {} & {} & {} \\\\\n", tex(m.mesh), six_digits(m.hz_per_rpm), m.teeth, tex(m.wheel), tex(m.frame));
-  s += "\\end{tabular}\n\n\\begin{tabular}{rrlr}\ninput [rpm] & frequency [Hz] & mesh & harmonic \\\\ \\hline\n";
+    lines.push_back({tex(m.mesh), six_digits(m.hz_per_rpm), fmt::format("{}", m.teeth), tex(m.wheel), tex(m.frame)});
+  s += latex_longtable(lines_header, lines, latex_column_widths(lines_header, lines)) + "\n";
+  const std::vector<std::string> crossings_header{"input [rpm]", "frequency [Hz]", "mesh", "harmonic"};
+  std::vector<std::vector<std::string>> crossings;
   for (const Crossing& x : c.crossings)
-    s += fmt::format("{} & {} & {} & {} \\\\\n", six_digits(x.input_rpm), six_digits(x.natural_hz), tex(joined(x.meshes)), x.harmonic);
-  return s + "\\end{tabular}\n";
+    crossings.push_back({six_digits(x.input_rpm), six_digits(x.natural_hz), tex(joined(x.meshes)), fmt::format("{}", x.harmonic)});
+  return s + latex_longtable(crossings_header, crossings, latex_column_widths(crossings_header, crossings));
 }
 
 std::string campbell_json_member(const CampbellDiagram& c) {
