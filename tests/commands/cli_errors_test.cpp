@@ -161,6 +161,14 @@ TEST_F(Cli, ModesWithEveryBodyHeld) {
   EXPECT_EQ(one.status, 0) << one.err;
 }
 
+// A kept body that the engaged elements hold is at rest in every rigid motion: the message names it
+// so (it read "r are tied together", though nothing else was kept).
+TEST_F(Cli, KeptBodyHeldByAnEngagedBrake) {
+  write_text("gear.toml", read_text(source_path("models/gearshift_planetary.toml")));
+  expect_pogear_error("derive gear.toml --engaged brake --keep r", 2,
+      R"~(gear.toml: error: the kept velocities r do not parametrize the rigid motions: omega_r is 0 in every rigid motion; valid choices are s; c; p)~");
+}
+
 TEST_F(Cli, ModesOfFrequenciesTooFarApart) {
   write_text("gear.toml", edited(base_model(), {{R"(K_sg = "K_ps")", R"(K_sg = "1e13*Newton/mm")"}}));
   expect_pogear_error("modes gear.toml", 2,
