@@ -303,6 +303,16 @@ TEST_F(FrictionElements, ClutchAcrossAxes) {
       R"~(gear.toml:38:16: error: clutch 'C1' joins 's' on the central axis and 'g' on a fixed axis; a clutch joins two bodies that turn about one axis)~");
 }
 
+// Two bodies on fixed axes that mesh with each other turn about two axes (issue 31, item 10).
+TEST_F(FrictionElements, ClutchAcrossTwoFixedAxes) {
+  expect_model_error(
+      {{"[[mesh]]\nfirst = \"p\"\nsecond = \"s1\"",
+        "[[body]]\nname = \"h\"\naxis = { fixed = \"below\" }\n\n[[mesh]]\nfirst = \"g\"\nsecond = \"h\"\n\n"
+        "[[mesh]]\nfirst = \"p\"\nsecond = \"s1\""},
+       {"[parameters]", "[[clutch]]\nname = \"C1\"\nbodies = [\"g\", \"h\"]\n\n[parameters]"}},
+      R"~(gear.toml:46:16: error: clutch 'C1' joins 'g' and 'h', which turn about two different fixed axes: they mesh with each other (mesh gh); a clutch joins two bodies that turn about one axis)~");
+}
+
 TEST_F(FrictionElements, BrakeOnAPlanet) {
   expect_error("[[brake]]\nname = \"B1\"\nbody = \"p\"\n", "",
       R"~(gear.toml:38:8: error: brake 'B1' holds 'p', a planet, whose axis moves with its carrier; a brake holds a body on the central axis or on a fixed axis)~");

@@ -353,6 +353,13 @@ TEST_F(Hardening, UnicodeMinus) {
       R"~(gear.toml:37:9: error: '−' (U+2212) is not the minus sign of expressions; write the ASCII '-')~");
 }
 
+// A byte-order mark inside a value (pasted from a Windows editor) is named, not echoed: raw, the
+// message showed '' around an invisible character (issue 31, item 14).
+TEST_F(Hardening, ByteOrderMarkInAValue) {
+  expect_model_error({{R"(r_s1 = "10*cm")", "r_s1 = \"\xEF\xBB\xBF" "10*cm\""}},
+      R"~(gear.toml:37:9: error: invisible character U+FEFF (a byte-order mark); delete it: expressions are written in ASCII)~");
+}
+
 TEST_F(Hardening, SimulationWroteNoCsv) {
   EXPECT_THROW(
       {

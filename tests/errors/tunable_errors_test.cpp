@@ -60,13 +60,39 @@ TEST_F(TunableErrors, ParamUnknownName) {
 }
 
 TEST_F(TunableErrors, ParamNotAValue) {
-  expect_documented(param_error("\"J_c\", \"K_ps\"", "K_ps=2000*N/mm"),
-      R"~(./demo: error: --param K_ps=2000*N/mm is not a value; give a number in SI units, or NUMBER*Newton/mm, or NUMBER*kg/s^2)~" "\n");
+  expect_documented(param_error("\"J_c\", \"K_ps\"", "K_ps=2000*lbf/in"),
+      R"~(./demo: error: --param K_ps=2000*lbf/in is not a value; give a number in SI units, or NUMBER*Newton/mm, or NUMBER*kg/s^2, or NUMBER*N/m, or NUMBER*N/mm, or NUMBER*kN/mm)~" "\n");
+}
+
+// The engineering spellings of a parameter's dimension are accepted besides the model's own
+// (issue 31, item 14: `--param K_ps=2000*N/mm` was refused where the model wrote Newton/mm).
+class TunableParamUnits : public ErrorTest {};
+
+TEST_F(TunableParamUnits, EngineeringSpellingsOfTheDimensionAreAccepted) {
+  write_text("scene.toml", edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"J_c\", \"K_ps\"]"}}));
+  const SpecializedScene model = specialize(parse_scene("scene.toml"));
+  std::vector<double> values(model.main.params.size());
+  std::vector<rt::ParameterField> fields;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const TunableParameter& p = model.main.params[i];
+    rt::ParameterField f{p.name, &values[i], {}, p.sign};
+    for (const UnitSpelling& u : p.units) f.units.push_back({u.unit, u.si});
+    fields.push_back(f);
+  }
+  ASSERT_TRUE(rt::set_parameters({{"K_ps", "2000*N/mm"}, {"J_c", "30000*kg*mm^2"}}, fields, "./demo"));
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    // Decimal unit factors: one rounding each.
+    if (model.main.params[i].name == "K_ps") {
+      EXPECT_NEAR(values[i], 2e6, 1e-9);
+    } else if (model.main.params[i].name == "J_c") {
+      EXPECT_NEAR(values[i], 0.03, 1e-17);
+    }
+  }
 }
 
 TEST_F(TunableErrors, ParamOutOfRange) {
   expect_documented(param_error("\"J_c\", \"K_ps\"", "J_c=-1"),
-      R"~(./demo: error: --param J_c=-1: J_c must be positive; give a number in SI units, or NUMBER*kg*meters^2, or NUMBER*kg*m^2)~" "\n");
+      R"~(./demo: error: --param J_c=-1: J_c must be positive; give a number in SI units, or NUMBER*kg*meters^2, or NUMBER*kg*m^2, or NUMBER*kg*mm^2)~" "\n");
 }
 
 TEST_F(TunableErrors, ParamOutsideTheModelsRange) {

@@ -96,6 +96,14 @@ class Parser {
     if (!valid) return fmt::format("byte 0x{:02X} is not text (not UTF-8); write the expression in ASCII", byte(at));
     const std::string shown(text_.substr(at, length));
     const auto codepoint = static_cast<unsigned>(code);
+    // Invisible characters (a byte-order mark, zero-width and no-break spaces, direction marks and
+    // overrides, C1 controls) are named, never echoed: raw, they show nothing in the message or,
+    // worse, reorder the text around them.
+    const bool invisible = (code >= 0x80 && code <= 0xA0) || code == 0xAD || (code >= 0x200B && code <= 0x200F) ||
+                           (code >= 0x2028 && code <= 0x202F) || (code >= 0x2060 && code <= 0x206F) || code == 0xFEFF;
+    if (invisible)
+      return fmt::format("invisible character U+{:04X}{}; delete it: expressions are written in ASCII", codepoint,
+                         code == 0xFEFF ? " (a byte-order mark)" : code == 0xA0 ? " (a no-break space)" : "");
     if (code == 0x2212 || code == 0x2013 || code == 0x2012 || code == 0x2010)
       return fmt::format("'{}' (U+{:04X}) is not the minus sign of expressions; write the ASCII '-'", shown, codepoint);
     if (code == 0x00D7 || code == 0x22C5 || code == 0x00B7)

@@ -124,6 +124,31 @@ bool coaxial(const Body& a, const Body& b) {
   return a.carrier == b.carrier && a.distance_parameter == b.distance_parameter && a.side == b.side;
 }
 
+// Why two fixed-axis bodies certainly turn about different axes, or "": wheels that mesh with each
+// other never share an axis, and a body drawn above the central wheels it meshes with is not on the
+// axis of one drawn below them. (Otherwise their axes are placed by radii the file may not give yet,
+// and the file's word is taken.)
+std::string different_fixed_axes(const Topology& t, int a, int b) {
+  auto mates_central = [&](int body, int& side) {
+    bool any = false;
+    for (const Mesh& m : t.meshes)
+      for (const auto& [own, mate] : {std::pair{m.first, m.second}, std::pair{m.second, m.first}})
+        if (own.body == body) {
+          if (t.bodies[mate.body].axis != AxisKind::central) return false;
+          any = true;
+        }
+    side = t.bodies[body].side;
+    return any;
+  };
+  for (const Mesh& m : t.meshes)
+    if ((m.first.body == a && m.second.body == b) || (m.first.body == b && m.second.body == a))
+      return fmt::format("they mesh with each other (mesh {})", m.name);
+  int side_a = 0, side_b = 0;
+  if (mates_central(a, side_a) && mates_central(b, side_b) && side_a != side_b)
+    return "one is drawn above the central axis, the other below it";
+  return "";
+}
+
 const char* axis_description(const Body& b) {
   switch (b.axis) {
     case AxisKind::central: return "the central axis";
@@ -180,6 +205,11 @@ void read_friction_elements(const TomlReader& r, const toml::table& root, Topolo
         if (!coaxial(f, g))
           r.fail(pair[1], fmt::format("clutch '{}' joins '{}' on {} and '{}' on {}; a clutch joins two bodies that turn "
                                       "about one axis", e.name, f.name, axis_description(f), g.name, axis_description(g)));
+        if (f.axis == AxisKind::fixed)
+          if (const std::string why = different_fixed_axes(t, e.first, e.second); !why.empty())
+            r.fail(pair[1], fmt::format("clutch '{}' joins '{}' and '{}', which turn about two different fixed axes: {}; "
+                                        "a clutch joins two bodies that turn about one axis",
+                                        e.name, f.name, g.name, why));
       }
       if (const toml::node* o = et.get("one_way")) {
         if (!o->is_boolean()) r.fail(*o, "one_way must be true or false");

@@ -105,4 +105,22 @@ std::optional<std::pair<std::string, double>> written_unit(const Parameter& p) {
   }
 }
 
+std::vector<std::pair<std::string, double>> common_unit_spellings(const Dimension& dimension) {
+  // Per quantity the model files use: stiffness, damping, inertia, length, torque, bearing
+  // friction, speed, mass, capacity. A spelling applies where its dimension is the parameter's.
+  static const char* const candidates[] = {"N/m",    "N/mm",   "kN/mm",  "N*s/m",  "N*s/mm", "kg*m^2", "kg*mm^2",
+                                           "m",      "cm",     "mm",     "N*m",    "Nm",     "kN*m",   "N*m*s",
+                                           "Nm/rpm", "rad/s",  "rpm",    "kg",     "g"};
+  std::vector<std::pair<std::string, double>> out;
+  for (const char* text : candidates) {
+    try {
+      const Quantity q = evaluate_quantity(text, {}, SourceLocation{}, 0);
+      if (q.has_unit && q.dimension == dimension) out.emplace_back(text, q.si);
+    } catch (const InputError&) {
+      // A spelling this build's unit table does not know: not offered.
+    }
+  }
+  return out;
+}
+
 }  // namespace pogear

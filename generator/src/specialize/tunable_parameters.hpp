@@ -23,4 +23,9 @@ std::map<std::string, GiNaC::ex> tunable_dependents(const std::vector<Parameter>
 // "1000*Newton/mm"), with its value in SI; nothing when the text is not NUMBER*UNITS.
 std::optional<std::pair<std::string, double>> written_unit(const Parameter& parameter);
 
+// The engineering spellings `--param` accepts besides the model's own and the SI one, for a
+// parameter of `dimension` ("N/mm" and "kN/mm" for a stiffness the model wrote in "Newton/mm"),
+// each with its value in SI, in a fixed order.
+std::vector<std::pair<std::string, double>> common_unit_spellings(const Dimension& dimension);
+
 }  // namespace pogear
