@@ -31,6 +31,29 @@ int body(const Derivation& d, const std::string& name) {
 // With w_sl = 0 and w_ss = 1: w_c = Z_ss / (Z_ss + Z_sl). Every mesh of the set passes its teeth
 // through the pinions of one carrier, so all mesh at Z_ss |w_ss - w_c| / 2 pi: Z_ss Z_sl / (Z_ss + Z_sl)
 // per rev/s of the small sun.
+// A low mode crossing near standstill (a 3 Hz mode at 2.6 rpm of an 8000 rpm axis) is counted,
+// not listed, in the text, Markdown and LaTeX reports; the JSON keeps every crossing (issue 31,
+// item 17).
+TEST(Campbell, CrossingsNearStandstillAreCountedNotListed) {
+  CampbellDiagram c;
+  c.input = "s";
+  c.max_rpm = 8000;
+  c.natural_hz = {3, 1856};
+  c.meshes.push_back(MeshLine{"ps", "s", 30, "housing", 30 * 1.0 / 60});
+  c.crossings = {Crossing{{"ps"}, 1, 3, 2.6}, Crossing{{"ps"}, 1, 1856, 3712}};
+  ASSERT_EQ(listed_crossings(c).size(), 1u);
+  const std::string note = "1 crossing below 80 rpm (1 % of the axis) is not listed";
+  const std::string tex_note = "1 crossing below 80 rpm (1 \\% of the axis) is not listed";
+  for (const auto& [report, expected] : {std::pair{campbell_text(c), note}, std::pair{campbell_markdown(c), note},
+                                         std::pair{campbell_latex(c), tex_note}}) {
+    EXPECT_EQ(report.find("2.6"), std::string::npos) << report;
+    EXPECT_NE(report.find("3712"), std::string::npos) << report;
+    EXPECT_NE(report.find(expected), std::string::npos) << report;
+  }
+  const std::string json = campbell_json_member(c);
+  EXPECT_NE(json.find("\"input_rpm\": 2.6"), std::string::npos) << json;
+}
+
 TEST(Campbell, RavigneauxLineAndMeshFrequenciesFollowTheWillisEquations) {
   const Derivation d = ravigneaux();
   const VibrationModes modes = vibration_modes(d, d.values, "none");

@@ -150,6 +150,27 @@ std::string line_description(const CampbellDiagram& c) {
 
 }  // namespace
 
+std::vector<Crossing> listed_crossings(const CampbellDiagram& c) {
+  std::vector<Crossing> out;
+  for (const Crossing& x : c.crossings)
+    if (x.input_rpm >= listed_crossing_fraction * c.max_rpm) out.push_back(x);
+  return out;
+}
+
+namespace {
+
+// "2 crossings below 80 rpm (1 % of the axis) are not listed", or "".
+std::string unlisted_note(const CampbellDiagram& c, std::size_t listed) {
+  const std::size_t below = c.crossings.size() - listed;
+  if (below == 0) return "";
+  return fmt::format("{} crossing{} below {} rpm (1 % of the axis) {} not listed: the gear only passes through such "
+                     "speeds, where the meshes excite little",
+                     below, below == 1 ? "" : "s", six_digits(listed_crossing_fraction * c.max_rpm),
+                     below == 1 ? "is" : "are");
+}
+
+}  // namespace
+
 std::string campbell_text(const CampbellDiagram& c) {
   std::string s = fmt::format("\nCampbell diagram ({}; 0 to {} rpm, harmonics 1 to {})\n", line_description(c),
                               six_digits(c.max_rpm), c.harmonics);
@@ -167,10 +188,12 @@ std::string campbell_text(const CampbellDiagram& c) {
     s += "no harmonic meets a natural frequency below " + six_digits(c.max_rpm) + " rpm\n";
     return s;
   }
+  const std::vector<Crossing> listed = listed_crossings(c);
   s += "crossings (input speed at which a harmonic meets a natural frequency):\n";
   s += "  input [rpm]  frequency [Hz]  harmonic  meshes\n";
-  for (const Crossing& x : c.crossings)
+  for (const Crossing& x : listed)
     s += fmt::format("  {:>11}  {:>14}  {:>8}  {}\n", six_digits(x.input_rpm), six_digits(x.natural_hz), x.harmonic, joined(x.meshes));
+  if (const std::string note = unlisted_note(c, listed.size()); !note.empty()) s += "  " + note + "\n";
   return s;
 }
 
@@ -181,9 +204,11 @@ std::string campbell_markdown(const CampbellDiagram& c) {
   for (const MeshLine& m : c.meshes)
     s += fmt::format("| {} | {} | {} | {} | {} |\n", m.mesh, six_digits(m.hz_per_rpm), m.teeth, m.wheel, m.frame);
   if (!c.without_teeth.empty()) s += "\nWithout tooth counts (not drawn): " + joined(c.without_teeth) + ".\n";
+  const std::vector<Crossing> listed = listed_crossings(c);
   s += "\n| input [rpm] | frequency [Hz] | mesh | harmonic |\n|---|---|---|---|\n";
-  for (const Crossing& x : c.crossings)
+  for (const Crossing& x : listed)
     s += fmt::format("| {} | {} | {} | {} |\n", six_digits(x.input_rpm), six_digits(x.natural_hz), joined(x.meshes), x.harmonic);
+  if (const std::string note = unlisted_note(c, listed.size()); !note.empty()) s += "\n" + note + ".\n";
   return s;
 }
 
@@ -201,9 +226,12 @@ std::string campbell_latex(const CampbellDiagram& c) {
   s += latex_longtable(lines_header, lines, latex_column_widths(lines_header, lines)) + "\n";
   const std::vector<std::string> crossings_header{"input [rpm]", "frequency [Hz]", "mesh", "harmonic"};
   std::vector<std::vector<std::string>> crossings;
-  for (const Crossing& x : c.crossings)
+  const std::vector<Crossing> listed = listed_crossings(c);
+  for (const Crossing& x : listed)
     crossings.push_back({six_digits(x.input_rpm), six_digits(x.natural_hz), tex(joined(x.meshes)), fmt::format("{}", x.harmonic)});
-  return s + latex_longtable(crossings_header, crossings, latex_column_widths(crossings_header, crossings));
+  s += latex_longtable(crossings_header, crossings, latex_column_widths(crossings_header, crossings));
+  if (const std::string note = unlisted_note(c, listed.size()); !note.empty()) s += "\n" + tex(note) + ".\n";
+  return s;
 }
 
 std::string campbell_json_member(const CampbellDiagram& c) {
