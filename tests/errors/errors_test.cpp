@@ -201,9 +201,16 @@ TEST_F(ModelStructure, CarrierLoop) {
       R"~(gear.toml:6:8: error: body 'c' is carried, through its carriers, by itself)~");
 }
 
+// The hint's example names the model's bodies (issue 31, item 14: it named p and s1, which the
+// model did not have).
 TEST_F(ModelStructure, NoMeshes) {
+  expect_documented(model_error("[[body]]\nname = \"a\"\n\n[[body]]\nname = \"b\"\naxis = { fixed = \"below\" }\n"),
+      R"~(gear.toml: error: no [[mesh]] entries; add at least one, e.g. [[mesh]] first = "a", second = "b")~");
+}
+
+TEST_F(ModelStructure, OneBodyNoMeshes) {
   expect_documented(model_error("[[body]]\nname = \"a\"\n"),
-      R"~(gear.toml: error: no [[mesh]] entries; add at least one, e.g. [[mesh]] first = "p", second = "s1")~");
+      R"~(gear.toml: error: no [[mesh]] entries, and one body: a gear is two or more bodies whose wheels mesh; add a second [[body]] and a [[mesh]] between them)~");
 }
 
 TEST_F(ModelStructure, TooManyMeshes) {

@@ -325,7 +325,15 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   check_unique_names(t, false);
   check_carriers(t);
 
-  const toml::array& meshes = array_of_tables(r, root, "mesh", "[[mesh]] first = \"p\", second = \"s1\"");
+  // The example names the model's own bodies (a body of one wheel is named by the body).
+  if (!root.get("mesh") && t.bodies.size() < 2)
+    throw InputError(SourceLocation{r.file, 0, 0},
+                     "no [[mesh]] entries, and one body: a gear is two or more bodies whose wheels mesh; add a second "
+                     "[[body]] and a [[mesh]] between them");
+  const toml::array& meshes = array_of_tables(
+      r, root, "mesh",
+      t.bodies.size() < 2 ? std::string("[[mesh]] first = \"p\", second = \"s1\"")
+                          : fmt::format("[[mesh]] first = \"{}\", second = \"{}\"", t.bodies[0].name, t.bodies[1].name));
   if (meshes.size() > max_meshes)
     r.fail(meshes, fmt::format("{} meshes; pogear derives gears of at most {} (the symbolic derivation grows steeply "
                                "with the size); model a smaller part of the gear", meshes.size(), max_meshes));
