@@ -81,9 +81,9 @@ TunableParameter tunable_parameter(const Topology& t, const std::string& name, d
         (p.units.empty() || p.units[0].unit != describe(given->value.dimension)))
       p.units.push_back({describe(given->value.dimension), 1.0});
     if (given->value.has_unit && !(given->value.dimension == Dimension{}))
-      for (auto& [unit, si] : common_unit_spellings(given->value.dimension))
-        if (std::none_of(p.units.begin(), p.units.end(), [&](const UnitSpelling& u) { return u.unit == unit; }))
-          p.units.push_back({unit, si});
+      for (const auto& spelling : common_unit_spellings(given->value.dimension))
+        if (std::none_of(p.units.begin(), p.units.end(), [&](const UnitSpelling& u) { return u.unit == spelling.first; }))
+          p.units.push_back({spelling.first, spelling.second});
   }
   bool positive = false, non_negative = false;
   for (const auto& b : t.bodies) {
