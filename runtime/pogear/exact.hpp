@@ -32,38 +32,53 @@ namespace pogear::rt {
 namespace detail {
 // A B for dynamic matrices of a few rows (the compiled runtime's exact_matrices): each pair of rows of
 // a column of the product is one 2-lane sum over k, A read down its contiguous columns, where Eigen's
-// lazy product on dynamic sizes runs its inner products along strided rows. Each entry is summed over
-// k in order, as Eigen's is, so both give the same bits.
+// lazy product on dynamic sizes runs its inner products along strided rows. Blocks of up to 8 rows
+// and 2 columns share their loads of A and B (R pairs of rows, C columns, all in registers). Each
+// entry is summed over k in order, as Eigen's is, so both give the same bits.
+#if defined(__GNUC__)
+template <int R, int C>
+POGEAR_RT_INLINE void small_product_block(const double* a, const double* b, double* c, Eigen::Index n,
+                                          Eigen::Index m) {
+  Lanes2 s[C][R] = {};
+  for (Eigen::Index k = 0; k < m; ++k) {
+    Lanes2 v[R];
+    for (int r = 0; r < R; ++r) load(v[r], a + k * n + 2 * r);
+    for (int q = 0; q < C; ++q) {
+      const double w = b[q * m + k];
+      for (int r = 0; r < R; ++r) s[q][r] += v[r] * w;
+    }
+  }
+  for (int q = 0; q < C; ++q)
+    for (int r = 0; r < R; ++r) store(c + q * n + 2 * r, s[q][r]);
+}
+template <int C>
+POGEAR_RT_INLINE void small_product_columns(const double* a, const double* b, double* c, Eigen::Index n,
+                                            Eigen::Index m) {
+  Eigen::Index i = 0;
+  for (; i + 8 <= n; i += 8) small_product_block<4, C>(a + i, b, c + i, n, m);
+  if (i + 4 <= n) small_product_block<2, C>(a + i, b, c + i, n, m), i += 4;
+  if (i + 2 <= n) small_product_block<1, C>(a + i, b, c + i, n, m), i += 2;
+  if (i < n)
+    for (int q = 0; q < C; ++q) {
+      double s0 = 0;
+      for (Eigen::Index k = 0; k < m; ++k) s0 += a[k * n + i] * b[q * m + k];
+      c[q * n + i] = s0;
+    }
+}
+#endif
 inline Eigen::MatrixXd small_product(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   const Eigen::Index n = A.rows(), m = A.cols(), p = B.cols();
   Eigen::MatrixXd C(n, p);
   const double* a = A.data();
-  for (Eigen::Index j = 0; j < p; ++j) {
+  Eigen::Index j = 0;
+#if defined(__GNUC__)
+  for (; j + 2 <= p; j += 2) small_product_columns<2>(a, B.data() + j * m, C.data() + j * n, n, m);
+  if (j < p) small_product_columns<1>(a, B.data() + j * m, C.data() + j * n, n, m), ++j;
+#endif
+  for (; j < p; ++j) {
     const double* b = B.data() + j * m;
     double* c = C.data() + j * n;
-    Eigen::Index i = 0;
-#if defined(__GNUC__)
-    for (; i + 4 <= n; i += 4) {
-      Lanes2 s0 = {0, 0}, s1 = {0, 0}, v0, v1;
-      for (Eigen::Index k = 0; k < m; ++k) {
-        load(v0, a + k * n + i);
-        load(v1, a + k * n + i + 2);
-        s0 += v0 * b[k];
-        s1 += v1 * b[k];
-      }
-      store(c + i, s0);
-      store(c + i + 2, s1);
-    }
-    for (; i + 2 <= n; i += 2) {
-      Lanes2 s0 = {0, 0}, v0;
-      for (Eigen::Index k = 0; k < m; ++k) {
-        load(v0, a + k * n + i);
-        s0 += v0 * b[k];
-      }
-      store(c + i, s0);
-    }
-#endif
-    for (; i < n; ++i) {
+    for (Eigen::Index i = 0; i < n; ++i) {
       double s0 = 0;
       for (Eigen::Index k = 0; k < m; ++k) s0 += a[k * n + i] * b[k];
       c[i] = s0;
@@ -84,6 +99,25 @@ Mat mat_mul(const Mat& A, const Mat& B) {
     return A * B;
 }
 
+// The even powers of the scaled matrix an evaluation formed (count: A2, A2 and A4, or A2, A4 and A6)
+// and its scaling A / 2^scale. A second evaluation of the same A with more squarings (balanced_exp's
+// estimate) takes them scaled by powers of 2 instead of forming them again: (A 2^-d)^2k = A^2k 2^-2dk
+// in every rounding as long as no product or sum falls below the normal range, which `reusable`
+// makes sure of (every nonzero entry of the scaled matrices is at least 2^-400, so every product is
+// a normal number, and so is every nonzero sum of them). The same bits, up to three products fewer.
+template <class Mat>
+struct ExpPowers {
+  Mat A2, A4, A6;
+  int count = 0, scale = 0;
+};
+template <class Mat>
+bool reusable(const Mat& X, double f) {
+  for (Eigen::Index j = 0; j < X.cols(); ++j)
+    for (Eigen::Index i = 0; i < X.rows(); ++i)
+      if (const double x = X(i, j); x != 0 && !(std::abs(x) * f >= 0x1p-400 && std::abs(x) <= 0x1p400)) return false;
+  return true;
+}
+
 // e^A by Eigen's own method (MatrixExponential.h: Higham's scaling and squaring with the Pade
 // approximant its 1-norm calls for; the same coefficients and the same steps), with one change
 // in the squaring: it squares D = e^(A/2^s) - I as D <- 2 D + D^2 instead of E <- E^2. Squaring E
@@ -92,9 +126,11 @@ Mat mat_mul(const Mat& A, const Mat& B) {
 // e^(-2^s eps) of their value, and 2^s ~ ||A||, which for very long steps is all of it. In D those
 // eigenvalues are 0 and stay 0. extra_squarings > 0 takes the degree-13 approximant with that many
 // more squarings (the independent evaluation ExactDiscretization checks against). Without squarings
-// E is (V-U)^-1 (U+V), Eigen's own bits.
+// E is (V-U)^-1 (U+V), Eigen's own bits. keep receives the powers this evaluation formed; reuse
+// offers an earlier evaluation's (ExpPowers).
 template <class Mat>
-Mat small_exp(const Mat& A, int extra_squarings = 0) {
+Mat small_exp(const Mat& A, int extra_squarings = 0, ExpPowers<Mat>* keep = nullptr,
+              const ExpPowers<Mat>* reuse = nullptr) {
   const Mat I = Mat::Identity(A.rows(), A.cols());
   Mat U, V;
   int squarings = 0;
@@ -107,18 +143,21 @@ Mat small_exp(const Mat& A, int extra_squarings = 0) {
     const Mat tmp = b[3] * A2 + b[1] * I;
     U = mat_mul(A, tmp);
     V = b[2] * A2 + b[0] * I;
+    if (keep) keep->A2 = A2, keep->count = 1;
   } else if (l1norm < 2.539398330063230e-001) {
     const double b[] = {30240., 15120., 3360., 420., 30., 1.};
     const Mat A2 = mat_mul(A, A), A4 = mat_mul(A2, A2);
     const Mat tmp = b[5] * A4 + b[3] * A2 + b[1] * I;
     U = mat_mul(A, tmp);
     V = b[4] * A4 + b[2] * A2 + b[0] * I;
+    if (keep) keep->A2 = A2, keep->A4 = A4, keep->count = 2;
   } else if (l1norm < 9.504178996162932e-001) {
     const double b[] = {17297280., 8648640., 1995840., 277200., 25200., 1512., 56., 1.};
     const Mat A2 = mat_mul(A, A), A4 = mat_mul(A2, A2), A6 = mat_mul(A4, A2);
     const Mat tmp = b[7] * A6 + b[5] * A4 + b[3] * A2 + b[1] * I;
     U = mat_mul(A, tmp);
     V = b[6] * A6 + b[4] * A4 + b[2] * A2 + b[0] * I;
+    if (keep) keep->A2 = A2, keep->A4 = A4, keep->A6 = A6, keep->count = 3;
   } else if (l1norm < 2.097847961257068e+000) {
     const double b[] = {17643225600., 8821612800., 2075673600., 302702400., 30270240.,
                         2162160.,     110880.,     3960.,       90.,        1.};
@@ -126,6 +165,7 @@ Mat small_exp(const Mat& A, int extra_squarings = 0) {
     const Mat tmp = b[9] * A8 + b[7] * A6 + b[5] * A4 + b[3] * A2 + b[1] * I;
     U = mat_mul(A, tmp);
     V = b[8] * A8 + b[6] * A6 + b[4] * A4 + b[2] * A2 + b[0] * I;
+    if (keep) keep->A2 = A2, keep->A4 = A4, keep->A6 = A6, keep->count = 3;
   }
   if (extra_squarings > 0 || !(l1norm < 2.097847961257068e+000)) {
     std::frexp(l1norm / 5.371920351148152, &squarings);
@@ -135,7 +175,19 @@ Mat small_exp(const Mat& A, int extra_squarings = 0) {
                         129060195264000.,   10559470521600.,    670442572800.,     33522128640.,
                         1323241920.,        40840800.,          960960.,           16380.,
                         182.,               1.};
-    const Mat A2 = mat_mul(As, As), A4 = mat_mul(A2, A2), A6 = mat_mul(A4, A2);
+    // The powers of As: those of an earlier evaluation scaled by 2^-d where that is exact, else formed.
+    const int d = reuse ? squarings - reuse->scale : 0;
+    const double f = std::ldexp(1.0, -d);
+    int have = 0;
+    if (reuse && d >= 0 && reusable(As, 1.0)) {
+      have = reuse->count >= 1 && reusable(reuse->A2, f * f) ? 1 : 0;
+      if (have == 1 && reuse->count >= 2 && reusable(reuse->A4, f * f * f * f)) have = 2;
+      if (have == 2 && reuse->count >= 3) have = 3;
+    }
+    const Mat A2 = have >= 1 ? Mat(reuse->A2 * (f * f)) : mat_mul(As, As);
+    const Mat A4 = have >= 2 ? Mat(reuse->A4 * (f * f * f * f)) : mat_mul(A2, A2);
+    const Mat A6 = have >= 3 ? Mat(reuse->A6 * (f * f * f * f * f * f)) : mat_mul(A4, A2);
+    if (keep) keep->A2 = A2, keep->A4 = A4, keep->A6 = A6, keep->count = 3, keep->scale = squarings;
     V = b[13] * A6 + b[11] * A4 + b[9] * A2;
     Mat tmp = mat_mul(A6, V);
     tmp += b[7] * A6 + b[5] * A4 + b[3] * A2 + b[1] * I;
@@ -169,11 +221,13 @@ template <class Mat>
 Mat balanced_exp(Mat C, double* rounding = nullptr, Eigen::Index measured_rows = -1) {
   const Eigen::Index n = C.rows();
   const auto d = balance(C);
-  Mat E = detail::small_exp(C);
+  detail::ExpPowers<Mat> powers;
+  Mat E = detail::small_exp(C, 0, rounding ? &powers : nullptr);
   if (rounding) {
     const Eigen::Index r = measured_rows < 0 ? n : std::min(measured_rows, n);
     const double norm = E.topRows(r).cwiseAbs().colwise().sum().maxCoeff();
-    *rounding = (E - detail::small_exp(C, 3)).topRows(r).cwiseAbs().colwise().sum().maxCoeff() / std::max(1.0, norm);
+    const Mat E3 = detail::small_exp<Mat>(C, 3, nullptr, &powers);
+    *rounding = (E - E3).topRows(r).cwiseAbs().colwise().sum().maxCoeff() / std::max(1.0, norm);
     if (!E.allFinite()) *rounding = std::numeric_limits<double>::infinity();
   }
   for (Eigen::Index j = 0; j < n; ++j)
