@@ -112,42 +112,32 @@ RunStatus run_modes(const HybridSystem& sys, HybridData& d, Stepper& s, const de
       event_values(sys, d, m, p.x, p.v, t + theta, false, p.g);
     };
     double a = 0, b = e.theta;
+    // Points of the dense output in increasing time, each against the last one seen clear (prev,
+    // its functions *g_a): the first that has crossed closes the bracket [prev, theta].
+    double prev = 0;
     const Eigen::VectorXd* g_a = &d.g0;
+    auto probe = [&](double theta) {
+      at(theta, d.mid);
+      hit = crossing(d, *g_a, d.mid.g);
+      if (hit >= 0) {
+        a = prev;
+        b = theta;
+        std::swap(d.end, d.mid);
+        return;
+      }
+      d.g_a = d.mid.g;
+      g_a = &d.g_a;
+      prev = theta;
+    };
     if (hit < 0 && !e.clear && Stepper::scans_for_dips &&
-        may_dip(sys, d, m, t, e.theta, e.before, d.x, d.v0, d.g0, d.end.x, d.end.v, d.end.g)) {
-      // The dense output at 8 points: the first that has crossed closes the bracket.
-      for (int i = 1; i < 8 && hit < 0; ++i) {
-        at(b * i / 8, d.mid);
-        hit = crossing(d, *g_a, d.mid.g);
-        if (hit >= 0) {
-          a = b * (i - 1) / 8;
-          b = b * i / 8;
-          std::swap(d.end, d.mid);
-        } else {
-          d.g_a = d.mid.g;
-          g_a = &d.g_a;
-        }
-      }
-    }
+        may_dip(sys, d, m, t, e.theta, e.before, d.x, d.v0, d.g0, d.end.x, d.end.v, d.end.g))
+      for (int i = 1; i < 8 && hit < 0; ++i) probe(e.theta * i / 8);  // the dense output at 8 points
     if (hit < 0 && !e.clear && !Stepper::lands_on_samples && any_watched(d)) {
-      // The samples within the step, from the dense output: no sample may show a mode past its event
-      // (a stuck torque beyond its capacity), even where the ends and the scan saw none.
-      double prev = 0;
+      // The samples within the step, from its start: no sample may show a mode past its event (a
+      // stuck torque beyond its capacity), even where the ends and the scan saw none.
+      prev = 0;
       g_a = &d.g0;
-      for (long j = k; hit < 0 && j < grid.count && grid.at(j) < e.t1; ++j) {
-        const double theta = grid.at(j) - t;
-        at(theta, d.mid);
-        hit = crossing(d, *g_a, d.mid.g);
-        if (hit >= 0) {
-          a = prev;
-          b = theta;
-          std::swap(d.end, d.mid);
-        } else {
-          d.g_a = d.mid.g;
-          g_a = &d.g_a;
-          prev = theta;
-        }
-      }
+      for (long j = k; hit < 0 && j < grid.count && grid.at(j) < e.t1; ++j) probe(grid.at(j) - t);
     }
     if (hit < 0) {
       if (!e.before && unfit(d, d.end.x, error)) return fail(e.t1);

@@ -9,12 +9,8 @@ namespace {
 
 class TunableErrors : public ErrorTest {
  protected:
-  // What the generated main of scene.toml with `tunable = [list]` says to `--param given`: the same
-  // fields (names, units, signs) codegen writes into it, from the same specialized system.
-  static std::string param_error(const std::string& list, const std::string& given) {
-    write_text("scene.toml", edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [" + list + "]"}}));
-    const SpecializedScene model = specialize(parse_scene("scene.toml"));
-    std::vector<double> values(model.main.params.size());
+  // The fields codegen writes into the generated main (names, units, signs), over `values`.
+  static std::vector<rt::ParameterField> parameter_fields(const SpecializedScene& model, std::vector<double>& values) {
     std::vector<rt::ParameterField> fields;
     for (std::size_t i = 0; i < values.size(); ++i) {
       const TunableParameter& p = model.main.params[i];
@@ -22,6 +18,15 @@ class TunableErrors : public ErrorTest {
       for (const UnitSpelling& u : p.units) f.units.push_back({u.unit, u.si});
       fields.push_back(f);
     }
+    return fields;
+  }
+  // What the generated main of scene.toml with `tunable = [list]` says to `--param given`: the same
+  // fields (names, units, signs) codegen writes into it, from the same specialized system.
+  static std::string param_error(const std::string& list, const std::string& given) {
+    write_text("scene.toml", edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [" + list + "]"}}));
+    const SpecializedScene model = specialize(parse_scene("scene.toml"));
+    std::vector<double> values(model.main.params.size());
+    const std::vector<rt::ParameterField> fields = parameter_fields(model, values);
     const auto eq = given.find('=');
     ::testing::internal::CaptureStderr();
     const bool ok = rt::set_parameters({{given.substr(0, eq), given.substr(eq + 1)}}, fields, "./demo");
@@ -66,19 +71,11 @@ TEST_F(TunableErrors, ParamNotAValue) {
 
 // The engineering spellings of a parameter's dimension are accepted besides the model's own
 // (issue 31, item 14: `--param K_ps=2000*N/mm` was refused where the model wrote Newton/mm).
-class TunableParamUnits : public ErrorTest {};
-
-TEST_F(TunableParamUnits, EngineeringSpellingsOfTheDimensionAreAccepted) {
+TEST_F(TunableErrors, EngineeringSpellingsOfTheDimensionAreAccepted) {
   write_text("scene.toml", edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"J_c\", \"K_ps\"]"}}));
   const SpecializedScene model = specialize(parse_scene("scene.toml"));
   std::vector<double> values(model.main.params.size());
-  std::vector<rt::ParameterField> fields;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const TunableParameter& p = model.main.params[i];
-    rt::ParameterField f{p.name, &values[i], {}, p.sign};
-    for (const UnitSpelling& u : p.units) f.units.push_back({u.unit, u.si});
-    fields.push_back(f);
-  }
+  const std::vector<rt::ParameterField> fields = parameter_fields(model, values);
   ASSERT_TRUE(rt::set_parameters({{"K_ps", "2000*N/mm"}, {"J_c", "30000*kg*mm^2"}}, fields, "./demo"));
   for (std::size_t i = 0; i < values.size(); ++i) {
     // Decimal unit factors: one rounding each.
