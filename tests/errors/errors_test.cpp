@@ -320,6 +320,25 @@ TEST_F(FrictionElements, ClutchAcrossTwoFixedAxes) {
       R"~(gear.toml:46:16: error: clutch 'C1' joins 'g' and 'h', which turn about two different fixed axes: they mesh with each other (mesh gh); a clutch joins two bodies that turn about one axis)~");
 }
 
+// Two fixed-axis bodies below the central wheel they both mesh with, at radii that put their axes
+// at different heights: neither meshes the other, and both are drawn on one side (issue 31, item 10).
+TEST_F(FrictionElements, ClutchAcrossFixedAxesAtDifferentHeights) {
+  auto edits = [](const std::string& r_h) {
+    return Edits{{"[[mesh]]\nfirst = \"p\"\nsecond = \"s1\"",
+                  "[[body]]\nname = \"h\"\naxis = { fixed = \"below\" }\n\n[[mesh]]\nfirst = \"s2\"\nsecond = \"h\"\n\n"
+                  "[[mesh]]\nfirst = \"p\"\nsecond = \"s1\""},
+                 {"[parameters]", "[[clutch]]\nname = \"C1\"\nbodies = [\"g\", \"h\"]\n\n[parameters]"},
+                 {"r_g = \"16*cm\"", "r_g = \"16*cm\"\nr_h = \"" + r_h + "\"\nJ_h = \"0.1*kg*meters^2\"\nb_h = \"b_c\"\n"
+                                     "K_sh = \"K_ps\"\nb_sh = \"b_ps\"\nTcap_C1 = \"100*N*m\""}};
+  };
+  // g's axis is at -(r_s2 + r_g) = -0.32 m, h's at -(r_s2 + r_h).
+  expect_model_error(edits("12*cm"),
+      R"~(gear.toml:46:16: error: clutch 'C1' joins 'g' and 'h', whose meshes place their fixed axes at heights -0.32 m and -0.28 m of the side view; a clutch joins two bodies that turn about one axis)~");
+  // At r_h = r_g both axes are at -0.32 m: one axis, and the clutch is accepted.
+  EXPECT_NO_THROW(derive_topology(parse_topology_text(edited(base_model(), edits("16*cm")), "gear.toml"),
+                                  std::nullopt, SourceLocation{"gear.toml", 0, 0}));
+}
+
 TEST_F(FrictionElements, BrakeOnAPlanet) {
   expect_error("[[brake]]\nname = \"B1\"\nbody = \"p\"\n", "",
       R"~(gear.toml:38:8: error: brake 'B1' holds 'p', a planet, whose axis moves with its carrier; a brake holds a body on the central axis or on a fixed axis)~");

@@ -230,6 +230,28 @@ double pinion_angle(const Topology& t, const SymbolTable& s, int mi, const Radiu
   return std::acos(std::clamp(c, -1.0, 1.0));
 }
 
+// A clutch joins two bodies on one axis: two fixed axes that the meshes place at different heights
+// of the side view are two axes, whichever way the chain of meshes between them runs (a countershaft's
+// input and output gears are coaxial only when their centre distances agree).
+void check_clutches_on_one_axis(const Topology& t, const Heights& h, const GiNaC::exmap& solved,
+                                const GiNaC::exmap& known) {
+  for (const FrictionElement& e : t.friction_elements) {
+    if (e.is_brake() || t.bodies[e.first].axis != AxisKind::fixed || t.bodies[e.second].axis != AxisKind::fixed)
+      continue;
+    const auto a = value_of(h.symbolic[e.first].subs(solved), known);
+    const auto b = value_of(h.symbolic[e.second].subs(solved), known);
+    if (!a || !b) continue;  // a missing radius is reported where it is missing
+    // The heights are sums of radii typed to a few digits: equal axes agree to ~1e-15 relative,
+    // so 1e-9 (the tolerance of the geometry relations) only separates axes that differ.
+    if (std::abs(*a - *b) <= 1e-9 * std::max(std::abs(*a), std::abs(*b))) continue;
+    throw InputError(e.bodies_where,
+                     fmt::format("clutch '{}' joins '{}' and '{}', whose meshes place their fixed axes at heights "
+                                 "{:.6g} m and {:.6g} m of the side view; a clutch joins two bodies that "
+                                 "turn about one axis",
+                                 e.name, t.bodies[e.first].name, t.bodies[e.second].name, *a, *b));
+  }
+}
+
 }  // namespace
 
 std::string describe_mesh(const Topology& t, int mesh) {
@@ -382,6 +404,7 @@ RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
       throw GeometryConflict(p->where, ContradictedLength{g.parameter, p->text, given, describe_mesh(t, g.mesh), g.rhs,
                                                           *implied});
   }
+  check_clutches_on_one_axis(t, h, solved, known);
   for (int mi : angled) rm.angled.push_back({mi, pinion_angle(t, s, mi, rm, known)});
   // With pinions at an angle, axis distances no longer describe the layout: every row is taken in
   // the frame where both its axes are fixed, in wheel radii alone (for a planet and a central wheel

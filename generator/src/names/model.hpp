@@ -77,6 +77,7 @@ struct FrictionElement {
   std::string capacity_parameter;  // kinetic torque capacity at full engagement (N m): T_<name> unless set
   std::string static_ratio = "1";  // static / kinetic friction, an expression of the parameters
   SourceLocation where;            // the name
+  SourceLocation bodies_where;     // a clutch's second body, as written
   SourceLocation static_ratio_where;
   int static_ratio_column_offset = 0;
   // A one-way element (freewheel, sprag): its slip may be positive freely (no torque); it holds

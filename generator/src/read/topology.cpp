@@ -199,6 +199,7 @@ void read_friction_elements(const TomlReader& r, const toml::table& root, Topolo
         const toml::array& pair = *b->as_array();
         e.first = body_of(pair[0]);
         e.second = body_of(pair[1]);
+        e.bodies_where = r.loc(pair[1]);
         const Body& f = t.bodies[e.first];
         const Body& g = t.bodies[e.second];
         if (e.first == e.second) r.fail(pair[1], fmt::format("clutch '{}' joins body '{}' to itself; name two bodies", e.name, f.name));
