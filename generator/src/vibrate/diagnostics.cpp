@@ -32,7 +32,8 @@ std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v
 
 }  // namespace
 
-Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R, double sample) {
+Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const Eigen::MatrixXd& R, double sample,
+                     const InputExcitation& excitation) {
   Diagnostics d;
   // Balanced first (exact, the same eigenvalues): unbalanced, the mesh-force rows of a very stiff
   // gear ruled the rounding, and modes of a passive gear came out growing.
@@ -55,12 +56,16 @@ Diagnostics diagnose(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L1, const 
     }
     slowest_decay = std::min(slowest_decay, decay);
   }
-  for (Eigen::Index i = 0; i < lambda.size(); ++i)
-    if (std::abs(lambda(i).imag()) > floor)
-      d.fastest_oscillation_hz = std::max(d.fastest_oscillation_hz, std::abs(lambda(i).imag()) / (2 * std::numbers::pi));
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
+    if (!(std::abs(lambda(i).imag()) > floor)) continue;
+    const double hz = std::abs(lambda(i).imag()) / (2 * std::numbers::pi);
+    d.fastest_oscillation_hz = std::max(d.fastest_oscillation_hz, hz);
+    // Below 1 % of the inputs' own effect, an oscillation cannot make a sampled peak read 1 % low.
+    if (excitation.of(std::abs(lambda(i))) >= 0.01) d.excited_oscillation_hz = std::max(d.excited_oscillation_hz, hz);
+  }
   d.sample = sample;
-  if (sample > 0 && d.fastest_oscillation_hz > 0) {
-    const double cycles = d.fastest_oscillation_hz * sample;  // per sample
+  if (sample > 0 && d.excited_oscillation_hz > 0) {
+    const double cycles = d.excited_oscillation_hz * sample;  // per sample
     d.sampled_peak_shortfall = cycles >= 0.5 ? 1.0 : 1 - std::cos(std::numbers::pi * cycles);
   }
   if (std::isfinite(slowest_decay) && slowest_decay > 0) {
@@ -112,9 +117,10 @@ std::string diagnostics_text(const Diagnostics& d, const std::string& in) {
                    d.suggested_solver, d.reason);
   // Above 1 %: the output would show the scene's fastest vibration visibly lower than it is.
   if (d.sampled_peak_shortfall > 0.01) {
-    const double f = d.fastest_oscillation_hz;
-    s += fmt::format("{}warning: sample period {} s is {} of a period of the fastest oscillation ({} Hz): ", in,
-                     number(d.sample), number(d.sample * f), number(f));
+    const double f = d.excited_oscillation_hz;
+    s += fmt::format("{}warning: sample period {} s is {} of a period of the fastest oscillation{} ({} Hz): ", in,
+                     number(d.sample), number(d.sample * f),
+                     f < d.fastest_oscillation_hz ? " the inputs excite" : "", number(f));
     s += d.sampled_peak_shortfall >= 1
              ? "the samples do not resolve it (fewer than 2 per period), and its peaks can be missed entirely"
              : fmt::format("its sampled peaks can read up to {:.3g} % low", 100 * d.sampled_peak_shortfall);
@@ -141,6 +147,7 @@ std::string diagnostics_json(const Diagnostics& d, const std::string& in) {
   s += fmt::format("{}  \"cond_RRt\": {},\n", in, d.cond_RRt ? num(*d.cond_RRt) : "null");
   s += fmt::format("{}  \"rk4_max_step\": {},\n", in, num(d.rk4_max_step));
   s += fmt::format("{}  \"fastest_oscillation_hz\": {},\n", in, num(d.fastest_oscillation_hz));
+  s += fmt::format("{}  \"excited_oscillation_hz\": {},\n", in, num(d.excited_oscillation_hz));
   s += fmt::format("{}  \"suggested_solver\": \"{}\",\n", in, d.suggested_solver);
   s += fmt::format("{}  \"lowest_natural_frequency_hz\": {}\n", in,
                    d.lowest_natural_frequency_hz ? num(*d.lowest_natural_frequency_hz) : "null");
@@ -167,6 +174,43 @@ void add_natural_frequency(Diagnostics& diagnostics, const Derivation& d, const 
 
 }  // namespace
 
+InputExcitation input_excitation(const SpecializedScene& model, const SpecializedSystem& sys) {
+  const Scene& sc = model.scene;
+  InputExcitation e{.jumps = !model.friction.empty() || !sys.limited_controllers.empty()};
+  // A start as given is in equilibrium only at rest with no input acting: the mesh forces start at
+  // the values given (zero by default), whatever the torques.
+  bool acting = std::any_of(sys.x0.begin(), sys.x0.end(), [](double x) { return x != 0; });
+  for (const rt::Signal& u : sys.input_signals) {
+    acting = acting || rt::value(u, 0.0) != 0;
+    // Its jumps in (0, horizon], the slope changes at its corners, and its size U, max |u| over the run.
+    double size = std::abs(rt::value(u, 0.0));
+    std::vector<double> corners;
+    if (const auto* step = std::get_if<rt::Step>(&u)) {
+      size = std::max({size, std::abs(step->before), std::abs(step->after)});
+      e.jumps = e.jumps || (step->time > 0 && step->time <= sc.horizon && step->before != step->after);
+    } else if (const auto* ramp = std::get_if<rt::Ramp>(&u)) {
+      size = std::max({size, std::abs(rt::value(u, sc.horizon))});
+      if (ramp->start_time <= sc.horizon) corners.push_back(std::abs(ramp->slope));
+    } else if (const auto* sine = std::get_if<rt::Sine>(&u)) {
+      size = std::max(size, std::abs(sine->offset) + std::abs(sine->amplitude));
+      if (sine->amplitude != 0) e.sine_rate = std::max(e.sine_rate, 2 * std::numbers::pi * std::abs(sine->frequency_hz));
+    } else if (const auto* table = std::get_if<rt::Table>(&u)) {
+      for (double v : table->v) size = std::max(size, std::abs(v));
+      for (std::size_t i = 0; i < table->t.size() && table->t[i] <= sc.horizon; ++i) {
+        if (i + 1 < table->t.size() && table->t[i + 1] == table->t[i] && table->v[i + 1] != table->v[i] &&
+            table->t[i] > 0)
+          e.jumps = true;
+        const double before = table->t[i] > 0 ? rt::slope(u, std::nextafter(table->t[i], -1.0)) : 0.0;
+        corners.push_back(std::abs(rt::slope(u, table->t[i]) - before));
+      }
+    }
+    if (size > 0)
+      for (double c : corners) e.corner_rate = std::max(e.corner_rate, c / size);
+  }
+  e.jumps = e.jumps || (sc.start == Start::given && acting);
+  return e;
+}
+
 Diagnostics derivation_diagnostics(const Derivation& d) {
   const GiNaC::exmap& at = d.values;
   const Eigen::MatrixXd L = evaluate_matrix(d.elastic.L, at);
@@ -183,7 +227,7 @@ Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedS
   // numeric_system computes by another formula (the tests compare them), without solving again.
   // L1 holds inertias and radii only, which the folding leaves at the model's values.
   Diagnostics out = diagnose(state_matrix(model, sys), evaluate_matrix(d.rigid_values.L1, {}),
-                             evaluate_matrix(d.elastic.R, values), model.scene.sample);
+                             evaluate_matrix(d.elastic.R, values), model.scene.sample, input_excitation(model, sys));
   // At the derivation's values (the scene's overrides), not the folded ones: a rigid scene folds
   // the stiffnesses away, yet the frequency below which it holds is that of its gear.
   add_natural_frequency(out, d, d.values, !model.friction.empty());
