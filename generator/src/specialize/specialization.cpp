@@ -149,12 +149,23 @@ GiNaC::matrix energy_matrix(const Derivation& d, const GiNaC::exmap& fold, bool 
   for (unsigned i = 0; i < Q1.cols() && rational; ++i)
     for (unsigned b = 0; b < Q1.rows() && rational; ++b) rational_value(Q1(b, i), q[i][b]);
   if (rational) {
+    // Summed as integers over one common denominator per entry and reduced once: a sum of
+    // rationals reduces at every addition, and Q1 of a long chain has long numbers.
+    auto scale_to_integers = [](std::vector<GiNaC::numeric>& v) {
+      GiNaC::numeric d = 1;
+      for (const auto& x : v) d = GiNaC::lcm(d, x.denom());
+      for (auto& x : v) x = x.mul(d);
+      return d;
+    };
+    const GiNaC::numeric dJ = scale_to_integers(J);
+    std::vector<GiNaC::numeric> dq(Q1.cols());
+    for (unsigned i = 0; i < Q1.cols(); ++i) dq[i] = scale_to_integers(q[i]);
     for (unsigned i = 0; i < Q1.cols(); ++i)
       for (unsigned j = 0; j <= i; ++j) {
         GiNaC::numeric sum = 0;
         for (unsigned b = 0; b < Q1.rows(); ++b)
-          if (!q[i][b].is_zero() && !q[j][b].is_zero()) sum += J[b] * q[i][b] * q[j][b];
-        L(i, j) = L(j, i) = sum;
+          if (!q[i][b].is_zero() && !q[j][b].is_zero()) sum = sum.add(J[b].mul(q[i][b]).mul(q[j][b]));
+        L(i, j) = L(j, i) = sum.div(dJ.mul(dq[i]).mul(dq[j]));
       }
     return L;
   }
