@@ -295,30 +295,6 @@ std::string math_body(const Derivation& d, const Diagnostics& diagnostics, const
   return s;
 }
 
-std::string json_strings(const std::vector<std::string>& v) {
-  std::vector<std::string> q;
-  for (const auto& x : v) q.push_back(json_string(x));
-  return "[" + joined(q, ", ") + "]";
-}
-
-std::string json_string_matrix(const std::vector<std::vector<std::string>>& m, const std::string& indent) {
-  std::vector<std::string> rows;
-  for (const auto& r : m) rows.push_back(json_strings(r));
-  return "[\n" + indent + "  " + joined(rows, ",\n" + indent + "  ") + "\n" + indent + "]";
-}
-
-std::string json_numbers(const Eigen::VectorXd& v) {
-  std::vector<std::string> s;
-  for (Eigen::Index i = 0; i < v.size(); ++i) s.push_back(json_number(v(i)));
-  return "[" + joined(s, ", ") + "]";
-}
-
-std::string json_number_matrix(const Eigen::MatrixXd& m) {
-  std::vector<std::string> rows;
-  for (Eigen::Index i = 0; i < m.rows(); ++i) rows.push_back(json_numbers(m.row(i).transpose()));
-  return "[" + joined(rows, ", ") + "]";
-}
-
 }  // namespace
 
 std::string report_text(const Derivation& d, const Diagnostics& diagnostics) {
