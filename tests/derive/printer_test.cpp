@@ -22,6 +22,16 @@ TEST(Printer, SumsReadLikeThePaper) {
   EXPECT_EQ(print_expression(e, Notation::cpp), "J_c + J_p*r_c*r_c/(r_p*r_p)");
 }
 
+// The variables print after the parameters because the caller says which symbols they are, not
+// because of their names: a parameter named omega_0 is a parameter, ordered by its name.
+TEST(Printer, VariablesPrintLastBecauseTheCallerSaysSo) {
+  realsymbol Jp("J_p"), omega0("omega_0"), z("z_a"), domega("domega_r");
+  EXPECT_EQ(print_expression(Jp * omega0 * z, Notation::ginac), "J_p*omega_0*z_a");
+  EXPECT_EQ(print_expression(Jp * omega0 * z, Notation::ginac, {Jp}), "omega_0*z_a*J_p");
+  EXPECT_EQ(print_expression(Jp * domega * z, Notation::ginac, {domega}), "J_p*z_a*domega_r");
+  EXPECT_EQ(print_expression(Jp * domega * z, Notation::ginac), "J_p*domega_r*z_a");
+}
+
 TEST(Printer, SignOfASumFactorIsCanonical) {
   realsymbol a("a"), b("b"), c("c");
   // The same value written two ways, as GiNaC's normal() may return either.

@@ -46,7 +46,7 @@ TEST(GeneratedCode, IdentifiersAreCheckedNotEscaped) {
 // The last line of defence: what the readers let through is checked again, and nothing is written.
 TEST(GeneratedCode, NonFiniteNumberIsRefused) {
   SpecializedScene m = scene_model(scene_text("paper_one_stage"));
-  m.main.x0[0] = std::numeric_limits<double>::infinity();
+  m.main.states[0].initial = std::numeric_limits<double>::infinity();
   try {
     generate_sources(m);
     ADD_FAILURE() << "no error";

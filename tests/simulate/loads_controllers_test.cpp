@@ -8,6 +8,7 @@
 
 #include "specialize/reference_model.hpp"
 #include "sim_support.hpp"
+#include "../support/ports.hpp"
 
 namespace pogear::test {
 namespace {
@@ -28,11 +29,12 @@ std::string pair_scene(const std::string& tables, const std::string& initial = "
 }
 
 // The column of output `name` in a run of `sys`.
-std::vector<double> column(const Trajectory& tr, const SpecializedSystem& sys, const std::string& name) {
-  const auto it = std::find(sys.outputs.begin(), sys.outputs.end(), name);
-  EXPECT_NE(it, sys.outputs.end()) << name;
+std::vector<double> column(const Trajectory& tr, const SpecializedScene& m, const std::string& name) {
+  const std::vector<std::string> outputs = output_names(m, m.main);
+  const auto it = std::find(outputs.begin(), outputs.end(), name);
+  EXPECT_NE(it, outputs.end()) << name;
   std::vector<double> out;
-  for (const auto& y : tr.y) out.push_back(y(it - sys.outputs.begin()));
+  for (const auto& y : tr.y) out.push_back(y(it - outputs.begin()));
   return out;
 }
 
@@ -41,12 +43,12 @@ TEST(SpeedController, PReachesItsSetPointWithTheClosedLoopTimeConstant) {
   const double kp = 0.5, ref = 100.0;
   const SpecializedScene m = scene_model(pair_scene(
       "[controllers]\nspeed = { body = \"a\", set_point = \"100*rad/s\", kp = \"0.5*N*m*s/rad\" }\n"));
-  ASSERT_EQ(m.main.states, (std::vector<std::string>{"omega_a", "theta_speed"}));
+  ASSERT_EQ(state_names(m, m.main), (std::vector<std::string>{"omega_a", "theta_speed"}));
   const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m));
   ASSERT_TRUE(tr.status.ok) << tr.status.message;
   const double T = J_seen_from_a / kp;
   EXPECT_EQ(system_diagnostics(m, m.main).growing_modes, 0);
-  const std::vector<double> omega = column(tr, m.main, "omega_a"), torque = column(tr, m.main, "Tc_speed");
+  const std::vector<double> omega = column(tr, m, "omega_a"), torque = column(tr, m, "Tc_speed");
   for (std::size_t i = 0; i < tr.t.size(); ++i) {
     // Exact stepping of a 2-state linear system: rounding only, ~1e-15 of the scale per step.
     EXPECT_NEAR(omega[i], ref * (1 - std::exp(-tr.t[i] / T)), 1e-11 * ref) << tr.t[i];
@@ -67,7 +69,7 @@ TEST(SpeedController, PIErrorDecaysWithTheClosedLoopPoles) {
   const double l1 = (-kp + disc) / (2 * J), l2 = (-kp - disc) / (2 * J);
   // A + B = ref, l1 A + l2 B = -kp ref / J
   const double A = (-kp * ref / J - l2 * ref) / (l1 - l2), B = ref - A;
-  const std::vector<double> omega = column(tr, m.main, "omega_a");
+  const std::vector<double> omega = column(tr, m, "omega_a");
   double worst = 0;
   for (std::size_t i = 0; i < tr.t.size(); ++i) {
     const double e = A * std::exp(l1 * tr.t[i]) + B * std::exp(l2 * tr.t[i]);
@@ -84,14 +86,14 @@ TEST(SpeedController, StartsAtTheGivenTorqueWithoutABump) {
                              "speed = { body = \"a\", set_point = \"100*rad/s\", kp = \"0.5*N*m*s/rad\", ki = \"0.5*N*m/rad\" }\n";
   const SpecializedScene bumpless = scene_model(pair_scene(tables, "omega_a = \"100*rad/s\"\nTc_speed = \"2*N*m\""));
   const SpecializedScene from_zero = scene_model(pair_scene(tables, "omega_a = \"100*rad/s\""));
-  EXPECT_EQ(bumpless.main.x0[1], 4.0);  // theta(0) = (2 - 0.5 * 0) / 0.5
+  EXPECT_EQ(bumpless.main.states[1].initial, 4.0);  // theta(0) = (2 - 0.5 * 0) / 0.5
   const Trajectory held = interpret_trajectory(bumpless, bumpless.main, run_settings(bumpless));
   const Trajectory dipped = interpret_trajectory(from_zero, from_zero.main, run_settings(from_zero));
   ASSERT_TRUE(held.status.ok && dipped.status.ok);
   double held_gap = 0, dip = 0;
   for (std::size_t i = 0; i < held.t.size(); ++i) {
-    held_gap = std::max(held_gap, std::abs(column(held, bumpless.main, "omega_a")[i] - 100));
-    dip = std::max(dip, std::abs(column(dipped, from_zero.main, "omega_a")[i] - 100));
+    held_gap = std::max(held_gap, std::abs(column(held, bumpless, "omega_a")[i] - 100));
+    dip = std::max(dip, std::abs(column(dipped, from_zero, "omega_a")[i] - 100));
   }
   EXPECT_LT(held_gap, 1e-12 * 100);  // an equilibrium, stepped exactly: rounding only
   EXPECT_GT(dip, 0.5);               // 2 N m on 0.068 kg m^2 before the controller answers
@@ -111,7 +113,7 @@ TEST(SpeedController, MeasuresTheBodyItIsGiven) {
   const Diagnostics d = system_diagnostics(m, m.main);
   EXPECT_EQ(d.growing_modes, 1);
   EXPECT_NEAR(d.fastest_growth_rate, 1 / T, 1e-12 / T);
-  const std::vector<double> omega_b = column(tr, m.main, "omega_b");
+  const std::vector<double> omega_b = column(tr, m, "omega_b");
   for (std::size_t i = 0; i < tr.t.size(); i += 100) {
     const double expected = ref * (1 - std::exp(tr.t[i] / T));
     EXPECT_NEAR(omega_b[i], expected, 1e-11 * std::max(ref, std::abs(expected))) << tr.t[i];
@@ -126,10 +128,10 @@ TEST(Loads, ConstantAndLinearLoadsDecelerateAsTheirClosedForm) {
                                                     "b = { linear = \"0.5*N*m*s/rad\" }\n",
                                                     "omega_a = \"100*rad/s\""));
   EXPECT_FALSE(m.main.nonlinear);
-  ASSERT_EQ(m.main.inputs, std::vector<std::string>{"TL_a"});
+  ASSERT_EQ(input_names(m, m.main), std::vector<std::string>{"TL_a"});
   const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m));
   ASSERT_TRUE(tr.status.ok) << tr.status.message;
-  const std::vector<double> omega = column(tr, m.main, "omega_a");
+  const std::vector<double> omega = column(tr, m, "omega_a");
   for (std::size_t i = 0; i < tr.t.size(); ++i)
     EXPECT_NEAR(omega[i], -c0 / k + (omega0 + c0 / k) * std::exp(-k * tr.t[i] / J_seen_from_a), 1e-11 * omega0)
         << tr.t[i];
@@ -145,7 +147,7 @@ TEST(Loads, QuadraticLoadDeceleratesAsItsClosedForm) {
   for (const rt::Solver solver : {rt::Solver::dopri5, rt::Solver::implicit}) {
     const Trajectory tr = interpret_trajectory(m, m.main, run_settings(m, solver));
     ASSERT_TRUE(tr.status.ok) << tr.status.message;
-    const std::vector<double> omega = column(tr, m.main, "omega_a");
+    const std::vector<double> omega = column(tr, m, "omega_a");
     double worst = 0;
     for (std::size_t i = 0; i < tr.t.size(); ++i)
       worst = std::max(worst, std::abs(omega[i] - omega0 / (1 + q * omega0 * tr.t[i] / J_seen_from_a)));

@@ -6,6 +6,7 @@
 
 #include "report/run_summary.hpp"
 #include "sim_support.hpp"
+#include "../support/ports.hpp"
 
 namespace pogear::test {
 namespace {
@@ -189,13 +190,14 @@ TEST(LumpedPlanets, MoveAsThreeExplicitPlanetsSharingTheLoad) {
     const Trajectory tb = interpret_trajectory(explicit_planets, b, run_settings(explicit_planets));
     ASSERT_TRUE(ta.status.ok && tb.status.ok);
     ASSERT_EQ(ta.t.size(), tb.t.size());
-    auto column = [](const SpecializedSystem& s, const std::string& name) {
-      const auto it = std::find(s.outputs.begin(), s.outputs.end(), name);
-      EXPECT_NE(it, s.outputs.end()) << name;
-      return static_cast<Eigen::Index>(it - s.outputs.begin());
+    auto column = [](const SpecializedScene& m, const SpecializedSystem& s, const std::string& name) {
+      const std::vector<std::string> outputs = output_names(m, s);
+      const auto it = std::find(outputs.begin(), outputs.end(), name);
+      EXPECT_NE(it, outputs.end()) << name;
+      return static_cast<Eigen::Index>(it - outputs.begin());
     };
     for (const auto& [x, y] : same) {
-      const Eigen::Index i = column(a, x), j = column(b, y);
+      const Eigen::Index i = column(lumped, a, x), j = column(explicit_planets, b, y);
       double gap = 0, scale = 0;
       for (std::size_t k = 0; k < ta.t.size(); ++k) {
         gap = std::max(gap, std::abs(ta.y[k](i) - tb.y[k](j)));

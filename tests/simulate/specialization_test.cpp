@@ -7,6 +7,7 @@
 #include "common/exact_algebra.hpp"
 #include "specialize/initial_state.hpp"
 #include "sim_support.hpp"
+#include "../support/ports.hpp"
 
 namespace pogear::test {
 namespace {
@@ -65,15 +66,15 @@ TEST(Specialization, ZeroInputsAreNotInputs) {
   const std::string text = with_line(scene_text("paper_one_stage"), "tau_c = { constant = \"100*Nm\" }",
                                      "tau_c = { constant = \"100*Nm\" }\ntau_p = \"0*Nm\"\ntau_g = { step = \"0*Nm\", at = \"1*s\" }");
   const SpecializedScene m = scene_model(text);
-  EXPECT_EQ(m.main.inputs, std::vector<std::string>{"tau_c"});
-  EXPECT_EQ(m.rigid->inputs, std::vector<std::string>{"tau_c"});
+  EXPECT_EQ(input_names(m, m.main), std::vector<std::string>{"tau_c"});
+  EXPECT_EQ(input_names(m, *m.rigid), std::vector<std::string>{"tau_c"});
 }
 
 TEST(Specialization, OnlyRequestedOutputsAreComputed) {
   const std::string text = with_line(scene_text("paper_one_stage"), "compare_rigid = true",
                                      "compare_rigid = true\noutputs = [\"omega_c\", \"F_sg\"]");
   const SpecializedScene m = scene_model(text);
-  EXPECT_EQ(m.rigid->outputs, (std::vector<std::string>{"omega_c", "F_sg"}));
+  EXPECT_EQ(output_names(m, *m.rigid), (std::vector<std::string>{"omega_c", "F_sg"}));
   const SpecializedScene full = scene_model(scene_text("paper_one_stage"));
   EXPECT_LT(m.rigid->output_ops.total(), full.rigid->output_ops.total());
   const GeneratedSources g = generate_sources(m);
@@ -99,11 +100,11 @@ TEST(Specialization, InitialStateAndInputsSeeTheSceneParameters) {
   text = with_line(text, "tau_c = { constant = \"100*Nm\" }", "tau_c = { constant = \"r_c*1000*N\" }");
   const SpecializedScene m = scene_model(with_parameters(text, "r_s1 = \"20*cm\"\nr_c = \"24.8*cm\"\nr_r1 = \"29.6*cm\""));
   // 0.248 * 100 and * 1000 in doubles: the product's rounding, a few ulps.
-  EXPECT_NEAR(m.main.x0.at(0), 24.8, 1e-12);
+  EXPECT_NEAR(initial_values(m.main).at(0), 24.8, 1e-12);
   ASSERT_EQ(m.scene.inputs.size(), 1u);
   EXPECT_NEAR(rt::value(m.scene.inputs[0].signal, 0.0), 248.0, 1e-11);
   ASSERT_TRUE(m.rigid.has_value());
-  EXPECT_NEAR(m.rigid->x0.at(0), 24.8, 1e-12);
+  EXPECT_NEAR(initial_values(*m.rigid).at(0), 24.8, 1e-12);
 }
 
 // [initial] on a rigid scene: every named speed is honoured, whether the body is kept or not, and
@@ -117,7 +118,8 @@ TEST(InitialState, RigidSceneHonoursEveryNamedSpeed) {
   const SpecializedScene m = scene_model(with_line(rigid, "omega_c = \"0*rpm\"", "omega_s = \"3600*rpm\""));
   const Derivation& d = m.derivation;
   const Eigen::MatrixXd Q1 = evaluate_matrix(d.rigid.Q1, d.values);
-  const Eigen::VectorXd x0 = Eigen::Map<const Eigen::VectorXd>(m.main.x0.data(), static_cast<Eigen::Index>(m.main.x0.size()));
+  const std::vector<double> start = initial_values(m.main);
+  const Eigen::VectorXd x0 = Eigen::Map<const Eigen::VectorXd>(start.data(), static_cast<Eigen::Index>(start.size()));
   const Eigen::VectorXd omega = Q1 * x0;
   auto body = [&](const std::string& name) {
     for (std::size_t b = 0; b < d.topology.bodies.size(); ++b)
@@ -134,8 +136,8 @@ TEST(InitialState, RigidSceneHonoursEveryNamedSpeed) {
   EXPECT_LT((evaluate_matrix(d.elastic.R, d.values) * omega).cwiseAbs().maxCoeff(), 1e-13 * 3600 * rpm);
   // A kept body named keeps its value bit for bit.
   const SpecializedScene k = scene_model(with_line(rigid, "omega_c = \"0*rpm\"", "omega_r = \"1234.5*rpm\"\nomega_s = \"10*rpm\""));
-  EXPECT_EQ(k.main.x0.at(1), 1234.5 * rpm);
-  const Eigen::VectorXd w = Q1 * Eigen::Map<const Eigen::VectorXd>(k.main.x0.data(), 2);
+  EXPECT_EQ(initial_values(k.main).at(1), 1234.5 * rpm);
+  const Eigen::VectorXd w = Q1 * Eigen::Map<const Eigen::VectorXd>(initial_values(k.main).data(), 2);
   EXPECT_NEAR(w(body("s")) / (10 * rpm), 1, 1e-12);  // 10 rpm against ring terms of ~1000 rpm: 1e-14 of those
 }
 
@@ -145,11 +147,11 @@ TEST(InitialState, CompareRigidStartsBothModelsFromOneConsistentState) {
   const SpecializedScene m = scene_model(with_line(scene_text("paper_one_stage"), "omega_c = \"0*rpm\"", "omega_s = \"3600*rpm\""));
   ASSERT_TRUE(m.rigid.has_value());
   const Derivation& d = m.derivation;
-  const Eigen::VectorXd x1 = Eigen::Map<const Eigen::VectorXd>(m.rigid->x0.data(), 2);
+  const Eigen::VectorXd x1 = Eigen::Map<const Eigen::VectorXd>(initial_values(*m.rigid).data(), 2);
   const Eigen::VectorXd omega = evaluate_matrix(d.rigid.Q1, d.values) * x1;
   const std::size_t n = d.topology.bodies.size();
   Eigen::VectorXd elastic(static_cast<Eigen::Index>(n));
-  for (std::size_t b = 0; b < n; ++b) elastic(static_cast<Eigen::Index>(b)) = m.main.x0.at(b);  // velocities first
+  for (std::size_t b = 0; b < n; ++b) elastic(static_cast<Eigen::Index>(b)) = initial_values(m.main).at(b);  // velocities first
   EXPECT_LT((elastic - omega).cwiseAbs().maxCoeff(), 1e-12 * omega.cwiseAbs().maxCoeff());
   // No mesh is deflecting: R omega = 0 to rounding.
   EXPECT_LT((evaluate_matrix(d.elastic.R, d.values) * elastic).cwiseAbs().maxCoeff(), 1e-13 * omega.cwiseAbs().maxCoeff());
@@ -266,8 +268,9 @@ TEST(InitialState, LoadsStartSteadyAndRigid) {
     for (const SpecializedSystem* sys : {&m.main, &*m.rigid}) {
       SCOPED_TRACE(effects + " " + std::string(kind_name(sys->kind)));
       const NumericSystem ref = numeric_system(m, *sys);
-      Eigen::VectorXd u(static_cast<Eigen::Index>(sys->input_signals.size()));
-      rt::input_values(sys->input_signals, 0.0, u);
+      const std::vector<rt::Signal> signals = input_signals(*sys);
+      Eigen::VectorXd u(static_cast<Eigen::Index>(signals.size()));
+      rt::input_values(signals, 0.0, u);
       const Eigen::VectorXd dx = ref.M * ref.x0 + ref.N * u;
       const double scale = (ref.M.cwiseAbs() * ref.x0.cwiseAbs()).maxCoeff();
       EXPECT_LT(dx.cwiseAbs().maxCoeff(), 1e-13 * scale);
@@ -306,15 +309,16 @@ TEST(Specialization, SpeedsInRpm) {
     const Trajectory ta = interpret_trajectory(si, a, run_settings(si));
     const Trajectory tb = interpret_trajectory(rpm, b, run_settings(rpm));
     ASSERT_TRUE(ta.status.ok && tb.status.ok);
-    ASSERT_EQ(a.outputs, b.outputs);
+    ASSERT_EQ(output_names(si, a), output_names(rpm, b));
+    const std::vector<std::string> units_a = output_units(a), units_b = output_units(b);
     for (std::size_t j = 0; j < a.outputs.size(); ++j) {
-      const bool speed = a.output_variables[j].kind == VariableKind::velocity;
-      EXPECT_EQ(b.output_units[j], speed ? "rpm" : a.output_units[j]);
+      const bool speed = a.outputs[j].variable.kind == VariableKind::velocity;
+      EXPECT_EQ(units_b[j], speed ? "rpm" : units_a[j]);
       const double factor = speed ? 60 / (2 * std::numbers::pi) : 1.0;
       for (std::size_t k = 0; k < ta.t.size(); ++k) {
         const auto i = static_cast<Eigen::Index>(j);
         // One more rounding (the factor's and the product's): a few ulps.
-        EXPECT_NEAR(tb.y[k](i), factor * ta.y[k](i), 1e-14 * std::abs(factor * ta.y[k](i)) + 1e-300) << a.outputs[j];
+        EXPECT_NEAR(tb.y[k](i), factor * ta.y[k](i), 1e-14 * std::abs(factor * ta.y[k](i)) + 1e-300) << j;
       }
     }
   }
@@ -331,12 +335,13 @@ TEST(Specialization, RedundantMeshForcesHaveCorrectlyRoundedCoefficients) {
   const NumericSystem ref = numeric_system(m, sys);
   int forces = 0;
   for (std::size_t i = 0; i < sys.outputs.size(); ++i) {
-    if (sys.output_variables[i].kind != VariableKind::force) continue;
+    if (sys.outputs[i].variable.kind != VariableKind::force) continue;
     ++forces;
-    const GiNaC::ex y = sys.output_values[i].expand();
+    const GiNaC::ex y = sys.outputs[i].value.expand();
     for (std::size_t j = 0; j < sys.states.size(); ++j) {
-      const double c = to_double(y.coeff(variable_symbol(m.derivation.symbols, sys.state_variables[j]), 1));
-      EXPECT_EQ(c, ref.C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))) << sys.outputs[i] << " " << sys.states[j];
+      const GiNaC::realsymbol& x = variable_symbol(m.derivation.symbols, sys.states[j].variable);
+      EXPECT_EQ(to_double(y.coeff(x, 1)), ref.C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)))
+          << variable_name(m.derivation.symbols, sys.outputs[i].variable) << " " << x;
     }
   }
   EXPECT_EQ(forces, 6);

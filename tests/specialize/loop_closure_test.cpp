@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/files.hpp"
+#include "../support/ports.hpp"
 #include "common/exact_algebra.hpp"
 #include "read/scene.hpp"
 #include "specialize/reference_model.hpp"
@@ -43,8 +44,8 @@ TEST(LoopClosure, PISpeedControllerByHand) {
   const double kp = 0.5, ki = 0.25, J = inertia_seen_from_a;
   const SpecializedScene m = pair_with(
       "[controllers]\nspeed = { body = \"a\", set_point = \"100*rad/s\", kp = \"0.5*N*m*s/rad\", ki = \"0.25*N*m/rad\" }\n");
-  ASSERT_EQ(m.main.states, (std::vector<std::string>{"omega_a", "theta_speed"}));
-  ASSERT_EQ(m.main.inputs, (std::vector<std::string>{"ref_speed"}));
+  ASSERT_EQ(state_names(m, m.main), (std::vector<std::string>{"omega_a", "theta_speed"}));
+  ASSERT_EQ(input_names(m, m.main), (std::vector<std::string>{"ref_speed"}));
   Eigen::MatrixXd M(2, 2), N(2, 1);
   M << -kp / J, ki / J, -1, 0;
   N << kp / J, 1;
@@ -56,8 +57,8 @@ TEST(LoopClosure, LinearLoadDampsAndItsConstantPartIsAnInput) {
   // TL_a (a constant signal of value -c0).
   const double c1 = 0.04, J = inertia_seen_from_a;
   const SpecializedScene m = pair_with("[loads]\na = { constant = \"0.2*N*m\", linear = \"0.04*N*m*s/rad\" }\n");
-  ASSERT_EQ(m.main.states, (std::vector<std::string>{"omega_a"}));
-  ASSERT_EQ(m.main.inputs, (std::vector<std::string>{"TL_a"}));
+  ASSERT_EQ(state_names(m, m.main), (std::vector<std::string>{"omega_a"}));
+  ASSERT_EQ(input_names(m, m.main), (std::vector<std::string>{"TL_a"}));
   Eigen::MatrixXd M(1, 1), N(1, 1);
   M << -c1 / J;
   N << 1 / J;

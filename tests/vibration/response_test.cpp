@@ -398,7 +398,7 @@ TEST(Response, AControllersTorqueIsAnOutput) {
                                        "kp = \"0.5*N*m*s/rad\", ki = \"20*N*m/rad\" }\n",
                                        source_path("tests/vibration/loop.toml"));
   const std::vector<Variable> inputs{*find_variable(scene.model, "tau_b")};
-  const auto torque = find_variable(scene.model, "Tc_speed");
+  const auto torque = find_scene_variable(scene, "Tc_speed", {VariableKind::controller_torque});
   ASSERT_TRUE(torque.has_value());
   const std::vector<Variable> outputs{*find_variable(scene.model, "omega_a"), *torque};
   const std::vector<TransferFunction> h = frequency_response(scene, inputs, outputs, FrequencyGrid{0.1, 1e3, 80});
@@ -511,9 +511,11 @@ TEST(SampledPeaks, OnlyAnOscillationTheInputsExciteIsWarned) {
     EXPECT_TRUE(el.status.ok && rg.status.ok);
     double worst = 0;
     for (std::size_t j = 0; j < model.main.outputs.size(); ++j) {
-      if (model.main.outputs[j].rfind("F_", 0) != 0) continue;
-      const auto r = std::find(model.rigid->outputs.begin(), model.rigid->outputs.end(), model.main.outputs[j]);
-      const auto k = static_cast<Eigen::Index>(r - model.rigid->outputs.begin());
+      const Variable force = model.main.outputs[j].variable;
+      if (force.kind != VariableKind::force) continue;
+      const std::vector<Variable> rigid_outputs = output_variables(*model.rigid);
+      const auto r = std::find(rigid_outputs.begin(), rigid_outputs.end(), force);
+      const auto k = static_cast<Eigen::Index>(r - rigid_outputs.begin());
       double gap = 0, size = 0;
       for (std::size_t i = 0; i < el.y.size() && i < rg.y.size(); ++i) {
         gap = std::max(gap, std::abs(el.y[i](static_cast<Eigen::Index>(j)) - rg.y[i](k)));

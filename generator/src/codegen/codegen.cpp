@@ -59,12 +59,16 @@ CppText signal_code(const rt::Signal& signal) {
   return std::visit(Code{}, signal);
 }
 
-CppText signals_function(const SpecializedSystem& sys, const CppText& name) {
+CppText signals_function(const SpecializedSystem& sys, const SymbolTable& symbols, const CppText& name) {
   CppText s = code("// Input signals of {}, in the order of its inputs.\n", name);
   s += code("std::vector<pogear::rt::Signal> {}_signals() {{\n  return {{", name);
-  for (std::size_t i = 0; i < sys.input_signals.size(); ++i)
-    s += (i ? code(",\n          ") : CppText{}) + code("/* {} */ ", comment_text(sys.inputs[i])) +
-         signal_code(sys.input_signals[i]);
+  bool first = true;
+  for (const InputPort& u : sys.inputs) {
+    if (!u.signal) continue;  // the inputs with signals come first
+    s += (first ? CppText{} : code(",\n          ")) + code("/* {} */ ", comment_text(variable_name(symbols, u.variable))) +
+         signal_code(*u.signal);
+    first = false;
+  }
   s += code("}};\n}}\n");
   return s;
 }
@@ -169,7 +173,7 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   h += code("// Model: {} ({}, as the scene names it){}\n", comment_text(d.topology.name), comment_text(sc.model_ref),
             d.topology.title.empty() ? CppText{} : code(", {}", comment_text(d.topology.title)));
   std::vector<CppText> inputs;
-  for (const auto& i : model.main.inputs) inputs.push_back(comment_text(i));
+  for (const InputPort& u : model.main.inputs) inputs.push_back(comment_text(variable_name(d.symbols, u.variable)));
   h += code("// Effects: {}. Inputs: {}.\n", effects_list(sc.effects), inputs.empty() ? code("none") : join(inputs, code(", ")));
   h += code("// Equations (Zanasi & Tebaldi, Planetary Gear Modeling Using the Power-Oriented Graphs Technique):\n");
   h += code("//   {}\n", comment_text(model.main.equations));
@@ -228,8 +232,8 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   m += code("namespace {{\n\n");
   m += code("// The solvers compiled into this simulator (`pogear generate --solvers`): each costs compile time.\n");
   m += code("using Solvers = pogear::rt::Solvers<{}>;\n\n", join(solver_codes, code(", ")));
-  m += signals_function(model.main, main_struct);
-  if (model.rigid) m += code("\n") + signals_function(*model.rigid, code("Rigid"));
+  m += signals_function(model.main, d.symbols, main_struct);
+  if (model.rigid) m += code("\n") + signals_function(*model.rigid, d.symbols, code("Rigid"));
   if (hybrid) m += code("\n") + friction_function(model);
   if (limits) {
     m += code("\n") + torque_limits_function(model, model.main, main_struct);

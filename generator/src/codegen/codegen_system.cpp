@@ -48,25 +48,38 @@ std::vector<ex> entries(const std::vector<const GiNaC::matrix*>& matrices) {
 
 CppText index_code(std::size_t i) { return integer_code(static_cast<long long>(i)); }
 
+// A system as its struct's functions print it: its ports named by the model, and in a product the
+// bodies' variables after the parameters (print_expression).
+struct SystemCode {
+  const SpecializedSystem& sys;
+  const Derivation& d;
+  GiNaC::exset printed_last;
+  bool fixed;
+  CppText expression(const ex& e) const { return expression_code(e, printed_last); }
+};
+
 // `const double omega_c = x[0];` for each state, input and parameter the body uses.
-CppText aliases(const SpecializedSystem& sys, const std::set<std::string>& used, const CppText& xname) {
+CppText aliases(const SystemCode& c, const std::set<std::string>& used, const CppText& xname) {
+  const SpecializedSystem& sys = c.sys;
   CppText s;
   for (std::size_t i = 0; i < sys.states.size(); ++i)
-    if (used.count(sys.states[i])) s += code("    const double {} = {}[{}];\n", identifier(sys.states[i]), xname, index_code(i));
+    if (const std::string name = variable_name(c.d.symbols, sys.states[i].variable); used.count(name))
+      s += code("    const double {} = {}[{}];\n", identifier(name), xname, index_code(i));
   for (std::size_t i = 0; i < sys.inputs.size(); ++i)
-    if (used.count(sys.inputs[i])) s += code("    const double {} = u[{}];\n", identifier(sys.inputs[i]), index_code(i));
+    if (const std::string name = variable_name(c.d.symbols, sys.inputs[i].variable); used.count(name))
+      s += code("    const double {} = u[{}];\n", identifier(name), index_code(i));
   for (const auto& p : sys.params)
     if (used.count(p.name)) s += code("    const double {} = p.{};\n", identifier(p.name), identifier(p.name));
   return s;
 }
 
 // `    NAME(i, j) = value;` for the nonzero entries of m.
-CppText matrix_entries(const GiNaC::matrix& m, const CppText& name) {
+CppText matrix_entries(const SystemCode& c, const GiNaC::matrix& m, const CppText& name) {
   CppText s;
   for (unsigned i = 0; i < m.rows(); ++i)
     for (unsigned j = 0; j < m.cols(); ++j)
       if (!m(i, j).is_zero())
-        s += code("    {}({}, {}) = {};\n", name, index_code(i), index_code(j), expression_code(m(i, j)));
+        s += code("    {}({}, {}) = {};\n", name, index_code(i), index_code(j), c.expression(m(i, j)));
   return s;
 }
 
@@ -89,7 +102,8 @@ CppText types(bool fixed) {
               "  using FeedthroughMatrix = Eigen::MatrixXd;\n\n");
 }
 
-CppText rhs_function(const SpecializedSystem& sys, bool fixed) {
+CppText rhs_function(const SystemCode& c) {
+  const SpecializedSystem& sys = c.sys;
   CppText s = code("  // dx/dt: {}.\n", operation_text(sys.rhs_ops));
   s += code("  static void rhs([[maybe_unused]] const Params& p, [[maybe_unused]] const State& x,\n"
             "                  [[maybe_unused]] const Input& u, State& dx) {{\n");
@@ -97,38 +111,41 @@ CppText rhs_function(const SpecializedSystem& sys, bool fixed) {
     s += code("    StateMatrix M;\n    InputMatrix N;\n    matrices(p, M, N);\n");
     s += code("    dx.noalias() = M * x;\n    dx.noalias() += N * u;\n");
   } else {
-    if (!fixed) s += code("    dx.resize(nx);\n");
-    s += aliases(sys, symbols_in(sys.rhs, sys.rhs_temporaries), code("x"));
+    if (!c.fixed) s += code("    dx.resize(nx);\n");
+    s += aliases(c, symbols_in(sys.rhs, sys.rhs_temporaries), code("x"));
     for (const auto& a : sys.rhs_temporaries)
-      s += code("    const double {} = {};\n", identifier(a.name), expression_code(a.value));
+      s += code("    const double {} = {};\n", identifier(a.name), c.expression(a.value));
     for (std::size_t i = 0; i < sys.states.size(); ++i)
-      s += code("    dx[{}] = {};\n", index_code(i), expression_code(sys.rhs[i]));
+      s += code("    dx[{}] = {};\n", index_code(i), c.expression(sys.rhs[i]));
   }
   return s + code("  }}\n\n");
 }
 
 // The mesh forces of eq. (8) read dx/dt, which rhs computes: the outputs call it rather than
 // repeat its expressions.
-CppText outputs_function(const SpecializedSystem& sys, const Topology& t, bool fixed) {
-  const auto used = symbols_in(sys.output_values);
+CppText outputs_function(const SystemCode& c) {
+  const SpecializedSystem& sys = c.sys;
+  const bool fixed = c.fixed;
+  const auto used = symbols_in(output_values(sys));
   CppText s = code("  // Outputs: {}.\n", operation_text(sys.output_ops));
   s += code("  static void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] const State& x,\n"
             "                      [[maybe_unused]] const Input& u, Output& y) {{\n");
   if (!fixed) s += code("    y.resize(ny);\n");
-  s += aliases(sys, used, code("x"));
+  s += aliases(c, used, code("x"));
   if (sys.output_derivatives) {
     s += fixed ? code("    State dx;\n") : code("    State dx(nx);\n");
     s += code("    rhs(p, x, u, dx);\n");
     for (std::size_t j = 0; j < sys.states.size(); ++j)
-      if (const std::string name = variable_name(t, derivative_of(sys.state_variables[j])); used.count(name))
+      if (const std::string name = variable_name(c.d.symbols, derivative_of(sys.states[j].variable)); used.count(name))
         s += code("    const double {} = dx[{}];\n", identifier(name), index_code(j));
   }
-  for (std::size_t i = 0; i < sys.output_values.size(); ++i)
-    s += code("    y[{}] = {};\n", index_code(i), expression_code(sys.output_values[i]));
+  for (std::size_t i = 0; i < sys.outputs.size(); ++i)
+    s += code("    y[{}] = {};\n", index_code(i), c.expression(sys.outputs[i].value));
   return s + code("  }}\n\n");
 }
 
-CppText matrices_function(const SpecializedSystem& sys, bool fixed) {
+CppText matrices_function(const SystemCode& c) {
+  const SpecializedSystem& sys = c.sys;
   CppText s = sys.nonlinear ? code("  // The linear part M x + N u of dx/dt (the quadratic loads' torques left out): the implicit method's\n"
                                    "  // Jacobian, exact at rest.\n")
                             : code("  // The linear form dx/dt = M x + N u, for exact stepping and as the implicit method's Jacobian.\n");
@@ -138,27 +155,28 @@ CppText matrices_function(const SpecializedSystem& sys, bool fixed) {
     s += code("    const Eigen::LLT<StateMatrix> factors(L);\n");
     s += code("    M = factors.solve(A);\n    N = factors.solve(B);\n");
   } else {
-    s += aliases(sys, symbols_in(entries({&sys.M, &sys.N})), code("x"));
-    s += fixed ? code("    M.setZero();\n    N.setZero();\n") : code("    M.setZero(nx, nx);\n    N.setZero(nx, nu);\n");
-    s += matrix_entries(sys.M, code("M")) + matrix_entries(sys.N, code("N"));
+    s += aliases(c, symbols_in(entries({&sys.M, &sys.N})), code("x"));
+    s += c.fixed ? code("    M.setZero();\n    N.setZero();\n") : code("    M.setZero(nx, nx);\n    N.setZero(nx, nu);\n");
+    s += matrix_entries(c, sys.M, code("M")) + matrix_entries(c, sys.N, code("N"));
   }
   return s + code("  }}\n\n");
 }
 
 // Exact coefficients where dx/dt is symbolic; with an implicit form, the outputs' dependence on
 // dx/dt is applied to the solved M and N.
-CppText output_matrices_function(const SpecializedSystem& sys, const Derivation& d, bool fixed) {
-  const OutputForm f = output_form(sys, d.symbols);
+CppText output_matrices_function(const SystemCode& c) {
+  const bool fixed = c.fixed;
+  const OutputForm f = output_form(c.sys, c.d.symbols);
   CppText s = code("  // The outputs' linear form y = C x + D u: outputs() with its terms collected, equal to it up to\n"
                    "  // rounding (batched sweeps compute C x + D u).\n");
   s += code("  static void output_matrices([[maybe_unused]] const Params& p, OutputMatrix& C, FeedthroughMatrix& D) {{\n");
-  s += aliases(sys, symbols_in(entries({&f.C, &f.D, &f.E})), code("x"));
+  s += aliases(c, symbols_in(entries({&f.C, &f.D, &f.E})), code("x"));
   s += fixed ? code("    C.setZero();\n    D.setZero();\n") : code("    C.setZero(ny, nx);\n    D.setZero(ny, nu);\n");
-  s += matrix_entries(f.C, code("C")) + matrix_entries(f.D, code("D"));
+  s += matrix_entries(c, f.C, code("C")) + matrix_entries(c, f.D, code("D"));
   if (f.reads_derivatives) {
     s += code("    // y also reads dx/dt = M x + N u through E (the mesh forces of eq. 8).\n");
     s += fixed ? code("    OutputMatrix E;\n    E.setZero();\n") : code("    OutputMatrix E;\n    E.setZero(ny, nx);\n");
-    s += matrix_entries(f.E, code("E"));
+    s += matrix_entries(c, f.E, code("E"));
     s += code("    StateMatrix M;\n    InputMatrix N;\n    matrices(p, M, N);\n");
     s += code("    C.noalias() += E * M;\n    D.noalias() += E * N;\n");
   }
@@ -173,9 +191,9 @@ CppText operation_text(const OperationCount& c) {
 }
 
 CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const CppText& struct_name) {
-  const Topology& t = d.topology;
   const std::size_t nx = sys.states.size(), nu = sys.inputs.size(), ny = sys.outputs.size();
   const bool fixed = fixed_sizes(sys);
+  const SystemCode c{sys, d, body_variable_symbols(d.symbols), fixed};
   CppText s;
   s += code("// {}\n", comment_text(sys.equations));
   s += code("struct {} {{\n", struct_name);
@@ -183,11 +201,11 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
   auto names = [&](const CppText& what, const std::vector<std::string>& v, const CppText& size) {
     s += code("  static constexpr std::array<std::string_view, {}> {}{{{}}};\n", size, what, literal_list(v));
   };
-  names(code("state_names"), sys.states, code("nx"));
-  names(code("state_units"), sys.state_units, code("nx"));
-  names(code("input_names"), sys.inputs, code("nu"));
-  names(code("output_names"), sys.outputs, code("ny"));
-  names(code("output_units"), sys.output_units, code("ny"));
+  names(code("state_names"), port_names(d.symbols, state_variables(sys)), code("nx"));
+  names(code("state_units"), state_units(sys), code("nx"));
+  names(code("input_names"), port_names(d.symbols, input_variables(sys)), code("nu"));
+  names(code("output_names"), port_names(d.symbols, output_variables(sys)), code("ny"));
+  names(code("output_units"), output_units(sys), code("ny"));
   s += types(fixed);
 
   if (sys.params.empty()) {
@@ -202,7 +220,7 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
   s += code("  static State initial_state() {{\n");
   s += fixed ? code("    State x;\n") : code("    State x(nx);\n");
   std::vector<CppText> x0;
-  for (std::size_t i = 0; i < nx; ++i) x0.push_back(number_code(sys.x0[i]));
+  for (const StatePort& x : sys.states) x0.push_back(number_code(x.initial));
   s += code("    x << {};\n    return x;\n  }}\n\n", join(x0, code(", ")));
 
   if (sys.implicit) {
@@ -210,18 +228,18 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
     s += code("  // L dx/dt = A x + B u, from the tunable parameters; L is symmetric positive definite.\n");
     s += code("  static void implicit_form([[maybe_unused]] const Params& p, StateMatrix& L, StateMatrix& A, "
               "InputMatrix& B) {{\n");
-    s += aliases(sys, symbols_in(entries({&f.L, &f.A, &f.B})), code("x"));
+    s += aliases(c, symbols_in(entries({&f.L, &f.A, &f.B})), code("x"));
     s += fixed ? code("    L.setZero();\n    A.setZero();\n    B.setZero();\n")
                : code("    L.setZero(nx, nx);\n    A.setZero(nx, nx);\n    B.setZero(nx, nu);\n");
-    s += matrix_entries(f.L, code("L")) + matrix_entries(f.A, code("A")) + matrix_entries(f.B, code("B"));
+    s += matrix_entries(c, f.L, code("L")) + matrix_entries(c, f.A, code("A")) + matrix_entries(c, f.B, code("B"));
     s += code("  }}\n\n");
   }
-  s += rhs_function(sys, fixed) + outputs_function(sys, t, fixed) + matrices_function(sys, fixed);
+  s += rhs_function(c) + outputs_function(c) + matrices_function(c);
   if (sys.nonlinear)  // nothing to collect into C and D
     s += code("  // Nonlinear (a quadratic load): exact stepping, which needs dx/dt = M x + N u, is refused.\n"
               "  static constexpr bool nonlinear = true;\n\n");
   else
-    s += output_matrices_function(sys, d, fixed);
+    s += output_matrices_function(c);
 
   if (!sys.limited_controllers.empty()) {
     s += code("  // Controllers with torque limits: the last {} inputs are their torques, whose laws T = X x + W u\n"
@@ -230,7 +248,7 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
     s += code("  static void torque_limit_laws([[maybe_unused]] const Params& p, Eigen::MatrixXd& X, Eigen::MatrixXd& W) {{\n");
     s += code("    X.setZero({}, nx);\n    W.setZero({}, nu);\n", index_code(sys.limited_controllers.size()),
               index_code(sys.limited_controllers.size()));
-    s += matrix_entries(sys.limit_law_x, code("X")) + matrix_entries(sys.limit_law_u, code("W"));
+    s += matrix_entries(c, sys.limit_law_x, code("X")) + matrix_entries(c, sys.limit_law_u, code("W"));
     s += code("  }}\n\n");
   }
   if (!sys.friction_elements.empty() || !sys.limited_controllers.empty()) {
@@ -239,9 +257,9 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
               "  // stick and slip.\n",
               index_code(sys.friction_elements.size()));
     s += code("  static void slip_matrix([[maybe_unused]] const Params& p, Eigen::MatrixXd& S) {{\n");
-    s += aliases(sys, symbols_in(entries({&sys.slip})), code("x"));
+    s += aliases(c, symbols_in(entries({&sys.slip})), code("x"));
     s += code("    S.setZero({}, nx);\n", index_code(sys.friction_elements.size()));
-    s += matrix_entries(sys.slip, code("S"));
+    s += matrix_entries(c, sys.slip, code("S"));
     s += code("  }}\n\n");
   }
   // energy_matrix: what pogear/run_system.hpp checks a run against (see SpecializedSystem::L).
@@ -250,9 +268,9 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
   s += code("  // The stored energy E = x^T L x / 2. The power balance bounds it by the initial energy and the\n"
             "  // inputs' work; a run that outgrows the bound has diverged (the runner checks each sample).\n");
   s += code("  static void energy_matrix([[maybe_unused]] const Params& p, StateMatrix& L) {{\n");
-  s += aliases(sys, symbols_in(entries({&sys.L})), code("x"));
+  s += aliases(c, symbols_in(entries({&sys.L})), code("x"));
   s += fixed ? code("    L.setZero();\n") : code("    L.setZero(nx, nx);\n");
-  s += matrix_entries(sys.L, code("L"));
+  s += matrix_entries(c, sys.L, code("L"));
   s += code("  }}\n");
   s += code("}};\n");
   return s;

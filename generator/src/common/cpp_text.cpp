@@ -121,9 +121,9 @@ CppText join(const std::vector<CppText>& parts, const CppText& separator) {
   return s;
 }
 
-CppText expression_code(const GiNaC::ex& e) {
+CppText expression_code(const GiNaC::ex& e, const GiNaC::exset& printed_last) {
   check_symbols(e);
-  return cpp_text_detail::Maker::make(print_expression(e, Notation::cpp));
+  return cpp_text_detail::Maker::make(print_expression(e, Notation::cpp, printed_last));
 }
 
 }  // namespace pogear

@@ -68,9 +68,9 @@ CppText string_literal(std::string_view text);
 CppText identifier(std::string_view name);
 // The shortest round-trip decimal; throws std::invalid_argument for inf and NaN.
 CppText number_code(double v);
-// An expression in C++ (print_expression), its symbols checked as identifiers, its numbers
+// An expression in C++ (print_expression, `printed_last` after the other factors), its symbols checked as identifiers, its numbers
 // finite; throws std::invalid_argument otherwise.
-CppText expression_code(const GiNaC::ex& e);
+CppText expression_code(const GiNaC::ex& e, const GiNaC::exset& printed_last);
 
 // Generated code from a fixed pattern (a literal of codegen) and CppText pieces only: a raw
 // std::string or a number does not compile here, so no user text can slip in unconverted.

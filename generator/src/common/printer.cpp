@@ -76,7 +76,7 @@ std::size_t count_symbols(const ex& e) {
 // with the nesting depth times the size.
 class Printer {
  public:
-  explicit Printer(Notation n) : n_(n) {}
+  Printer(Notation n, const GiNaC::exset& last) : n_(n), last_(last) {}
 
   std::string print(const ex& e) {
     if (GiNaC::is_a<GiNaC::symbol>(e) && n_ != Notation::latex) return GiNaC::ex_to<GiNaC::symbol>(e).get_name();
@@ -195,18 +195,16 @@ class Printer {
   }
 
   Parts parts(const Term& t) {
-    // Parameters first, then compound factors, then the variables (tau, omega, d omega/dt):
+    // Parameters first, then compound factors, then the variables the caller names (printed_last):
     // J_p r_r1 domega_r and (J_c r_p^2 + J_p r_c^2) domega_c, as the paper writes them.
     struct Keyed {
       int rank;
       std::string base;  // printed
       const Factor* factor;
     };
-    auto rank = [](const ex& base) {
+    auto rank = [&](const ex& base) {
       if (!GiNaC::is_a<GiNaC::symbol>(base)) return 1;
-      const std::string n = GiNaC::ex_to<GiNaC::symbol>(base).get_name();
-      const bool variable = n.rfind("tau_", 0) == 0 || n.rfind("omega_", 0) == 0 || n.rfind("domega_", 0) == 0;
-      return variable ? 2 : 0;
+      return last_.count(base) ? 2 : 0;
     };
     std::vector<Keyed> up, down;
     for (const auto& f : t.factors)
@@ -307,12 +305,17 @@ class Printer {
   }
 
   Notation n_;
+  const GiNaC::exset& last_;
   std::unordered_map<ex, std::string, std::hash<ex>, GiNaC::ex_is_equal> printed_;
 };
 
 }  // namespace
 
-std::string print_expression(const GiNaC::ex& e, Notation notation) { return Printer(notation).print(e); }
+std::string print_expression(const GiNaC::ex& e, Notation notation) { return Printer(notation, {}).print(e); }
+
+std::string print_expression(const GiNaC::ex& e, Notation notation, const GiNaC::exset& printed_last) {
+  return Printer(notation, printed_last).print(e);
+}
 
 std::string latex_symbol(const std::string& name) {
   static const std::set<std::string> greek{"alpha", "beta", "gamma", "delta", "omega", "tau", "theta", "phi", "lambda"};

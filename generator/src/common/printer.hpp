@@ -18,6 +18,9 @@ enum class Notation {
 };
 
 std::string print_expression(const GiNaC::ex& e, Notation notation);
+// The same, with the symbols `printed_last` (the equations' variables) after every other factor of a
+// product, as the paper writes J_p r_r1 domega_r; the two print alike where none of them occurs.
+std::string print_expression(const GiNaC::ex& e, Notation notation, const GiNaC::exset& printed_last);
 
 // `omega_c` -> `\omega_{c}`, `r_s1` -> `r_{s1}`, `domega_c` -> `\dot{\omega}_{c}`.
 std::string latex_symbol(const std::string& name);

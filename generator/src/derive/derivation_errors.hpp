@@ -66,7 +66,9 @@ class TiedVelocities : public std::exception {
     std::vector<std::string> kept;  // body names, as the user gave them
     Tie tie = Tie::together;
     std::string first, second;      // the bodies of the tie (at_rest: first only)
+    std::string first_speed;        // omega_<first>
     GiNaC::ex relation;             // in_ratio
+    GiNaC::exset speeds;            // the relation's variables, which print after its parameters
     std::vector<std::vector<std::string>> valid;  // the sets that may be kept, in body order
   };
   TiedVelocities(SourceLocation where, Details details) : where_(std::move(where)), details_(std::move(details)) {}

@@ -47,6 +47,7 @@ std::vector<std::string> body_names(const Topology& t, const std::vector<int>& b
       if (Qn.row(kept[a]).isZero(0.0)) {
         found = true;
         tied.first = t.bodies[kept[a]].name;
+        tied.first_speed = variable_name(t, {VariableKind::velocity, kept[a]});
         tied.tie = TiedVelocities::Tie::at_rest;
       }
     for (std::size_t a = 0; a < kept.size() && !found; ++a)
@@ -58,14 +59,17 @@ std::vector<std::string> body_names(const Topology& t, const std::vector<int>& b
         int j = 0;
         while (j < Qn.cols() && Qn(kept[a], j) == 0.0) ++j;
         tied.first = t.bodies[kept[a]].name;
+        tied.first_speed = variable_name(t, {VariableKind::velocity, kept[a]});
         if (j == Qn.cols()) {
           tied.tie = TiedVelocities::Tie::at_rest;
         } else {
           const ex ratio = (Q(kept[b], j) / Q(kept[a], j)).normal();
           tied.tie = TiedVelocities::Tie::in_ratio;
           tied.second = t.bodies[kept[b]].name;
-          tied.relation = variable_symbol(s, {VariableKind::velocity, kept[b]}) ==
-                          ratio * variable_symbol(s, {VariableKind::velocity, kept[a]});
+          const GiNaC::realsymbol& first = variable_symbol(s, {VariableKind::velocity, kept[a]});
+          const GiNaC::realsymbol& second = variable_symbol(s, {VariableKind::velocity, kept[b]});
+          tied.relation = second == ratio * first;
+          tied.speeds = {first, second};
         }
       }
   }

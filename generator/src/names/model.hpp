@@ -105,9 +105,6 @@ struct Topology {
   std::vector<Parameter> parameters;
   std::vector<std::string> default_keep;
   SourceLocation keep_where;
-  // The speed controllers of the scene that simulates this model (none for a model alone): the
-  // names of their variables theta_, e_, ref_ and Tc_ (model_variables.hpp).
-  std::vector<std::string> controllers;
 };
 
 int find_body(const Topology& t, const std::string& name);  // -1 when absent

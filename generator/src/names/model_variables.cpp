@@ -3,6 +3,7 @@
 #include "names/model_variables.hpp"
 
 #include <array>
+#include <stdexcept>
 
 namespace pogear {
 namespace {
@@ -51,14 +52,15 @@ bool of_controller(VariableKind kind) {
 
 std::size_t variable_count(const Topology& t, VariableKind kind) {
   if (kind == VariableKind::friction_torque) return t.friction_elements.size();
-  if (of_controller(kind)) return t.controllers.size();
+  if (of_controller(kind)) return 0;  // a scene's, named by controller_variable_name
   return of_body(kind) ? t.bodies.size() : t.meshes.size();
 }
 
 std::string variable_name(const Topology& t, Variable v) {
+  if (of_controller(v.kind))
+    throw std::logic_error("a controller's variable is the scene's: its name comes from the symbol table");
   const auto i = static_cast<std::size_t>(v.index);
   const std::string& owner = v.kind == VariableKind::friction_torque ? t.friction_elements.at(i).name
-                             : of_controller(v.kind)                 ? t.controllers.at(i)
                              : of_body(v.kind)                       ? t.bodies.at(i).name
                                                                      : t.meshes.at(i).name;
   return std::string(text_of(v.kind).prefix) + owner;

@@ -38,13 +38,15 @@ struct Variable {
 // controller_* and set_point of a controller; the others of a mesh.
 bool of_body(VariableKind kind);
 bool of_controller(VariableKind kind);
-// How many variables of this kind the model has (its bodies, meshes or friction elements).
+// How many variables of this kind the model has (its bodies, meshes or friction elements; none of
+// a controller's kinds: controllers are a scene's, not the model's).
 std::size_t variable_count(const Topology& t, VariableKind kind);
+// A model variable's name; a controller's variable has none here (std::logic_error): its name is
+// its symbol's, made by add_controller_symbols (symbols.hpp).
 std::string variable_name(const Topology& t, Variable v);
 std::string_view unit_of(VariableKind kind);  // SI, as CSV headers write it: "rad/s", "N", ...
 
-// A controller's variable (a controller_* or set_point kind) by the controller's name, for a
-// controller the topology does not hold yet (the scene reader's check of the model's names).
+// A controller's variable (a controller_* or set_point kind) by the controller's name.
 std::string controller_variable_name(VariableKind kind, std::string_view controller);
 
 // Names outside the equations' variables. A brake's or clutch's torque, slip and dissipated energy

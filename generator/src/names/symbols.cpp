@@ -31,9 +31,7 @@ SymbolTable make_symbol_table(const Topology& t) {
   for (const VariableKind kind : {VariableKind::torque, VariableKind::acceleration, VariableKind::velocity,
                                   VariableKind::force, VariableKind::force_rate, VariableKind::mesh_velocity,
                                   VariableKind::transmitted_force, VariableKind::friction_torque,
-                                  VariableKind::load_torque, VariableKind::controller_torque,
-                                  VariableKind::controller_integral, VariableKind::controller_error,
-                                  VariableKind::set_point}) {
+                                  VariableKind::load_torque}) {
     const std::size_t count = variable_count(t, kind);
     for (std::size_t i = 0; i < count; ++i) {
       const Variable v{kind, static_cast<int>(i)};
@@ -42,6 +40,15 @@ SymbolTable make_symbol_table(const Topology& t) {
   }
   return s;
 }
+
+void add_controller_symbols(SymbolTable& s, const std::vector<std::string>& controllers) {
+  for (const VariableKind kind : {VariableKind::controller_torque, VariableKind::controller_integral,
+                                  VariableKind::controller_error, VariableKind::set_point})
+    for (std::size_t c = 0; c < controllers.size(); ++c)
+      s.variables.emplace(Variable{kind, static_cast<int>(c)}, GiNaC::realsymbol(controller_variable_name(kind, controllers[c])));
+}
+
+std::string variable_name(const SymbolTable& s, Variable v) { return variable_symbol(s, v).get_name(); }
 
 const GiNaC::realsymbol& parameter_symbol(const SymbolTable& s, const std::string& name) {
   const auto it = s.parameters.find(name);
@@ -53,6 +60,14 @@ const GiNaC::realsymbol& variable_symbol(const SymbolTable& s, Variable v) {
   const auto it = s.variables.find(v);
   if (it == s.variables.end()) throw std::logic_error("no symbol for a variable of kind " + std::to_string(static_cast<int>(v.kind)));
   return it->second;
+}
+
+GiNaC::exset body_variable_symbols(const SymbolTable& s) {
+  GiNaC::exset last;
+  for (const auto& [v, symbol] : s.variables)
+    if (v.kind == VariableKind::velocity || v.kind == VariableKind::acceleration || v.kind == VariableKind::torque)
+      last.insert(symbol);
+  return last;
 }
 
 GiNaC::exmap numeric_substitutions(const SymbolTable& s, const std::map<std::string, double>& values) {

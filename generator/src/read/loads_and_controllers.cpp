@@ -62,7 +62,7 @@ std::vector<LoadSpec> read_loads(const SceneReader& r, const toml::node& n) {
 }
 
 std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::node& n,
-                                             const std::filesystem::path& scene_dir, Topology& model) {
+                                             const std::filesystem::path& scene_dir, const Topology& model) {
   if (!n.is_table())
     r.fail(n, "[controllers] must be a table of <name> = { body = ..., set_point = ..., kp = ..., ki = ... }");
   // With the model's brakes and clutches (at most 12), the modes of a run are bits of 32.
@@ -122,7 +122,6 @@ std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::n
                       "its integral follows a limit (kp / ki, the default, is zero)");
       c.tracking_time = c.kp / c.ki;  // the integral time: Astrom and Hagglund's choice for PI control
     }
-    model.controllers.push_back(c.name);
     out.push_back(std::move(c));
   }
   return out;

@@ -15,9 +15,9 @@ namespace pogear {
 // [loads]: a table of <body> = { constant, linear, quadratic }, in body order.
 std::vector<LoadSpec> read_loads(const SceneReader& r, const toml::node& n);
 
-// [controllers]: a table of <name> = { body, speed_of, set_point, kp, ki }. Their names go into
-// `model.controllers`, which names their variables.
+// [controllers]: a table of <name> = { body, speed_of, set_point, kp, ki }; their names name their
+// variables (controller_variable_name), which must not be the model's parameters.
 std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::node& n,
-                                             const std::filesystem::path& scene_dir, Topology& model);
+                                             const std::filesystem::path& scene_dir, const Topology& model);
 
 }  // namespace pogear

@@ -30,9 +30,12 @@ namespace fs = std::filesystem;
 
 // Tunable parameters become variables of the generated C++, beside the states, inputs and the
 // functions' own arguments; these names would not compile there.
-bool clashes_with_generated_code(const std::string& name, const Topology& t) {
+bool clashes_with_generated_code(const std::string& name, const Scene& s) {
   static const std::set<std::string> arguments{"p", "x", "u", "dx", "y", "M", "N"};  // of rhs, outputs, matrices
-  return is_cpp_reserved(name) || arguments.count(name) || find_variable(t, name).has_value();
+  return is_cpp_reserved(name) || arguments.count(name) || find_variable(s.model, name).has_value() ||
+         find_scene_variable(s, name, {VariableKind::controller_torque, VariableKind::controller_integral,
+                                       VariableKind::controller_error, VariableKind::set_point})
+             .has_value();
 }
 
 Effects read_effects(const SceneReader& r, const toml::node& n) {
@@ -128,6 +131,22 @@ void check_solver(Scene& s, bool engaged) {
 
 bool nonlinear(const Scene& scene) {
   return std::any_of(scene.loads.begin(), scene.loads.end(), [](const LoadSpec& l) { return l.quadratic != 0; });
+}
+
+std::optional<Variable> find_scene_variable(const Scene& s, std::string_view name,
+                                            std::initializer_list<VariableKind> kinds) {
+  if (auto v = find_variable(s.model, name, kinds)) return v;
+  for (const VariableKind kind : kinds)
+    if (of_controller(kind))
+      for (std::size_t c = 0; c < s.controllers.size(); ++c)
+        if (controller_variable_name(kind, s.controllers[c].name) == name) return Variable{kind, static_cast<int>(c)};
+  return std::nullopt;
+}
+
+std::vector<std::string> controller_names(const Scene& scene) {
+  std::vector<std::string> names;
+  for (const ControllerSpec& c : scene.controllers) names.push_back(c.name);
+  return names;
 }
 
 bool identically_zero(const rt::Signal& signal) {
@@ -242,7 +261,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     for (const auto& name : s.tunable) {
       if (!parameter_names.count(name)) r.fail(*n, fmt::format("tunable '{}' is not a parameter of the model", name));
       if (!seen.insert(name).second) r.fail(*n, fmt::format("tunable '{}' is listed twice", name));
-      if (clashes_with_generated_code(name, topology))
+      if (clashes_with_generated_code(name, s))
         r.fail(*n, fmt::format("tunable '{}' cannot be a variable of the generated C++ (a keyword, a macro or a name "
                                "the code uses itself); rename the parameter in the model", name));
     }
@@ -297,7 +316,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         else r.fail(value, fmt::format("start \"{}\" is not known; write \"given\" (the default), \"rigid\" or \"steady\"", start));
         continue;
       }
-      const auto v = find_variable(topology, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+      const auto v = find_scene_variable(s, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
       if (!v)
         throw InputError(toml_location(path, key.source()),
                          fmt::format("'{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene; name a "
@@ -336,7 +355,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       r.fail(*n, "outputs = [] names no output; name the speeds and forces to write, or leave outputs out for all of "
                  "them");
     for (const auto& o : listed) {
-      const auto v = find_variable(topology, o, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+      const auto v = find_scene_variable(s, o, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
       if (!v) r.fail(*n, fmt::format("output '{}' is neither omega_<body>, F_<mesh> nor Tc_<controller>", o));
       if (std::find(s.outputs.begin(), s.outputs.end(), *v) != s.outputs.end())
         r.fail(*n, fmt::format("output '{}' is listed twice", o));

@@ -30,10 +30,10 @@ std::string message(const PinionsOutOfReach& p) {
 
 std::string tie_text(const TiedVelocities::Details& d) {
   switch (d.tie) {
-    case TiedVelocities::Tie::at_rest: return fmt::format("omega_{} is 0 in every rigid motion", d.first);
+    case TiedVelocities::Tie::at_rest: return fmt::format("{} is 0 in every rigid motion", d.first_speed);
     case TiedVelocities::Tie::in_ratio:
       return fmt::format("{} and {} are tied: {} in every rigid motion", d.first, d.second,
-                         print_expression(d.relation, Notation::text));
+                         print_expression(d.relation, Notation::text, d.speeds));
     case TiedVelocities::Tie::together: break;
   }
   return joined(d.kept, ", ") + " are tied together";

@@ -123,10 +123,11 @@ Printed print_all(const Derivation& d, Notation n) {
   // The split of redundant meshes has exact weights, long fractions of the parameter values: they
   // print as decimals, each correctly rounded.
   // A lumped planet's meshes carry its planets' sum; the reports give one planet's share.
+  const GiNaC::exset variables = body_variable_symbols(d.symbols);
   for (std::size_t i = 0; i < d.rigid.force_recovery.size(); ++i) {
     const int count = i < d.topology.meshes.size() ? mesh_count(d.topology, d.topology.meshes[i]) : 1;
     const GiNaC::ex f = (d.rigid.force_recovery[i] / count).expand();
-    p.force_recovery.push_back(print_expression(d.rigid.redundant_meshes ? f.evalf() : f, n));
+    p.force_recovery.push_back(print_expression(d.rigid.redundant_meshes ? f.evalf() : f, n, variables));
   }
   for (const auto& r : d.rigid.reactions) p.reactions.push_back(name(r));
   for (int k : d.engaged) p.engaged.push_back(d.topology.friction_elements[k].name);

@@ -83,12 +83,13 @@ std::vector<rt::TorqueLimitData> torque_limits(const SpecializedScene& model, co
 
 int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run,
                         const std::string& suffix) {
-  InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
-  is.state_units = sys.state_units;
+  InterpretedSystem is{numeric_system(model, sys), port_names(model.derivation.symbols, output_variables(sys)),
+                       output_units(sys)};
+  is.state_units = state_units(sys);
   if (!sys.friction_elements.empty() || !sys.limited_controllers.empty())
-    return rt::run_hybrid_system(is, {}, sys.input_signals, friction_data(model), torque_limits(model, sys), is.ns.x0,
+    return rt::run_hybrid_system(is, {}, input_signals(sys), friction_data(model), torque_limits(model, sys), is.ns.x0,
                                  run, suffix);
-  return rt::run_system(is, {}, sys.input_signals, is.ns.x0, run, suffix);
+  return rt::run_system(is, {}, input_signals(sys), is.ns.x0, run, suffix);
 }
 
 }  // namespace
@@ -100,8 +101,9 @@ int run_interpreted(const SpecializedScene& model, const rt::SceneRun& run) {
 }
 
 Trajectory interpret_trajectory(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run) {
-  const InterpretedSystem is{numeric_system(model, sys), sys.outputs, sys.output_units};
-  const std::vector<rt::Signal> signals = sys.input_signals;
+  const InterpretedSystem is{numeric_system(model, sys), port_names(model.derivation.symbols, output_variables(sys)),
+                             output_units(sys)};
+  const std::vector<rt::Signal> signals = input_signals(sys);
   Eigen::VectorXd u(static_cast<Eigen::Index>(signals.size())), y(sys.outputs.size());
   auto f = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
     rt::input_values(signals, t, u);

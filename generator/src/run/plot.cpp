@@ -37,9 +37,9 @@ std::string shift_script(const SpecializedScene& model, const std::vector<std::v
   std::vector<std::size_t> speeds, torques, slips;
   std::vector<std::string> speed_names, torque_names, slip_names;
   for (std::size_t i = 0; i < ny; ++i)
-    if (model.main.output_variables[i].kind == VariableKind::velocity) {
+    if (const Variable y = model.main.outputs[i].variable; y.kind == VariableKind::velocity) {
       speeds.push_back(i + 2);
-      speed_names.push_back(model.main.outputs[i]);
+      speed_names.push_back(variable_name(model.derivation.symbols, y));
     }
   for (std::size_t k = 0; k < ne; ++k) {
     torques.push_back(ny + k + 2);
@@ -74,7 +74,7 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
                                                     : VariableKind::controller_torque;
     std::vector<int> columns;  // 1-based gnuplot columns; column 1 is t
     for (std::size_t i = 0; i < model.main.outputs.size(); ++i)
-      if (model.main.output_variables[i].kind == shown) columns.push_back(static_cast<int>(i) + 2);
+      if (model.main.outputs[i].variable.kind == shown) columns.push_back(static_cast<int>(i) + 2);
     if (columns.empty()) continue;
     // Every word of the script is pogear's own or a validated name: the scene's name and the
     // outputs' names are identifiers (checked when the files are read), and the data are numbers.
@@ -95,7 +95,8 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
     // One colour per quantity; its rigid curve dashed in that colour, one legend entry saying so.
     for (std::size_t k = 0; k < columns.size(); ++k)
       script += fmt::format("{}$elastic using 1:{} with lines lt {} lw 2 title '{}'", k ? ", \\\n     " : "", columns[k],
-                            k + 1, gnuplot_label(model.main.outputs[columns[k] - 2]));
+                            k + 1, gnuplot_label(variable_name(model.derivation.symbols,
+                                                               model.main.outputs[columns[k] - 2].variable)));
     if (model.rigid) {
       for (std::size_t k = 0; k < columns.size(); ++k)
         script += fmt::format(", \\\n     $rigid using 1:{} with lines lt {} dt 2 lw 1.5 notitle", columns[k], k + 1);

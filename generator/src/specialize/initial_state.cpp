@@ -94,8 +94,8 @@ std::string initial_deflection_note(const SpecializedScene& model) {
   const Eigen::VectorXd J = evaluate_matrix(d.elastic.J, values).diagonal();
   const Eigen::VectorXd K = evaluate_matrix(d.elastic.K, values).diagonal();
   Eigen::VectorXd omega = Eigen::VectorXd::Zero(R.cols());
-  for (std::size_t i = 0; i < sys.state_variables.size(); ++i)
-    if (sys.state_variables[i].kind == VariableKind::velocity) omega(sys.state_variables[i].index) = sys.x0[i];
+  for (const StatePort& x : sys.states)
+    if (x.variable.kind == VariableKind::velocity) omega(x.variable.index) = x.initial;
   const Eigen::VectorXd rate = R * omega;
   // R's rows are radii: rates below 1e-12 of the largest |r omega| are the rounding of consistent speeds.
   const double scale = (R.cwiseAbs() * omega.cwiseAbs()).maxCoeff();

@@ -71,8 +71,8 @@ void linear_form(const SymbolTable& s, SpecializedSystem& sys) {
   for (const auto& a : sys.rhs_temporaries) temps[a.symbol] = a.value.subs(temps, GiNaC::subs_options::no_pattern);
   const std::size_t nx = sys.states.size(), nu = sys.inputs.size();
   std::vector<ex> variables, rows;
-  for (const Variable v : sys.state_variables) variables.push_back(variable_symbol(s, v));
-  for (const Variable v : sys.input_variables) variables.push_back(variable_symbol(s, v));
+  for (const StatePort& x : sys.states) variables.push_back(variable_symbol(s, x.variable));
+  for (const InputPort& u : sys.inputs) variables.push_back(variable_symbol(s, u.variable));
   for (const ex& row : sys.rhs) rows.push_back(row.subs(temps, GiNaC::subs_options::no_pattern));
   const GiNaC::matrix coefficients = linear_coefficients(rows, variables);
   sys.M = GiNaC::matrix(nx, nx);

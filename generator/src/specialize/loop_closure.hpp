@@ -14,7 +14,7 @@ namespace pogear {
 
 // The torques of the loads and controllers as inputs (TL_<body>, Tc_<controller>), after the
 // scene's own: the gear's equations are built with them.
-void loop_inputs_of(const Scene& sc, const Topology& t, SpecializedSystem& sys);
+void loop_inputs_of(const Scene& sc, SpecializedSystem& sys);
 
 // What close_loops leaves to the rest of specialization.
 struct ClosedLoops {

@@ -43,13 +43,13 @@ GiNaC::matrix exact_plus_product(const GiNaC::matrix& a, const GiNaC::matrix& b,
 }  // namespace
 
 OutputForm output_form(const SpecializedSystem& sys, const SymbolTable& symbols) {
-  const std::size_t nx = sys.states.size(), nu = sys.inputs.size(), ny = sys.output_values.size();
+  const std::size_t nx = sys.states.size(), nu = sys.inputs.size(), ny = sys.outputs.size();
   // y = C x + D u + E dx/dt, read off the output expressions.
   std::vector<ex> variables;
-  for (const Variable v : sys.state_variables) variables.push_back(variable_symbol(symbols, v));
-  for (const Variable v : sys.input_variables) variables.push_back(variable_symbol(symbols, v));
-  for (const Variable v : sys.state_variables) variables.push_back(variable_symbol(symbols, derivative_of(v)));
-  const GiNaC::matrix all = linear_coefficients(sys.output_values, variables);
+  for (const StatePort& x : sys.states) variables.push_back(variable_symbol(symbols, x.variable));
+  for (const InputPort& u : sys.inputs) variables.push_back(variable_symbol(symbols, u.variable));
+  for (const StatePort& x : sys.states) variables.push_back(variable_symbol(symbols, derivative_of(x.variable)));
+  const GiNaC::matrix all = linear_coefficients(output_values(sys), variables);
   OutputForm f{GiNaC::matrix(ny, nx), GiNaC::matrix(ny, nu), GiNaC::matrix(ny, nx), false};
   for (std::size_t i = 0; i < ny; ++i) {
     for (std::size_t j = 0; j < nx; ++j) f.C(i, j) = all(i, j);

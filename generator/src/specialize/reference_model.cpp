@@ -14,6 +14,11 @@ namespace pogear {
 
 namespace {
 
+// Where v stands among the ports, or their count when it is not one of them.
+Eigen::Index index_of(const std::vector<Variable>& ports, Variable v) {
+  return static_cast<Eigen::Index>(std::find(ports.begin(), ports.end(), v) - ports.begin());
+}
+
 // The gear's system with the loads' and controllers' torques as inputs (after the system's own):
 // the matrices of dx/dt = M x + N u, y = C x + D u + E dx/dt over the gear's states.
 struct OpenLoop {
@@ -40,25 +45,22 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
   out.D = Eigen::MatrixXd::Zero(ny, nu);
   out.E = Eigen::MatrixXd::Zero(ny, nx);
   out.speeds = Eigen::MatrixXd::Zero(n, nx);
-  auto state_index = [&](Variable v) {
-    return static_cast<Eigen::Index>(std::find(sys.state_variables.begin(), sys.state_variables.end(), v) -
-                                     sys.state_variables.begin());
-  };
+  const std::vector<Variable> states = state_variables(sys);
+  auto state_index = [&](Variable v) { return index_of(states, v); };
   const GiNaC::matrix E_rows = engagement_rows(d.topology, sys.friction_elements);
   out.S = Eigen::MatrixXd::Zero(E_rows.rows(), nx);
   if (sys.kind == SystemKind::elastic) {
     for (unsigned r = 0; r < E_rows.rows(); ++r)
       for (std::size_t i = 0; i < nx; ++i)
-        if (sys.state_variables[i].kind == VariableKind::velocity)
-          out.S(r, i) = to_double(as_number(E_rows(r, sys.state_variables[i].index)));
+        if (states[i].kind == VariableKind::velocity) out.S(r, i) = to_double(as_number(E_rows(r, states[i].index)));
     for (std::size_t b = 0; b < n; ++b) out.speeds(b, state_index({VariableKind::velocity, static_cast<int>(b)})) = 1;
     const GiNaC::matrix L = exact(e.L);
     out.L = doubles(L);
     out.M = doubles(exact_solve(L, exact(e.A)));
     out.N = doubles(exact_solve(L, input_columns(exact(e.B))));
     for (std::size_t i = 0; i < ny; ++i)
-      if (sys.output_variables[i].kind != VariableKind::controller_torque)
-        out.C(i, state_index(sys.output_variables[i])) = 1;
+      if (sys.outputs[i].variable.kind != VariableKind::controller_torque)
+        out.C(i, state_index(sys.outputs[i].variable)) = 1;
   } else {
     // L1, A1 and Q1 from Q1's entries, not by substituting into the closed forms (the same numbers).
     const RigidValues v = exact_rigid_values(d.rigid, e, values);
@@ -93,7 +95,7 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
     if (E_rows.rows() > 0) out.S = doubles(exact_product(E_rows, Q1));
     const Eigen::MatrixXd C_F = -PGn.leftCols(k), E_F = -PGn.middleCols(k, k);
     for (std::size_t i = 0; i < ny; ++i) {
-      const Variable y = sys.output_variables[i];
+      const Variable y = sys.outputs[i].variable;
       if (y.kind == VariableKind::velocity) {
         out.C.row(i) = Q1n.row(y.index);
       } else if (y.kind == VariableKind::force) {
@@ -117,7 +119,8 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
   // The loads' and controllers' torques as inputs after the system's: w = Kx x + Kv u (+ the
   // quadratic loads) closes the loop. A controller with torque limits has its torque among the
   // system's inputs already, closed by the hybrid runs through its law.
-  std::vector<Variable> inputs = sys.input_variables;
+  const std::vector<Variable> system_inputs = input_variables(sys);
+  std::vector<Variable> inputs = system_inputs;
   std::vector<int> closed;  // controllers closed here
   for (Eigen::Index c = 0; c < nc; ++c)
     if (!sc.controllers[static_cast<std::size_t>(c)].limited()) {
@@ -144,9 +147,7 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
   Eigen::MatrixXd law_x = Eigen::MatrixXd::Zero(nc, nx), law_u = Eigen::MatrixXd::Zero(nc, nu);
   for (Eigen::Index c = 0; c < nc; ++c) {
     const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
-    const auto ref = static_cast<Eigen::Index>(
-        std::find(sys.input_variables.begin(), sys.input_variables.end(), Variable{VariableKind::set_point, static_cast<int>(c)}) -
-        sys.input_variables.begin());
+    const Eigen::Index ref = index_of(system_inputs, {VariableKind::set_point, static_cast<int>(c)});
     out.M.row(nb + c).head(nb) = -o.speeds.row(k.measured);
     out.N(nb + c, ref) = 1;
     law_x.row(c).head(nb) = -k.kp * o.speeds.row(k.measured);
@@ -163,9 +164,7 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
     const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
     if (k.ki != 0) {
       const double gain = 1 / (k.ki * k.tracking_time);
-      const auto torque = static_cast<Eigen::Index>(
-          std::find(sys.input_variables.begin(), sys.input_variables.end(), Variable{VariableKind::controller_torque, c}) -
-          sys.input_variables.begin());
+      const Eigen::Index torque = index_of(system_inputs, {VariableKind::controller_torque, c});
       out.M.row(nb + c) -= gain * law_x.row(c);
       out.N.row(nb + c) -= gain * law_u.row(c);
       out.N(nb + c, torque) += gain;
@@ -196,12 +195,12 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
     out.quadratic.push_back(std::move(q));
   }
   for (Eigen::Index i = 0; i < ny; ++i)
-    if (const Variable y = sys.output_variables[static_cast<std::size_t>(i)]; y.kind == VariableKind::controller_torque) {
-      const auto input = std::find(sys.input_variables.begin(), sys.input_variables.end(), y);
+    if (const Variable y = sys.outputs[static_cast<std::size_t>(i)].variable; y.kind == VariableKind::controller_torque) {
+      const Eigen::Index input = index_of(system_inputs, y);
       out.C.row(i).setZero();
       out.D.row(i).setZero();
-      if (input != sys.input_variables.end()) {  // with limits: the input the hybrid run sets
-        out.D(i, input - sys.input_variables.begin()) = 1;
+      if (input < nu) {  // with limits: the input the hybrid run sets
+        out.D(i, input) = 1;
       } else {
         out.C.row(i) = law_x.row(y.index);
         out.D.row(i) = law_u.row(y.index);
@@ -210,18 +209,19 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
   if (nc == 0) out.L = o.L;
   out.S = Eigen::MatrixXd::Zero(o.S.rows(), nx);
   out.S.leftCols(nb) = o.S;
-  out.x0 = Eigen::Map<const Eigen::VectorXd>(sys.x0.data(), nx);
+  const std::vector<double> x0 = initial_values(sys);
+  out.x0 = Eigen::Map<const Eigen::VectorXd>(x0.data(), nx);
   // A lumped planet's meshes: the model's force is its planets' sum, the output one planet's. Speeds
   // in rpm when the scene asks.
   for (Eigen::Index i = 0; i < ny; ++i) {
-    const Variable y = sys.output_variables[static_cast<std::size_t>(i)];
-    if (y.kind == VariableKind::force) {
-      const double count = mesh_count(t, t.meshes[static_cast<std::size_t>(y.index)]);
+    const OutputPort& y = sys.outputs[static_cast<std::size_t>(i)];
+    if (y.variable.kind == VariableKind::force) {
+      const double count = mesh_count(t, t.meshes[static_cast<std::size_t>(y.variable.index)]);
       out.C.row(i) /= count;
       out.D.row(i) /= count;
       out.E.row(i) /= count;
       for (QuadraticLoad& q : out.quadratic) q.output_column(i) /= count;
-    } else if (y.kind == VariableKind::velocity && sc.speeds_in_rpm) {
+    } else if (y.in_rpm) {
       out.C.row(i) *= rpm_per_rad_per_s;
       out.D.row(i) *= rpm_per_rad_per_s;
       out.E.row(i) *= rpm_per_rad_per_s;
@@ -242,7 +242,7 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedS
   hs.M = ns.M;
   hs.N = ns.N;
   hs.S = ns.S;
-  hs.inputs = system.input_signals;
+  hs.inputs = input_signals(system);
   for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
   for (std::size_t l = 0; l < system.limited_controllers.size(); ++l) {
     const ControllerSpec& c = model.scene.controllers[static_cast<std::size_t>(system.limited_controllers[l])];

@@ -36,20 +36,19 @@ std::vector<Variable> requested_outputs(const Scene& sc, const Topology& t) {
   return out;
 }
 
-void inputs_of(const Scene& sc, const Topology& t, SpecializedSystem& sys) {
+void inputs_of(const Scene& sc, SpecializedSystem& sys) {
   for (const InputSpec& in : sc.inputs) {
     if (identically_zero(in.signal)) continue;  // a zero input is not an input
-    add_input(t, {VariableKind::torque, in.body}, sys);
-    sys.input_signals.push_back(in.signal);
+    sys.inputs.push_back({{VariableKind::torque, in.body}, in.signal});
   }
 }
 
 // Engaged brakes and clutches: their torques are inputs after the scene's (an element whose command
 // is zero at every time stays open and leaves no term).
-void friction_inputs_of(const Scene& sc, const Topology& t, SpecializedSystem& sys) {
+void friction_inputs_of(const Scene& sc, SpecializedSystem& sys) {
   for (const EngagementSpec& e : sc.engagement) {
     if (identically_zero(e.command)) continue;
-    add_input(t, {VariableKind::friction_torque, e.element}, sys);
+    sys.inputs.push_back({{VariableKind::friction_torque, e.element}, std::nullopt});
     sys.friction_elements.push_back(e.element);
   }
 }
@@ -151,9 +150,7 @@ void start_controllers_at_given_torques(const Scene& sc, const Derivation& d, co
 
 // The outputs the scene asks for, with their values in the system's states and inputs.
 struct SystemOutputs {
-  std::vector<Variable> variables;
-  std::vector<std::string> units;
-  std::vector<ex> values;
+  std::vector<OutputPort> ports;
   bool reads_derivatives = false;  // a rigid system's mesh forces read dx/dt (eq. 8)
 };
 
@@ -188,19 +185,14 @@ SystemOutputs system_outputs(const Scene& sc, const Derivation& d, const GiNaC::
   SystemOutputs out;
   for (const Variable y : requested_outputs(sc, t)) {
     ex value = output_value(d, fold, in, loop_outputs, states, gear_states, elastic, y);
-    std::string unit(unit_of(y.kind));
+    const bool in_rpm = y.kind == VariableKind::velocity && sc.speeds_in_rpm;
     out.reads_derivatives = out.reads_derivatives || (!elastic && !contains(states, y) &&
                                                       y.kind != VariableKind::controller_torque &&
                                                       y.kind != VariableKind::velocity);
     if (y.kind == VariableKind::force && mesh_count(t, t.meshes[y.index]) > 1)
       value = folded(value / mesh_count(t, t.meshes[y.index]), fold);
-    if (y.kind == VariableKind::velocity && sc.speeds_in_rpm) {
-      value = folded(value * exact_number(rpm_per_rad_per_s), fold);
-      unit = "rpm";
-    }
-    out.variables.push_back(y);
-    out.units.push_back(unit);
-    out.values.push_back(value);
+    if (in_rpm) value = folded(value * exact_number(rpm_per_rad_per_s), fold);
+    out.ports.push_back({y, value, in_rpm});
   }
   return out;
 }
@@ -233,9 +225,13 @@ GiNaC::exmap loop_output_laws(const ClosedLoops& loops) {
   return laws;
 }
 
+void set_initial_values(const std::vector<double>& x0, SpecializedSystem& sys) {
+  for (std::size_t i = 0; i < x0.size(); ++i) sys.states.at(i).initial = x0[i];
+}
+
 void count_system_operations(SpecializedSystem& sys) {
   sys.rhs_ops = sys.implicit ? implicit_operations(*sys.implicit) : count_all(sys.rhs_temporaries, sys.rhs);
-  sys.output_ops = count_all({}, sys.output_values);
+  sys.output_ops = count_all({}, output_values(sys));
   if (sys.output_derivatives) {  // the outputs call rhs
     sys.output_ops.multiplications += sys.rhs_ops.multiplications;
     sys.output_ops.additions += sys.rhs_ops.additions;
@@ -250,46 +246,90 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, const 
   SpecializedSystem sys;
   sys.kind = elastic ? SystemKind::elastic : SystemKind::rigid;
   for (const auto& name : sc.tunable) sys.params.push_back(tunable_parameter(t, name, parameter_value(t, name)));
-  inputs_of(sc, t, sys);
-  loop_inputs_of(sc, t, sys);
-  friction_inputs_of(sc, t, sys);
-  const OpenInputs open_inputs{sys.input_variables, input_torques(t, sc.controllers, sys.input_variables)};
+  inputs_of(sc, sys);
+  loop_inputs_of(sc, sys);
+  friction_inputs_of(sc, sys);
+  OpenInputs open_inputs{input_variables(sys), {}};
+  open_inputs.torques = input_torques(t, sc.controllers, open_inputs.variables);
   GearEquations gear = elastic ? elastic_equations(d, fold, open_inputs) : rigid_equations(d, fold, open_inputs);
   sys.equations = std::move(gear.description);
-  for (const Variable v : gear.states) add_state(t, v, sys);
+  for (const Variable v : gear.states) sys.states.push_back({v, 0.0});
   sys.rhs_temporaries = std::move(gear.temporaries);
   sys.rhs = std::move(gear.rhs);
   sys.implicit = std::move(gear.implicit);
   const std::size_t gear_states = sys.states.size();  // before the controllers' integrals
   const ClosedLoops loops = close_loops(sc, d, elastic, fold, sys);
-  sys.x0 = initial_state(sc, d, values.numbers, sys.state_variables, gear_states, elastic);
-  start_controllers_at_given_torques(sc, d, values.numbers, sys.state_variables, gear_states, elastic, sys.x0);
+  const std::vector<Variable> states = state_variables(sys);
+  std::vector<double> x0 = initial_state(sc, d, values.numbers, states, gear_states, elastic);
+  start_controllers_at_given_torques(sc, d, values.numbers, states, gear_states, elastic, x0);
+  set_initial_values(x0, sys);
   if (!sys.implicit) linear_form(d.symbols, sys);
   limit_laws(d.symbols, loops, sys);
   // After the linear form, which reads a temporary it does not know as a constant, and leaves it out.
   sys.rhs_temporaries.insert(sys.rhs_temporaries.end(), loops.quadratic.begin(), loops.quadratic.end());
-  SystemOutputs outputs =
-      system_outputs(sc, d, fold, open_inputs, loop_output_laws(loops), sys.state_variables, gear_states, elastic);
-  for (const Variable y : outputs.variables) sys.outputs.push_back(variable_name(t, y));
-  sys.output_variables = std::move(outputs.variables);
-  sys.output_units = std::move(outputs.units);
-  sys.output_values = std::move(outputs.values);
+  SystemOutputs outputs = system_outputs(sc, d, fold, open_inputs, loop_output_laws(loops), states, gear_states, elastic);
+  sys.outputs = std::move(outputs.ports);
   sys.output_derivatives = outputs.reads_derivatives;
   count_system_operations(sys);
   sys.L = sc.controllers.empty() ? energy_matrix(d, fold, elastic) : GiNaC::matrix(0, 0);
-  sys.slip = slip_rows(d, fold, sys.friction_elements, sys.state_variables, gear_states, elastic);
+  sys.slip = slip_rows(d, fold, sys.friction_elements, states, gear_states, elastic);
   return sys;
 }
 
-void add_state(const Topology& t, Variable v, SpecializedSystem& sys) {
-  sys.state_variables.push_back(v);
-  sys.states.push_back(variable_name(t, v));
-  sys.state_units.emplace_back(unit_of(v.kind));
+namespace {
+
+template <class Port>
+std::vector<Variable> variables_of(const std::vector<Port>& ports) {
+  std::vector<Variable> v;
+  v.reserve(ports.size());
+  for (const Port& p : ports) v.push_back(p.variable);
+  return v;
 }
 
-void add_input(const Topology& t, Variable v, SpecializedSystem& sys) {
-  sys.input_variables.push_back(v);
-  sys.inputs.push_back(variable_name(t, v));
+}  // namespace
+
+std::vector<Variable> state_variables(const SpecializedSystem& sys) { return variables_of(sys.states); }
+std::vector<Variable> input_variables(const SpecializedSystem& sys) { return variables_of(sys.inputs); }
+std::vector<Variable> output_variables(const SpecializedSystem& sys) { return variables_of(sys.outputs); }
+
+std::vector<rt::Signal> input_signals(const SpecializedSystem& sys) {
+  std::vector<rt::Signal> signals;
+  for (const InputPort& u : sys.inputs)
+    if (u.signal) signals.push_back(*u.signal);
+  return signals;
+}
+
+std::vector<double> initial_values(const SpecializedSystem& sys) {
+  std::vector<double> x0;
+  x0.reserve(sys.states.size());
+  for (const StatePort& x : sys.states) x0.push_back(x.initial);
+  return x0;
+}
+
+std::vector<GiNaC::ex> output_values(const SpecializedSystem& sys) {
+  std::vector<GiNaC::ex> values;
+  values.reserve(sys.outputs.size());
+  for (const OutputPort& y : sys.outputs) values.push_back(y.value);
+  return values;
+}
+
+std::vector<std::string> port_names(const SymbolTable& s, const std::vector<Variable>& ports) {
+  std::vector<std::string> names;
+  names.reserve(ports.size());
+  for (const Variable v : ports) names.push_back(variable_name(s, v));
+  return names;
+}
+
+std::vector<std::string> state_units(const SpecializedSystem& sys) {
+  std::vector<std::string> units;
+  for (const StatePort& x : sys.states) units.emplace_back(unit_of(x.variable.kind));
+  return units;
+}
+
+std::vector<std::string> output_units(const SpecializedSystem& sys) {
+  std::vector<std::string> units;
+  for (const OutputPort& y : sys.outputs) units.emplace_back(y.in_rpm ? "rpm" : unit_of(y.variable.kind));
+  return units;
 }
 
 GiNaC::matrix input_torques(const Topology& t, const std::vector<ControllerSpec>& controllers,
@@ -324,6 +364,7 @@ SpecializedScene specialize(const Scene& scene) {
   if (!scene.keep.empty()) keep = scene.keep;
   // With every parameter a number the rigid system needs no closed forms of L1 and A1.
   model.derivation = derive_topology(scene.model, keep, scene.keep_where, !scene.tunable.empty());
+  add_controller_symbols(model.derivation.symbols, controller_names(scene));
   const bool rigid_forces = scene.effects.mesh_forces && (!scene.effects.mesh_compliance || scene.compare_rigid);
   if (model.derivation.rigid.redundant_meshes && rigid_forces && !scene.tunable.empty())
     throw InputError(SourceLocation{scene.file, 0, 0},
@@ -342,8 +383,8 @@ SpecializedScene specialize(const Scene& scene) {
                                          static_friction_ratio(t, f), e.command, f.one_way});
   }
   if (const std::optional<StartState> start = start_state(model)) {
-    model.main.x0 = start->main;
-    if (model.rigid) model.rigid->x0 = start->rigid;
+    set_initial_values(start->main, model.main);
+    if (model.rigid) set_initial_values(start->rigid, *model.rigid);
   }
   return model;
 }

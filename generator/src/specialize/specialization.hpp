@@ -47,20 +47,37 @@ enum class SystemKind { elastic, rigid };
 inline std::string_view kind_name(SystemKind k) { return k == SystemKind::elastic ? "elastic" : "rigid"; }
 inline std::ostream& operator<<(std::ostream& out, SystemKind k) { return out << kind_name(k); }
 
+// A state of a system: which variable it is (its name and unit, as printed, come from the
+// variable) and the value it starts from.
+struct StatePort {
+  Variable variable;
+  double initial = 0;  // the controllers' integrals theta_ start at zero
+};
+
+// An input: the signal the runs read for it, or none for the inputs the hybrid runs set (the
+// friction torques Tf_ and the limited controllers' torques Tc_, which come last).
+struct InputPort {
+  Variable variable;
+  std::optional<rt::Signal> signal;
+};
+
+// An output: its value in the system's states and inputs (and dx/dt when the system says so).
+struct OutputPort {
+  Variable variable;
+  GiNaC::ex value;
+  bool in_rpm = false;  // a speed the scene asks in rpm; its value is in rpm already
+};
+
 struct SpecializedSystem {
   SystemKind kind = SystemKind::elastic;
   std::string equations;  // one line, for the generated header comment
-  // Names (as the generated code and the CSV files write them) and what each one is.
-  std::vector<std::string> states, state_units;
-  std::vector<Variable> state_variables;
-  std::vector<double> x0;  // the controllers' integrals theta_ start at zero
-  std::vector<std::string> inputs;    // tau_<body> of the nonzero signals
-  std::vector<Variable> input_variables;
-  // The signal of each input but the friction torques: the scene's torques, the constant parts of
-  // its loads (TL_<body>), the controllers' set-points (ref_<controller>).
-  std::vector<rt::Signal> input_signals;
+  std::vector<StatePort> states;
+  // The scene's nonzero torques tau_<body>, the constant parts of its loads (TL_<body>), the
+  // controllers' set-points (ref_<controller>), each with its signal; then the friction torques
+  // Tf_<element> of the engaged brakes and clutches and the limited controllers' torques.
+  std::vector<InputPort> inputs;
   // Brakes and clutches the scene engages (indices into Topology::friction_elements): their torques
-  // Tf_<element> are the last inputs, after the scene's, and their slips are s = slip x.
+  // Tf_<element> are inputs after the scene's, and their slips are s = slip x.
   std::vector<int> friction_elements;
   GiNaC::matrix slip;
   // Controllers with torque limits (indices into Scene::controllers): their torques Tc_<controller>
@@ -71,9 +88,7 @@ struct SpecializedSystem {
   std::vector<TunableParameter> params;
   std::vector<Assignment> rhs_temporaries;
   std::vector<GiNaC::ex> rhs;  // dx/dt, one per state
-  std::vector<std::string> outputs, output_units;
-  std::vector<Variable> output_variables;
-  std::vector<GiNaC::ex> output_values;
+  std::vector<OutputPort> outputs;
   GiNaC::matrix M, N;  // dx/dt = M x + N u (every scene pogear knows is linear); 0 x 0 with `implicit`
   // A rigid system with tunables: dx/dt from L1 x1' = A1 x1 + B1 tau, solved by the generated code
   // (rhs and M, N are then empty): the symbolic L1^-1 over one common denominator grows fast with
@@ -115,9 +130,18 @@ SpecializedScene specialize(const Scene& scene);
 // What the scene's systems hold that some solvers cannot run, for rt::solver_refusal.
 rt::SystemTraits solver_traits(const SpecializedScene& model);
 
-// A state or an input appended to a system being built, with its name and unit.
-void add_state(const Topology& t, Variable v, SpecializedSystem& sys);
-void add_input(const Topology& t, Variable v, SpecializedSystem& sys);
+// What a system's ports are, in their order: their variables, the signals of the inputs that have
+// one (a prefix of the inputs), the initial state, the outputs' values.
+std::vector<Variable> state_variables(const SpecializedSystem& sys);
+std::vector<Variable> input_variables(const SpecializedSystem& sys);
+std::vector<Variable> output_variables(const SpecializedSystem& sys);
+std::vector<rt::Signal> input_signals(const SpecializedSystem& sys);
+std::vector<double> initial_values(const SpecializedSystem& sys);
+std::vector<GiNaC::ex> output_values(const SpecializedSystem& sys);
+// Names and units as the generated code and the CSV files write them.
+std::vector<std::string> port_names(const SymbolTable& s, const std::vector<Variable>& ports);
+std::vector<std::string> state_units(const SpecializedSystem& sys);
+std::vector<std::string> output_units(const SpecializedSystem& sys);
 // The elastic or the rigid system of a scene, at its folded values: the gear's equations, its
 // loads and controllers closed in, initial state, outputs, slips of the engaged elements.
 SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, const SceneValues& values, bool elastic);

@@ -46,8 +46,8 @@ StartState start_on_rigid_trajectory(const SpecializedScene& model, const GiNaC:
   }
   auto state = [&](const SpecializedSystem& sys) {
     std::vector<double> x0;
-    for (std::size_t i = 0; i < sys.state_variables.size(); ++i) {
-      const Variable v = sys.state_variables[i];
+    for (std::size_t i = 0; i < sys.states.size(); ++i) {
+      const Variable v = sys.states[i].variable;
       x0.push_back(sys.kind == SystemKind::rigid       ? to_double(x(static_cast<unsigned>(i), 0))
                    : v.kind == VariableKind::velocity ? to_double(omega(static_cast<unsigned>(v.index), 0))
                                                       : to_double(exact_value(d.rigid.force_recovery.at(

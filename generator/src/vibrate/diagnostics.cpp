@@ -179,8 +179,8 @@ InputExcitation input_excitation(const SpecializedScene& model, const Specialize
   InputExcitation e{.jumps = !model.friction.empty() || !sys.limited_controllers.empty()};
   // A start as given is in equilibrium only at rest with no input acting: the mesh forces start at
   // the values given (zero by default), whatever the torques.
-  bool acting = std::any_of(sys.x0.begin(), sys.x0.end(), [](double x) { return x != 0; });
-  for (const rt::Signal& u : sys.input_signals) {
+  bool acting = std::any_of(sys.states.begin(), sys.states.end(), [](const StatePort& x) { return x.initial != 0; });
+  for (const rt::Signal& u : input_signals(sys)) {
     acting = acting || rt::value(u, 0.0) != 0;
     // Its jumps in (0, horizon], the slope changes at its corners, and its size U, max |u| over the run.
     double size = std::abs(rt::value(u, 0.0));

@@ -146,7 +146,7 @@ struct AnalysedSystem {
 
 AnalysedSystem analysed_system(const SpecializedScene& model, const SpecializedSystem& sys) {
   NumericSystem ns = numeric_system(model, sys);
-  const auto nu = static_cast<Eigen::Index>(sys.input_signals.size());
+  const auto nu = static_cast<Eigen::Index>(input_signals(sys).size());
   const auto ne = static_cast<Eigen::Index>(sys.friction_elements.size() + sys.limited_controllers.size());
   if (ne == 0) {
     Eigen::VectorXd d = balancing_scales(ns.M);
@@ -230,8 +230,8 @@ std::vector<TransferFunction> frequency_response(const Scene& scene, const std::
     for (std::size_t o = 0; o < ny; ++o) {
       TransferFunction& t = out[i * ny + o];
       t.input = inputs[i], t.output = outputs[o];
-      t.input_name = variable_name(s.model, t.input);
-      t.output_name = variable_name(s.model, t.output);
+      t.input_name = variable_name(model.derivation.symbols, t.input);
+      t.output_name = variable_name(model.derivation.symbols, t.output);
       t.unit = unit_text(t.output) + "/" + unit_text(t.input);
       t.frequency_hz = f;
     }

@@ -223,7 +223,7 @@ SceneResponse response_of(const ResponseRequest& request) {
     if (std::find(inputs.begin(), inputs.end(), *v) == inputs.end()) inputs.push_back(*v);
   }
   for (const std::string& name : request.outputs) {
-    const auto v = find_variable(scene.model, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+    const auto v = find_scene_variable(scene, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
     if (!v)
       throw InputError(where, fmt::format("--output '{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the "
                                           "scene; give the velocity of a body, the force of a mesh or a controller's "
