@@ -16,6 +16,31 @@
 
 namespace pogear {
 
+namespace {
+
+// The residual y of the least-squares solve satisfies y^T A = 0: sum_i y_i omega_i = 0 is a relation
+// of the gear's kinematics among the named bodies, and y^T b != 0 is by how much the named speeds miss it.
+InputError contradicted_kinematics(const Scene& scene, const Topology& t, const std::vector<int>& named,
+                                   const Eigen::VectorXd& residual, const Eigen::VectorXd& b) {
+  Eigen::VectorXd y = residual / residual.cwiseAbs().maxCoeff();
+  std::string relation, bodies;
+  for (std::size_t i = 0; i < named.size(); ++i) {
+    const double c = y(static_cast<Eigen::Index>(i));
+    if (std::abs(c) < 1e-9) continue;
+    const std::string name = variable_name(t, {VariableKind::velocity, named[i]});
+    bodies += (bodies.empty() ? "" : ", ") + name;
+    const std::string coefficient = std::abs(std::abs(c) - 1) < 1e-12 ? "" : fmt::format("{:.6g}*", std::abs(c));
+    relation += relation.empty() ? (c < 0 ? "-" : "") : (c < 0 ? " - " : " + ");
+    relation += coefficient + name;
+  }
+  return InputError(scene.initial_where,
+                    fmt::format("the initial speeds {} contradict the gear's kinematics, which require {} = 0 (with these "
+                                "speeds it is {:.6g} rad/s); give speeds that satisfy it, or name fewer bodies",
+                                bodies, relation, y.dot(b)));
+}
+
+}  // namespace
+
 std::vector<double> rigid_initial_state(const Scene& scene, const Derivation& d, const GiNaC::exmap& values) {
   const Topology& t = d.topology;
   const std::vector<int>& kept = d.rigid.kept;
@@ -39,25 +64,8 @@ std::vector<double> rigid_initial_state(const Scene& scene, const Derivation& d,
   const Eigen::VectorXd x = qr.solve(b);
   const Eigen::VectorXd residual = b - A * x;
   const double scale = b.cwiseAbs().maxCoeff();
-  if (residual.cwiseAbs().maxCoeff() > 1e-9 * std::max(scale, 1e-300) && scale > 0) {
-    // The residual y satisfies y^T A = 0: sum_i y_i omega_i = 0 is a relation of the gear's
-    // kinematics among the named bodies, and y^T b != 0 is by how much the named speeds miss it.
-    Eigen::VectorXd y = residual / residual.cwiseAbs().maxCoeff();
-    std::string relation, bodies;
-    for (int i = 0; i < g; ++i) {
-      if (std::abs(y(i)) < 1e-9) continue;
-      const std::string name = variable_name(t, {VariableKind::velocity, named[i]});
-      bodies += (bodies.empty() ? "" : ", ") + name;
-      const double c = y(i);
-      const std::string coefficient = std::abs(std::abs(c) - 1) < 1e-12 ? "" : fmt::format("{:.6g}*", std::abs(c));
-      relation += relation.empty() ? (c < 0 ? "-" : "") : (c < 0 ? " - " : " + ");
-      relation += coefficient + name;
-    }
-    throw InputError(scene.initial_where,
-                     fmt::format("the initial speeds {} contradict the gear's kinematics, which require {} = 0 (with these "
-                                 "speeds it is {:.6g} rad/s); give speeds that satisfy it, or name fewer bodies",
-                                 bodies, relation, y.dot(b)));
-  }
+  if (residual.cwiseAbs().maxCoeff() > 1e-9 * std::max(scale, 1e-300) && scale > 0)
+    throw contradicted_kinematics(scene, t, named, residual, b);
   if (qr.rank() == k1) return std::vector<double>(x.data(), x.data() + k1);
 
   // Freedom left: kept bodies not named at rest, in the kept order, each only if it adds a condition.

@@ -111,109 +111,93 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
 
 }  // namespace
 
-NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& sys) {
-  const Scene& sc = model.scene;
-  const Topology& t = model.derivation.topology;
-  const auto nx = static_cast<Eigen::Index>(sys.states.size()), nu = static_cast<Eigen::Index>(sys.inputs.size());
-  const auto nc = static_cast<Eigen::Index>(sc.controllers.size()), nb = nx - nc;  // the gear's states, then the integrals
-  // The loads' and controllers' torques as inputs after the system's: w = Kx x + Kv u (+ the
-  // quadratic loads) closes the loop. A controller with torque limits has its torque among the
-  // system's inputs already, closed by the hybrid runs through its law.
-  const std::vector<Variable> system_inputs = input_variables(sys);
-  std::vector<Variable> inputs = system_inputs;
-  std::vector<int> closed;  // controllers closed here
-  for (Eigen::Index c = 0; c < nc; ++c)
-    if (!sc.controllers[static_cast<std::size_t>(c)].limited()) {
-      inputs.push_back({VariableKind::controller_torque, static_cast<int>(c)});
-      closed.push_back(static_cast<int>(c));
+namespace {
+
+// The loads' and controllers' torques as inputs after the system's, w = Kx x + Kv u (+ the
+// quadratic loads) closing the loop. A controller with torque limits has its torque among the
+// system's inputs already, closed by the hybrid runs through its law.
+struct LoopInputs {
+  std::vector<Variable> inputs;  // the system's, then the closed controllers' Tc_ and the state loads' TL_
+  std::vector<int> closed;       // controllers closed here
+  std::vector<const LoadSpec*> state_loads;  // loads with a linear or quadratic part
+};
+
+LoopInputs loop_inputs(const Scene& sc, const std::vector<Variable>& system_inputs) {
+  LoopInputs out{system_inputs, {}, {}};
+  for (std::size_t c = 0; c < sc.controllers.size(); ++c)
+    if (!sc.controllers[c].limited()) {
+      out.inputs.push_back({VariableKind::controller_torque, static_cast<int>(c)});
+      out.closed.push_back(static_cast<int>(c));
     }
-  std::vector<const LoadSpec*> state_loads;
   for (const LoadSpec& l : sc.loads)
     if (l.linear != 0 || l.quadratic != 0) {
-      inputs.push_back({VariableKind::load_torque, l.body});
-      state_loads.push_back(&l);
+      out.inputs.push_back({VariableKind::load_torque, l.body});
+      out.state_loads.push_back(&l);
     }
-  const OpenLoop o = open_loop(model, sys, inputs, static_cast<std::size_t>(nb));
-  const auto nw = static_cast<Eigen::Index>(inputs.size()) - nu;
-  const Eigen::Index ny = o.C.rows();
-  Eigen::MatrixXd Kx = Eigen::MatrixXd::Zero(nw, nx), Kv = Eigen::MatrixXd::Zero(nw, nu);
-  NumericSystem out;
-  out.M = Eigen::MatrixXd::Zero(nx, nx);
-  out.N = Eigen::MatrixXd::Zero(nx, nu);
-  out.M.topLeftCorner(nb, nb) = o.M;
-  out.N.topRows(nb) = o.N.leftCols(nu);
-  // Each controller's law, Tc = kp (ref - omega_measured) + ki theta, as rows over x and u; its
-  // integral theta' = ref - omega_measured.
-  Eigen::MatrixXd law_x = Eigen::MatrixXd::Zero(nc, nx), law_u = Eigen::MatrixXd::Zero(nc, nu);
+  return out;
+}
+
+// Each controller's law, Tc = kp (ref - omega_measured) + ki theta, as rows over x and u (its
+// integral's row theta' = ref - omega_measured written into M and N); with torque limits, the
+// integral's back-calculation at a limit, theta' += (Tc - law) / (ki tracking_time), and the law
+// for the hybrid runs.
+struct ControllerLaws {
+  Eigen::MatrixXd x, u;
+};
+
+ControllerLaws controller_laws(const Scene& sc, const SpecializedSystem& sys, const std::vector<Variable>& system_inputs,
+                               const Eigen::MatrixXd& speeds, Eigen::Index nb, NumericSystem& out) {
+  const auto nc = static_cast<Eigen::Index>(sc.controllers.size());
+  const Eigen::Index nx = out.M.rows(), nu = out.N.cols();
+  ControllerLaws law{Eigen::MatrixXd::Zero(nc, nx), Eigen::MatrixXd::Zero(nc, nu)};
   for (Eigen::Index c = 0; c < nc; ++c) {
     const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
     const Eigen::Index ref = index_of(system_inputs, {VariableKind::set_point, static_cast<int>(c)});
-    out.M.row(nb + c).head(nb) = -o.speeds.row(k.measured);
+    out.M.row(nb + c).head(nb) = -speeds.row(k.measured);
     out.N(nb + c, ref) = 1;
-    law_x.row(c).head(nb) = -k.kp * o.speeds.row(k.measured);
-    law_x(c, nb + c) = k.ki;
-    law_u(c, ref) = k.kp;
-  }
-  const auto ncl = static_cast<Eigen::Index>(closed.size());
-  for (Eigen::Index j = 0; j < ncl; ++j) {
-    Kx.row(j) = law_x.row(closed[static_cast<std::size_t>(j)]);
-    Kv.row(j) = law_u.row(closed[static_cast<std::size_t>(j)]);
+    law.x.row(c).head(nb) = -k.kp * speeds.row(k.measured);
+    law.x(c, nb + c) = k.ki;
+    law.u(c, ref) = k.kp;
   }
   for (const int c : sys.limited_controllers) {
-    // The integral's back-calculation at a limit: theta' += (Tc - law) / (ki tracking_time).
     const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
     if (k.ki != 0) {
       const double gain = 1 / (k.ki * k.tracking_time);
       const Eigen::Index torque = index_of(system_inputs, {VariableKind::controller_torque, c});
-      out.M.row(nb + c) -= gain * law_x.row(c);
-      out.N.row(nb + c) -= gain * law_u.row(c);
+      out.M.row(nb + c) -= gain * law.x.row(c);
+      out.N.row(nb + c) -= gain * law.u.row(c);
       out.N(nb + c, torque) += gain;
     }
     out.limit_x.conservativeResize(out.limit_x.rows() + 1, nx);
     out.limit_u.conservativeResize(out.limit_u.rows() + 1, nu);
-    out.limit_x.bottomRows(1) = law_x.row(c);
-    out.limit_u.bottomRows(1) = law_u.row(c);
+    out.limit_x.bottomRows(1) = law.x.row(c);
+    out.limit_u.bottomRows(1) = law.u.row(c);
   }
-  for (std::size_t l = 0; l < state_loads.size(); ++l)
-    Kx.row(ncl + static_cast<Eigen::Index>(l)).head(nb) = -state_loads[l]->linear * o.speeds.row(state_loads[l]->body);
-  Eigen::MatrixXd Nw = Eigen::MatrixXd::Zero(nx, nw);
-  Nw.topRows(nb) = o.N.rightCols(nw);
-  const Eigen::MatrixXd Dw = o.D.rightCols(nw);
-  out.M += Nw * Kx;
-  out.N += Nw * Kv;
-  out.C = Eigen::MatrixXd::Zero(ny, nx);
-  out.C.leftCols(nb) = o.C;
-  out.C += Dw * Kx;
-  out.D = o.D.leftCols(nu) + Dw * Kv;
-  out.E = Eigen::MatrixXd::Zero(ny, nx);
-  out.E.leftCols(nb) = o.E;
-  for (std::size_t l = 0; l < state_loads.size(); ++l) {
-    if (state_loads[l]->quadratic == 0) continue;
-    QuadraticLoad q{Nw.col(ncl + static_cast<Eigen::Index>(l)), Dw.col(ncl + static_cast<Eigen::Index>(l)),
-                    Eigen::VectorXd::Zero(nx), state_loads[l]->quadratic};
-    q.speed_row.head(nb) = o.speeds.row(state_loads[l]->body).transpose();
-    out.quadratic.push_back(std::move(q));
-  }
-  for (Eigen::Index i = 0; i < ny; ++i)
+  return law;
+}
+
+// A controller's torque as an output: its law, or with limits the input the hybrid run sets.
+void controller_outputs(const SpecializedSystem& sys, const std::vector<Variable>& system_inputs,
+                        const ControllerLaws& law, NumericSystem& out) {
+  const auto nu = static_cast<Eigen::Index>(system_inputs.size());
+  for (Eigen::Index i = 0; i < out.C.rows(); ++i)
     if (const Variable y = sys.outputs[static_cast<std::size_t>(i)].variable; y.kind == VariableKind::controller_torque) {
       const Eigen::Index input = index_of(system_inputs, y);
       out.C.row(i).setZero();
       out.D.row(i).setZero();
-      if (input < nu) {  // with limits: the input the hybrid run sets
+      if (input < nu) {
         out.D(i, input) = 1;
       } else {
-        out.C.row(i) = law_x.row(y.index);
-        out.D.row(i) = law_u.row(y.index);
+        out.C.row(i) = law.x.row(y.index);
+        out.D.row(i) = law.u.row(y.index);
       }
     }
-  if (nc == 0) out.L = o.L;
-  out.S = Eigen::MatrixXd::Zero(o.S.rows(), nx);
-  out.S.leftCols(nb) = o.S;
-  const std::vector<double> x0 = initial_values(sys);
-  out.x0 = Eigen::Map<const Eigen::VectorXd>(x0.data(), nx);
-  // A lumped planet's meshes: the model's force is its planets' sum, the output one planet's. Speeds
-  // in rpm when the scene asks.
-  for (Eigen::Index i = 0; i < ny; ++i) {
+}
+
+// A lumped planet's meshes: the model's force is its planets' sum, the output one planet's. Speeds
+// in rpm when the scene asks.
+void output_scales(const Topology& t, const SpecializedSystem& sys, NumericSystem& out) {
+  for (Eigen::Index i = 0; i < out.C.rows(); ++i) {
     const OutputPort& y = sys.outputs[static_cast<std::size_t>(i)];
     if (y.variable.kind == VariableKind::force) {
       const double count = mesh_count(t, t.meshes[static_cast<std::size_t>(y.variable.index)]);
@@ -228,6 +212,58 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
       for (QuadraticLoad& q : out.quadratic) q.output_column(i) *= rpm_per_rad_per_s;
     }
   }
+}
+
+}  // namespace
+
+NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& sys) {
+  const Scene& sc = model.scene;
+  const auto nx = static_cast<Eigen::Index>(sys.states.size()), nu = static_cast<Eigen::Index>(sys.inputs.size());
+  const auto nb = nx - static_cast<Eigen::Index>(sc.controllers.size());  // the gear's states, then the integrals
+  const std::vector<Variable> system_inputs = input_variables(sys);
+  const LoopInputs loop = loop_inputs(sc, system_inputs);
+  const OpenLoop o = open_loop(model, sys, loop.inputs, static_cast<std::size_t>(nb));
+  const auto nw = static_cast<Eigen::Index>(loop.inputs.size()) - nu;
+  NumericSystem out;
+  out.M = Eigen::MatrixXd::Zero(nx, nx);
+  out.N = Eigen::MatrixXd::Zero(nx, nu);
+  out.M.topLeftCorner(nb, nb) = o.M;
+  out.N.topRows(nb) = o.N.leftCols(nu);
+  const ControllerLaws law = controller_laws(sc, sys, system_inputs, o.speeds, nb, out);
+  Eigen::MatrixXd Kx = Eigen::MatrixXd::Zero(nw, nx), Kv = Eigen::MatrixXd::Zero(nw, nu);
+  const auto ncl = static_cast<Eigen::Index>(loop.closed.size());
+  for (Eigen::Index j = 0; j < ncl; ++j) {
+    Kx.row(j) = law.x.row(loop.closed[static_cast<std::size_t>(j)]);
+    Kv.row(j) = law.u.row(loop.closed[static_cast<std::size_t>(j)]);
+  }
+  const std::vector<const LoadSpec*>& loads = loop.state_loads;
+  for (std::size_t l = 0; l < loads.size(); ++l)
+    Kx.row(ncl + static_cast<Eigen::Index>(l)).head(nb) = -loads[l]->linear * o.speeds.row(loads[l]->body);
+  Eigen::MatrixXd Nw = Eigen::MatrixXd::Zero(nx, nw);
+  Nw.topRows(nb) = o.N.rightCols(nw);
+  const Eigen::MatrixXd Dw = o.D.rightCols(nw);
+  out.M += Nw * Kx;
+  out.N += Nw * Kv;
+  out.C = Eigen::MatrixXd::Zero(o.C.rows(), nx);
+  out.C.leftCols(nb) = o.C;
+  out.C += Dw * Kx;
+  out.D = o.D.leftCols(nu) + Dw * Kv;
+  out.E = Eigen::MatrixXd::Zero(o.C.rows(), nx);
+  out.E.leftCols(nb) = o.E;
+  for (std::size_t l = 0; l < loads.size(); ++l) {
+    if (loads[l]->quadratic == 0) continue;
+    const Eigen::Index column = ncl + static_cast<Eigen::Index>(l);
+    QuadraticLoad q{Nw.col(column), Dw.col(column), Eigen::VectorXd::Zero(nx), loads[l]->quadratic};
+    q.speed_row.head(nb) = o.speeds.row(loads[l]->body).transpose();
+    out.quadratic.push_back(std::move(q));
+  }
+  controller_outputs(sys, system_inputs, law, out);
+  if (sc.controllers.empty()) out.L = o.L;
+  out.S = Eigen::MatrixXd::Zero(o.S.rows(), nx);
+  out.S.leftCols(nb) = o.S;
+  const std::vector<double> x0 = initial_values(sys);
+  out.x0 = Eigen::Map<const Eigen::VectorXd>(x0.data(), nx);
+  output_scales(model.derivation.topology, sys, out);
   return out;
 }
 
