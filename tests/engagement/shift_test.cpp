@@ -1,18 +1,13 @@
 // The shipped shift scenes simulated with brakes and clutches: the power balance along every shift,
-// the elastic and rigid models agreeing once a mode's transient has decayed, a clutch-to-clutch
-// shift's sequence of events, and the compiled simulator against the interpreted run.
+// the elastic and rigid models agreeing once a mode's transient has decayed, and a clutch-to-clutch
+// shift's sequence of events. `pogear simulate` of a shift, compiled against interpreted and in rpm:
+// tests/commands/shift_test.cpp.
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <numbers>
-#include <sstream>
 #include <tuple>
 
 #include <gtest/gtest.h>
 
-#include "../support/commands.hpp"
-#include "../support/csv.hpp"
 #include "../support/files.hpp"
 #include "pogear/hybrid.hpp"
 #include "specialize/reference_model.hpp"
@@ -237,116 +232,6 @@ TEST(Shift, SimpsonUpshiftIsAClutchToClutchShift) {
   const Eigen::VectorXd& x = r.x.back();
   EXPECT_NEAR(x(1) / x(0), 12.0 / 17.0, 1e-12);
   EXPECT_NEAR(x(2), 0, 1e-12 * std::abs(x(0)));
-}
-
-// `pogear simulate` compiles the scene's simulator; `--interpreted` runs the reference numeric
-// model instead. Both step the same modes, so events and samples agree to rounding.
-TEST(Shift, CompiledSimulatorAgreesWithTheInterpretedRunAcrossEvents) {
-  namespace fs = std::filesystem;
-  const fs::path dir = temp_dir("shift_compiled");
-  const std::string scene = source_path("models/scenes/gearshift_planetary.toml");
-  const Command compiled = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + scene + " -o " +
-                                       (dir / "compiled").string());
-  ASSERT_EQ(compiled.status, 0) << compiled.err;
-  const Command interpreted = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + scene +
-                                          " --interpreted -o " + (dir / "interpreted").string());
-  ASSERT_EQ(interpreted.status, 0) << interpreted.err;
-  EXPECT_TRUE(fs::exists(dir / "compiled" / "gearshift_planetary.shift.svg"));
-  for (const std::string suffix : {"", ".rigid"}) {
-    SCOPED_TRACE(suffix);
-    const Csv a = read_csv((dir / "compiled" / ("gearshift_planetary" + suffix + ".csv")).string());
-    const Csv b = read_csv((dir / "interpreted" / ("gearshift_planetary" + suffix + ".csv")).string());
-    ASSERT_EQ(a.header, b.header);
-    ASSERT_EQ(a.rows.size(), b.rows.size());
-    EXPECT_NE(std::find(a.header.begin(), a.header.end(), "T_clutch [N m]"), a.header.end());
-    EXPECT_NE(std::find(a.header.begin(), a.header.end(), "slip_brake [rad/s]"), a.header.end());
-    EXPECT_NE(std::find(a.header.begin(), a.header.end(), "E_clutch [J]"), a.header.end());
-    for (std::size_t col = 1; col < a.header.size(); ++col) {
-      double scale = 0, gap = 0;
-      for (std::size_t i = 0; i < a.rows.size(); ++i) {
-        scale = std::max(scale, std::abs(b.rows[i][col]));
-        gap = std::max(gap, std::abs(a.rows[i][col] - b.rows[i][col]));
-      }
-      // The generated and the reference matrices differ by rounding (1e-16 relative); across
-      // thousands of steps and the located events that grows to about 1e-12 of each column's scale.
-      EXPECT_LE(gap, 1e-9 * std::max(scale, 1e-300)) << a.header[col];
-    }
-    const auto events = [&](const std::string& which) {
-      std::ifstream in(dir / which / ("gearshift_planetary" + suffix + ".events.csv"));
-      std::vector<std::vector<std::string>> rows;
-      std::string line;
-      while (std::getline(in, line)) {
-        std::vector<std::string> fields;
-        std::stringstream ss(line);
-        std::string f;
-        while (std::getline(ss, f, ',')) fields.push_back(f);
-        rows.push_back(fields);
-      }
-      return rows;
-    };
-    const auto ea = events("compiled"), eb = events("interpreted");
-    ASSERT_EQ(ea.size(), eb.size());
-    ASSERT_GE(ea.size(), 4u);
-    EXPECT_EQ(ea[0], (std::vector<std::string>{"t [s]", "element", "from", "to"}));
-    for (std::size_t i = 1; i < ea.size(); ++i) {
-      EXPECT_EQ(std::vector<std::string>(ea[i].begin() + 1, ea[i].end()),
-                std::vector<std::string>(eb[i].begin() + 1, eb[i].end()));
-      // Event times: located to a few ulps on each path's own trajectory, which differ by the same
-      // rounding as the samples.
-      EXPECT_NEAR(std::stod(ea[i][0]), std::stod(eb[i][0]), 1e-9) << i;
-    }
-  }
-}
-
-// speed_unit = "rpm": the slips are written in the speeds' unit (issue 31, item 16: they were
-// rad/s beside rpm speeds), 30 / pi times the rad/s run's, with every other column unchanged but
-// the speeds. The generated main asks the runtime for the same.
-TEST(Shift, SlipsFollowTheSpeedUnit) {
-  namespace fs = std::filesystem;
-  const fs::path dir = temp_dir("shift_rpm");
-  std::ifstream in(source_path("models/scenes/gearshift_planetary.toml"));
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string scene = text.str();
-  const std::string relative = "model = \"../", horizon = "horizon = \"4*s\"";
-  scene.replace(scene.find(relative), relative.size(), "model = \"" + source_path("models") + "/");
-  scene.replace(scene.find(horizon), horizon.size(), "horizon = \"2.5*s\"");
-  std::ofstream(dir / "rad.toml") << scene;
-  std::ofstream(dir / "rpm.toml") << "speed_unit = \"rpm\"\n" + scene;
-  for (const std::string name : {"rad", "rpm"}) {
-    const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / (name + ".toml")).string() +
-                                  " --interpreted -o " + (dir / name).string());
-    ASSERT_EQ(c.status, 0) << c.err;
-  }
-  const Csv a = read_csv((dir / "rad" / "gearshift_planetary.csv").string());
-  const Csv b = read_csv((dir / "rpm" / "gearshift_planetary.csv").string());
-  ASSERT_EQ(a.header.size(), b.header.size());
-  ASSERT_EQ(a.rows.size(), b.rows.size());
-  int slips = 0;
-  for (std::size_t col = 1; col < a.header.size(); ++col) {
-    const bool slip = a.header[col].rfind("slip_", 0) == 0;
-    const bool speed = a.header[col].find(" [rad/s]") != std::string::npos;
-    if (slip) {
-      ++slips;
-      EXPECT_EQ(a.header[col].substr(a.header[col].find(' ')), " [rad/s]");
-      EXPECT_EQ(b.header[col].substr(b.header[col].find(' ')), " [rpm]");
-    }
-    const double factor = slip || speed ? 30 / std::numbers::pi : 1.0;
-    double scale = 0;
-    for (const auto& row : a.rows) scale = std::max(scale, std::abs(factor * row[col]));
-    for (std::size_t i = 0; i < a.rows.size(); ++i)
-      // The same run in other units: the conversion's rounding, applied to the output matrix or to
-      // the value (a few ulps of the column's scale).
-      EXPECT_NEAR(b.rows[i][col], factor * a.rows[i][col], 1e-14 * scale) << a.header[col] << " at row " << i;
-  }
-  EXPECT_EQ(slips, 2);
-  const Command g = run_command(std::string(POGEAR_EXECUTABLE) + " generate " + (dir / "rpm.toml").string() + " -o " +
-                                (dir / "gen").string());
-  ASSERT_EQ(g.status, 0) << g.err;
-  std::ifstream main_file(dir / "gen" / "gearshift_planetary_main.cpp");
-  std::stringstream main_text;
-  main_text << main_file.rdbuf();
-  EXPECT_NE(main_text.str().find("run.speeds_in_rpm = true;"), std::string::npos);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
-// Helpers for the error tests: a scratch working directory holding the example model and scene
-// of docs/errors.md, edits of them, and the check that an error's exact text is documented.
+// Helpers for the error tests (here and those that run pogear, in tests/commands/): a scratch working
+// directory holding the example model and scene of docs/errors.md, edits of them, the check that an
+// error's exact text is documented, and the fixtures of suites with tests in both places.
 #pragma once
 
 #include <filesystem>
@@ -154,6 +155,47 @@ class SimulatorTest : public ErrorTest {
     const Command c = run(prefix + "./paper_one_stage " + args);
     EXPECT_EQ(c.status, status) << c.err;
     expect_documented(c.err, expected + "\n");
+  }
+};
+
+// Scenes that command brakes and clutches: gear.toml with a brake on the ring and a clutch joining
+// sun and carrier, and scene.toml with an [engagement] table after its last line.
+class EngagementCommands : public ErrorTest {
+ protected:
+  static std::string shift_model() {
+    return edited(base_model(), {{"[parameters]", "[[brake]]\nname = \"B1\"\nbody = \"r\"\n\n[[clutch]]\nname = \"C1\"\n"
+                                                  "bodies = [\"s\", \"c\"]\n\n[parameters]"},
+                                 {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nTcap_B1 = \"50*N*m\"\nTcap_C1 = \"50*N*m\""}});
+  }
+  void expect_error(const std::string& engagement, const std::string& expected, const Edits& scene_edits = {}) {
+    expect_documented(scene_error(edited(base_scene(), scene_edits) + "\n[engagement]\n" + engagement, shift_model()),
+                      expected);
+  }
+};
+
+// Scenes with loads and speed controllers: scene.toml with a [loads] or [controllers] table after
+// its last line (gear.toml's bodies are c, p, s, r, g).
+class LoadsAndControllers : public ErrorTest {
+ protected:
+  // gear.toml and a scene.toml run by dopri5 with a quadratic load on r, for the commands that refuse it.
+  static void write_nonlinear_scene() {
+    write_text("gear.toml", base_model());
+    write_text("scene.toml", edited(base_scene(), {{R"(solver = "exact")", R"(solver = "dopri5")"}}) +
+                                 "\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n");
+  }
+  void expect_error(const std::string& tables, const std::string& expected, const Edits& scene_edits = {},
+                    const std::string& model = base_model()) {
+    expect_documented(scene_error(edited(base_scene(), scene_edits) + "\n" + tables, model), expected);
+  }
+};
+
+// The regression tests of the adversarial review (hardening_test.cpp).
+class Hardening : public ErrorTest {
+ protected:
+  // `scene.toml` with `edits`, then its model and scene as pogear reads them.
+  SpecializedScene scene_model(const Edits& edits) {
+    write_text("scene.toml", edited(base_scene(), edits));
+    return specialize(parse_scene("scene.toml"));
   }
 };
 

@@ -1,5 +1,6 @@
 // Every error pogear reports, with the exact text and position users see: each test is an entry
-// of docs/errors.md, which shows the same text verbatim and names the test.
+// of docs/errors.md, which shows the same text verbatim and names the test. The entries whose test
+// runs the pogear executable stand in tests/commands/ (errors_test.cpp, cli_errors_test.cpp, ...).
 #include <algorithm>
 #include <cctype>
 
@@ -1060,21 +1061,6 @@ TEST(ErrorDocs, EveryNamedTestExists) {
   EXPECT_GT(checked, 150u);
 }
 
-// Scenes that command brakes and clutches: gear.toml with a brake on the ring and a clutch joining
-// sun and carrier, and scene.toml with an [engagement] table after its last line.
-class EngagementCommands : public ErrorTest {
- protected:
-  static std::string shift_model() {
-    return edited(base_model(), {{"[parameters]", "[[brake]]\nname = \"B1\"\nbody = \"r\"\n\n[[clutch]]\nname = \"C1\"\n"
-                                                  "bodies = [\"s\", \"c\"]\n\n[parameters]"},
-                                 {R"(b_sg = "b_ps")", "b_sg = \"b_ps\"\nTcap_B1 = \"50*N*m\"\nTcap_C1 = \"50*N*m\""}});
-  }
-  void expect_error(const std::string& engagement, const std::string& expected, const Edits& scene_edits = {}) {
-    expect_documented(scene_error(edited(base_scene(), scene_edits) + "\n[engagement]\n" + engagement, shift_model()),
-                      expected);
-  }
-};
-
 TEST_F(EngagementCommands, UnknownElement) {
   expect_error("B9 = \"1\"\n",
                R"~(scene.toml:22:1: error: 'B9' is not a brake or clutch of the model; its elements are B1, C1)~");
@@ -1107,27 +1093,6 @@ TEST_F(EngagementCommands, NotWithRk4) {
                {{R"(solver = "exact")", R"(solver = "rk4")"}});
 }
 
-TEST_F(EngagementCommands, SolverOptionRk4) {
-  write_text("gear.toml", shift_model());
-  write_text("scene.toml", base_scene() + "\n[engagement]\nB1 = \"1\"\n");
-  expect_pogear_error("simulate scene.toml --solver rk4 -o out", 2,
-                      R"~(scene.toml: error: the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate their events); use --solver exact, dopri5 or implicit)~");
-}
-
-// generate refuses a solver that can never run the scene, with the reason simulate gives; --solvers
-// all compiles the others (issue 31, item 9).
-TEST_F(EngagementCommands, GenerateRk4) {
-  write_text("gear.toml", shift_model());
-  write_text("scene.toml", base_scene() + "\n[engagement]\nB1 = \"1\"\n");
-  expect_pogear_error("generate scene.toml --solvers rk4 -o out", 2,
-                      R"~(scene.toml: error: the scene engages brakes or clutches, which rk4 does not simulate (its fixed steps cannot locate their events); leave rk4 out of --solvers)~");
-  const Command all = run(pogear() + " generate scene.toml --solvers all -o out");
-  ASSERT_EQ(all.status, 0) << all.err;
-  const std::string main = read_text("out/demo_main.cpp");
-  EXPECT_NE(main.find("Solver::dopri5"), std::string::npos) << main;
-  EXPECT_EQ(main.find("Solver::rk4"), std::string::npos) << main;
-}
-
 TEST_F(EngagementCommands, TunableCapacity) {
   expect_error("B1 = \"1\"\n",
                R"~(scene.toml:7:11: error: 'Tcap_B1' is the torque capacity of B1, which a simulation takes at the scene's value; it cannot be tunable: set it in [parameters] instead)~",
@@ -1154,22 +1119,6 @@ TEST_F(EngagementCommands, StaticRatioThroughATunable) {
                   model),
       R"~(scene.toml:7:11: error: the static_ratio of B1 (mu_s) depends on tunable 'mu_s', and a simulation takes static ratios at the scene's value; drop 'mu_s' from tunable)~");
 }
-
-// Scenes with loads and speed controllers: scene.toml with a [loads] or [controllers] table after
-// its last line (gear.toml's bodies are c, p, s, r, g).
-class LoadsAndControllers : public ErrorTest {
- protected:
-  // gear.toml and a scene.toml run by dopri5 with a quadratic load on r, for the commands that refuse it.
-  static void write_nonlinear_scene() {
-    write_text("gear.toml", base_model());
-    write_text("scene.toml", edited(base_scene(), {{R"(solver = "exact")", R"(solver = "dopri5")"}}) +
-                                 "\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n");
-  }
-  void expect_error(const std::string& tables, const std::string& expected, const Edits& scene_edits = {},
-                    const std::string& model = base_model()) {
-    expect_documented(scene_error(edited(base_scene(), scene_edits) + "\n" + tables, model), expected);
-  }
-};
 
 TEST_F(LoadsAndControllers, LoadsNotATable) {
   expect_error("", R"~(scene.toml:7:9: error: [loads] must be a table of <body> = { constant = ..., linear = ..., quadratic = ... })~",
@@ -1277,26 +1226,10 @@ TEST_F(LoadsAndControllers, QuadraticLoadWithRk4) {
                {{R"(solver = "exact")", R"(solver = "rk4")"}});
 }
 
-TEST_F(LoadsAndControllers, ResponseOfANonlinearScene) {
-  write_nonlinear_scene();
-  expect_pogear_error("response scene.toml --input tau_c --output omega_c", 2,
-                      R"~(scene.toml: error: the scene is nonlinear (a quadratic load), and a frequency response is of a linear system; drop the load's quadratic part (or linearize it: a linear load of 2 c omega at the operating speed omega))~");
-}
-
 TEST_F(LoadsAndControllers, TooManyControllers) {
   std::string controllers = "[controllers]\n";
   for (int i = 0; i < 17; ++i) controllers += "c" + std::to_string(i) + " = { body = \"s\", set_point = \"1*rpm\", kp = \"1*N*m*s\" }\n";
   expect_error(controllers, R"~(scene.toml:21:1: error: 17 controllers; a scene has at most 16)~");
-}
-
-TEST_F(LoadsAndControllers, TorqueLimitsWithRk4) {
-  expect_error("[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\", torque_max = \"50*N*m\" }\n",
-               R"~(scene.toml:17:10: error: a controller with torque limits switches at events, which rk4 does not locate (its fixed steps); use solver = "exact", "dopri5" or "implicit")~",
-               {{R"(solver = "exact")", R"(solver = "rk4")"}});
-  write_text("gear.toml", base_model());
-  write_text("scene.toml", base_scene() + "\n[controllers]\nmg1 = { body = \"s\", set_point = \"100*rpm\", kp = \"1*N*m*s\", torque_max = \"50*N*m\" }\n");
-  expect_pogear_error("simulate scene.toml --solver rk4 --interpreted -o out", 2,
-                      R"~(scene.toml: error: a controller with torque limits switches at events, which rk4 does not locate (its fixed steps); use --solver exact, dopri5 or implicit)~");
 }
 
 TEST_F(LoadsAndControllers, ParameterNamedLikeAQuadraticLoad) {
@@ -1353,14 +1286,6 @@ TEST_F(LoadsAndControllers, QuadraticLoadWithBrakes) {
   expect_error("[engagement]\nB1 = \"1\"\n\n[loads]\nr = { quadratic = \"0.01*N*m*s^2\" }\n",
                R"~(scene.toml:24:1: error: a quadratic load makes the scene nonlinear, and brakes, clutches and torque limits are simulated on linear scenes only; drop the quadratic part of the load, or the [engagement] and the controllers' limits)~",
                {{R"(solver = "exact")", R"(solver = "dopri5")"}}, model);
-}
-
-TEST_F(LoadsAndControllers, SimulateWithExactSolver) {
-  write_nonlinear_scene();
-  expect_pogear_error("simulate scene.toml --solver exact --interpreted -o out", 2,
-                      R"~(scene.toml: error: a quadratic load makes the scene nonlinear, which exact stepping does not integrate; use --solver dopri5 or implicit)~");
-  expect_pogear_error("generate scene.toml --solvers exact,dopri5 -o out", 2,
-                      R"~(scene.toml: error: a quadratic load makes the scene nonlinear, which exact stepping does not integrate; leave exact out of --solvers)~");
 }
 
 }  // namespace

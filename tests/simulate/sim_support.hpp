@@ -1,9 +1,13 @@
-// Helpers for the simulate tests: scene variants, in-memory runs, external commands.
+// Helpers for the simulate tests (here and their end-to-end half in tests/commands/): scene variants,
+// in-memory runs, external commands, the paper scenes' simulators, a hybrid run's files.
 #pragma once
 
 #include <filesystem>
+#include <fstream>
 #include <regex>
+#include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -101,6 +105,41 @@ inline std::string chain_scene_text(int k, const std::filesystem::path& dir) {
   const Command scene = run_command(script + " " + std::to_string(k) + " --scene chain.toml");
   EXPECT_EQ(scene.status, 0) << scene.err;
   return scene.out;
+}
+
+// The paper scene the bad-scene tests break.
+inline const std::string base = scene_text("paper_one_stage");
+
+// A paper scene and its simulator, built by CMake from generated/.
+struct PaperScene {
+  std::string name;
+  std::string simulator;  // the CMake-built generated/ simulator
+};
+
+class PaperScenes : public ::testing::TestWithParam<PaperScene> {};
+
+// A hybrid run's CSV and the rows of its events file (t, element, from, to), as `pogear simulate`
+// writes them to DIR/<scene><suffix>.
+struct HybridRun {
+  Csv csv;
+  std::vector<std::tuple<double, std::string, std::string, std::string>> events;
+};
+inline HybridRun read_hybrid_run(const std::filesystem::path& dir, const std::string& name) {
+  HybridRun out;
+  out.csv = read_csv((dir / (name + ".csv")).string());
+  std::ifstream events(dir / (name + ".events.csv"));
+  std::string line;
+  std::getline(events, line);  // header
+  while (std::getline(events, line)) {
+    std::stringstream fields(line);
+    std::string t, element, from, to;
+    std::getline(fields, t, ',');
+    std::getline(fields, element, ',');
+    std::getline(fields, from, ',');
+    std::getline(fields, to, ',');
+    out.events.emplace_back(std::stod(t), element, from, to);
+  }
+  return out;
 }
 
 }  // namespace pogear::test

@@ -1,30 +1,13 @@
 // Explicit methods on stiff scenes never blow up silently, adaptive ones never hang, and long
-// horizons drift no further than rounding.
+// horizons drift no further than rounding. What `pogear simulate` reports of a refused or
+// unfinished run: tests/commands/solvers_test.cpp.
 #include <fmt/format.h>
 
-#include "../simulate/sim_support.hpp"
+#include "stability_support.hpp"
 #include "report/run_summary.hpp"
 
 namespace pogear::test {
 namespace {
-
-std::string stiff_scene(const std::string& simulation) {
-  std::string text = with_line(scene_text("paper_one_stage"), "compare_rigid = true", "compare_rigid = false");
-  text = with_line(text, "[simulation]", "[parameters]\nK_ps = \"1e12*Newton/m\"\n\n[simulation]");
-  return with_line(text, "solver = \"exact\"", simulation);
-}
-
-TEST(ExplicitOnStiff, Rk4AboveItsStabilityLimitIsRefusedWithTheLimit) {
-  const auto dir = temp_dir("rk4_refused");
-  { std::ofstream(dir / "scene.toml") << with_line(stiff_scene("solver = \"rk4\""), "model = \"../paper_one_stage.toml\"",
-                                                   "model = \"" + source_path("models/paper_one_stage.toml") + "\""); }
-  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / "scene.toml").string() +
-                                " --interpreted -o " + (dir / "out").string());
-  EXPECT_EQ(c.status, 3);
-  EXPECT_NE(c.err.find("rk4 step 5e-05 s is above its stability limit"), std::string::npos) << c.err;
-  EXPECT_NE(c.err.find("or --solver exact or implicit"), std::string::npos) << c.err;
-  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "paper_one_stage.csv"));
-}
 
 // Stable is not accurate: rk4 at 2.6 ms on the one-stage gear (limit 2.66 ms) ran without a word and
 // was 20 % off. The summary now states rk4's error per step on the system's worst mode, |R(z) - e^z|
@@ -68,19 +51,6 @@ TEST(ExplicitOnStiff, Dopri5ThatCannotFinishStopsWithAClearError) {
   EXPECT_NE(tr.status.message.find("dopri5"), std::string::npos) << tr.status.message;
   EXPECT_NE(tr.status.message.find("--solver exact or --solver implicit"), std::string::npos) << tr.status.message;
   EXPECT_LT(tr.status.t_reached, m.scene.horizon);
-}
-
-TEST(ExplicitOnStiff, TheSimulatorMarksTheCsvIncomplete) {
-  const auto dir = temp_dir("incomplete");
-  { std::ofstream(dir / "scene.toml") << with_line(stiff_scene("solver = \"dopri5\"\nmax_steps = 20000"),
-                                                   "model = \"../paper_one_stage.toml\"",
-                                                   "model = \"" + source_path("models/paper_one_stage.toml") + "\""); }
-  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / "scene.toml").string() +
-                                " --interpreted -o " + (dir / "out").string());
-  EXPECT_EQ(c.status, 3);
-  const Csv csv = read_csv((dir / "out" / "paper_one_stage.csv").string());
-  EXPECT_TRUE(csv.incomplete);
-  EXPECT_FALSE(csv.rows.empty());
 }
 
 // 1e4 s with exact stepping: the gear settles where M x + N u = 0, and the exact map keeps it

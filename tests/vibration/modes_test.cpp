@@ -1,6 +1,7 @@
 // Vibration modes against independent references: the closed form of one mesh between two inertias,
 // the planet modes of three equal planets (multiplicity N - 1, central members at rest), and the
 // properties every set of modes has (J-orthogonal shapes, energy balance, shares summing to one).
+// What `pogear derive` and `pogear modes` print of them: tests/commands/modes_test.cpp.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -10,10 +11,8 @@
 
 #include <gtest/gtest.h>
 
-#include "../support/commands.hpp"
 #include "../support/files.hpp"
-#include "../support/json.hpp"
-#include "../derive/test_support.hpp"
+#include "vibration_support.hpp"
 #include "common/exact_algebra.hpp"
 #include "vibrate/vibration_modes.hpp"
 
@@ -111,7 +110,6 @@ TEST(Modes, LumpedPlanetsKeepTheSymmetricModes) {
   for (std::size_t i = 0; i < kept.size(); ++i) EXPECT_NEAR(kept[i] / symmetric[i], 1, 1e-12);
 }
 
-
 TEST(Modes, AHeavierPlanetSplitsThePlanetModes) {
   std::string text = read_text(source_path("models/three_planets.toml"));
   const std::string from = "name = \"p1\"\naxis = { carrier = \"c\", distance = \"r_c\" }\nwheels = [ { name = \"p1\", "
@@ -172,42 +170,6 @@ TEST(Modes, ShapesAreJOrthogonalAndEnergiesBalance) {
   expect_modal_properties(derive_text(pair_model, "pair.toml"));
 }
 
-// A simple planetary gear: sun, one planet, carrier and ring (r_c and r_r follow from the geometry).
-const char* simple_model = R"(name = "simple"
-keep = ["c", "r"]
-[[body]]
-name = "c"
-[[body]]
-name = "p"
-axis = { carrier = "c", distance = "r_c" }
-[[body]]
-name = "s"
-[[body]]
-name = "r"
-wheels = [ { name = "r", radius = "r_r", internal = true } ]
-[[mesh]]
-first = "p"
-second = "s"
-[[mesh]]
-first = "p"
-second = "r"
-[parameters]
-r_s = "10*cm"
-r_p = "4.8*cm"
-J_c = "0.17648*kg*meters^2"
-J_p = "0.009756*kg*meters^2"
-J_s = "0.038617*kg*meters^2"
-J_r = "0.54251*kg*meters^2"
-b_c = "0.08*Nm/rpm"
-b_p = "b_c"
-b_s = "b_c"
-b_r = "b_c"
-K_ps = "1000*Newton/mm"
-K_pr = "1300*Newton/mm"
-b_ps = "0.4*Newton*s/cm"
-b_pr = "b_ps"
-)";
-
 // With one and two elastic modes (the roots of a linear and a quadratic characteristic
 // polynomial) the closed forms at the model's values are the numeric frequencies; with three, the
 // characteristic polynomial's roots are.
@@ -242,67 +204,6 @@ TEST(Modes, ClosedFormsOfSmallGearsGiveTheNumericFrequencies) {
       EXPECT_NEAR(std::sqrt(root) / (2 * std::numbers::pi) / elastic[k], 1, 1e-12) << d.topology.name << " " << k;
     }
   }
-}
-
-TEST(Modes, LowestNaturalFrequencyIsInTheDeriveReport) {
-  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " derive " + source_path("models/three_planets.toml") +
-                                " --format json");
-  ASSERT_EQ(c.status, 0) << c.err;
-  const Json j = parse_json(c.out);
-  const Derivation d = derive_file("three_planets");
-  EXPECT_EQ(j["diagnostics"]["lowest_natural_frequency_hz"].num, lowest_natural_frequency(d, d.values));
-  const Command t = run_command(std::string(POGEAR_EXECUTABLE) + " derive " + source_path("models/three_planets.toml"));
-  EXPECT_NE(t.out.find("lowest natural frequency "), std::string::npos) << t.out;
-}
-
-TEST(Modes, JsonHasOneEntryPerModeWithEveryField) {
-  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " modes " + source_path("models/three_planets.toml") +
-                                " --format json");
-  ASSERT_EQ(c.status, 0) << c.err;
-  const Json j = parse_json(c.out);
-  EXPECT_EQ(j["model"].str, "three_planets");
-  const Json& modes = j["modes"];
-  ASSERT_EQ(modes.size(), 6u);
-  double previous = -1;
-  int planet = 0;
-  for (std::size_t i = 0; i < modes.size(); ++i) {
-    const Json& m = modes[i];
-    EXPECT_GE(m["frequency_hz"].num, previous);
-    previous = m["frequency_hz"].num;
-    EXPECT_EQ(m["shape"].size(), 6u);
-    EXPECT_EQ(m["kinetic_energy"].size(), 6u);
-    const std::string kind = m["kind"].str;
-    EXPECT_TRUE(kind == "rigid" || kind == "planet" || kind == "elastic") << kind;
-    if (kind == "rigid") {
-      EXPECT_EQ(m["frequency_hz"].num, 0);
-      EXPECT_EQ(m["damping_ratio"].kind, Json::null);
-      EXPECT_EQ(m["strain_energy"].size(), 0u);
-    } else {
-      EXPECT_EQ(m["strain_energy"].size(), 6u);
-      EXPECT_EQ(m["damping_ratio"].kind, Json::number);  // the model defines mesh damping
-    }
-    if (kind == "planet") {
-      ++planet;
-      EXPECT_EQ(m["multiplicity"].num, 2);
-    }
-  }
-  EXPECT_EQ(planet, 2);
-}
-
-// Every format, in separate processes: the closed forms go through pogear's stable printer, so the
-// bytes do not depend on GiNaC's hash order.
-TEST(Modes, EveryFormatIsTheSameBytesInSeparateProcesses) {
-  const auto dir = test_dir("modes_formats");
-  write_text(dir / "simple.toml", simple_model);
-  for (const std::string& model : {(dir / "simple.toml").string(), source_path("tests/errors/gear.toml")})
-    for (const std::string format : {"text", "markdown", "latex", "json"}) {
-      const std::string command = std::string(POGEAR_EXECUTABLE) + " modes " + model + " --format " + format;
-      const Command a = run_command(command), b = run_command(command);
-      ASSERT_EQ(a.status, 0) << a.err;
-      EXPECT_TRUE(a.err.empty()) << a.err;
-      EXPECT_EQ(a.out, b.out) << model << " " << format;
-      EXPECT_NE(a.out.find("lambda"), std::string::npos) << format;  // the closed form or polynomial
-    }
 }
 
 // Heavy bearing friction and one heavily damped mesh (the others undamped) mix the modes: a damped

@@ -1,7 +1,8 @@
 // A model too large for fixed-size Eigen types (issue 10, item 16): scripts/make_chain.sh 26 has
-// 79 bodies and 52 meshes, 131 states, and did not compile (OBJECT_ALLOCATED_ON_STACK_IS_TOO_BIG).
+// 79 bodies and 52 meshes, 131 states, and did not compile (OBJECT_ALLOCATED_ON_STACK_IS_TOO_BIG);
+// `pogear simulate` compiles its simulator and runs it.
 #include "codegen/codegen.hpp"
-#include "sim_support.hpp"
+#include "../simulate/sim_support.hpp"
 
 namespace pogear::test {
 namespace {
