@@ -146,6 +146,7 @@ int main(int argc, char** argv) {
   ratios->add_option("--input", ratios_command.input, "Input body, e.g. i")->required();
   ratios->add_option("--output", ratios_command.output, "Output body, e.g. o")->required();
   add_format_option(ratios, ratios_command.format);
+  ratios->add_flag("--all", ratios_command.all, "With the model's [gears]: every other engagement too");
   ratios->add_option("-o,--output-file", ratios_command.report_file, "Write the report to FILE instead of standard output")
       ->check(non_empty_path());
 

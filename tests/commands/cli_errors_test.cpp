@@ -325,6 +325,64 @@ TEST_F(Engaged, RatiosOfOneBody) {
       R"~(shift.toml: error: --input and --output are both 'c'; give two bodies)~");
 }
 
+// [gears] appended to shift.toml (its last line is 77): the table on line 79, the first gear on 80.
+void append_gears(const std::string& gears) {
+  write_text("shift.toml", read_text("shift.toml") + "\n[gears]\n" + gears);
+}
+
+TEST_F(Engaged, GearNamesAnUnknownElement) {
+  append_gears("\"1\" = [\"B1\", \"B9\"]\n");
+  expect_pogear_error("ratios shift.toml --input c --output r", 2,
+      R"~(shift.toml:80:14: error: gear '1' names 'B9', which is no brake or clutch of the model; they are B1, C1, B2, B3)~");
+}
+
+TEST_F(Engaged, GearNamesAnElementTwice) {
+  append_gears("\"1\" = [\"B1\", \"B1\"]\n");
+  expect_pogear_error("derive shift.toml", 2, R"~(shift.toml:80:14: error: gear '1' names 'B1' twice)~");
+}
+
+TEST_F(Engaged, TwoGearsEngageTheSameElements) {
+  append_gears("\"1\" = [\"B1\"]\nlow = [\"B1\"]\n");
+  expect_pogear_error("ratios shift.toml --input c --output r", 2,
+      R"~(shift.toml:81:1: error: gear 'low' engages the same elements as gear '1' (line 80); give each gear its own elements)~");
+}
+
+TEST_F(Engaged, GearNameIsNotPlain) {
+  append_gears("\"1st gear\" = [\"B1\"]\n");
+  expect_pogear_error("ratios shift.toml --input c --output r", 2,
+      R"~(shift.toml:80:1: error: a gear's name is letters, digits and '_', at most 64 characters, e.g. "1" or R; rename the gear)~");
+}
+
+TEST_F(Engaged, GearIsNotAList) {
+  append_gears("\"1\" = \"B1\"\n");
+  expect_pogear_error("ratios shift.toml --input c --output r", 2,
+      R"~(shift.toml:80:7: error: gear '1' must list the brakes and clutches it engages, e.g. "1" = ["B1"])~");
+}
+
+TEST_F(Engaged, GearLeavesDegreesOfFreedom) {
+  append_gears("\"0\" = []\n");
+  expect_pogear_error("ratios shift.toml --input c --output r", 2,
+      R"~(shift.toml:80:1: error: gear '0' (nothing) leaves 2 degrees of freedom; a gear leaves one: engage more elements)~");
+}
+
+TEST_F(Engaged, GearLocksTheGear) {
+  append_gears("\"1\" = [\"B1\", \"C1\"]\n");
+  expect_pogear_error("ratios shift.toml --input c --output r", 2,
+      R"~(shift.toml:80:1: error: gear '1' (B1, C1) locks the gear: nothing turns; engage fewer elements)~");
+}
+
+TEST_F(Engaged, GearWithAnElementThatAddsNothing) {
+  append_gears("\"1\" = [\"B2\", \"B3\"]\n");
+  expect_pogear_error("ratios shift.toml --input c --output r", 2,
+      R"~(shift.toml:80:1: error: gear '1' engages B2, B3, of which one element adds no constraint to the others (the set moves as it would without it); name the elements that make the gear)~");
+}
+
+TEST_F(Engaged, GearHoldsTheOutput) {
+  append_gears("\"1\" = [\"B1\"]\n");
+  expect_pogear_error("ratios shift.toml --input c --output r", 2,
+      R"~(shift.toml:80:1: error: gear '1' (B1) holds the output 'r', so it has no ratio between c and r)~");
+}
+
 TEST_F(Engaged, RedundantMeshes) {
   // The three explicit planets of models/three_planets.toml, with a brake on the ring.
   std::string model = read_text(source_path("models/three_planets.toml"));

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/files.hpp"
+#include "common/exact_algebra.hpp"
 #include "derive/engagement.hpp"
 #include "engage/gear_ratios.hpp"
 #include "engagement_support.hpp"
@@ -284,6 +285,41 @@ TEST(Ratios, OneWayElementsHoldInDriveOrInCoast) {
     // Elements in the scene's order: the clutch (bit 0), then B2 (bit 1).
     EXPECT_EQ((mode >> 1) & 1u, clutch == "C1" ? 1u : 0u) << "mode " << mode;
   }
+}
+
+// The Simpson set's named gears as a transmission engineer quotes them (models/simpson_3speed.toml
+// names 1 = C1 B2, 2 = C1 B1, 3 = C1 C2, R = C2 B2), against Willis' equation of each set with
+// k = z_ring / z_sun = 72/30: 1st (rear carrier held) i = (2k + 1)/k, 2nd (sun held) (k + 1)/k,
+// 3rd (front set locked) 1, reverse (input on the sun, rear carrier held) -k.
+TEST(Ratios, NamedGearsAsTheEngineerQuotesThem) {
+  const Derivation d = derive_file("simpson_3speed");
+  const GearRatios g = gear_ratios(d, "i", "o", SourceLocation{"simpson_3speed.toml", 0, 0});
+  const GiNaC::numeric k(72, 30);
+  const std::vector<GiNaC::numeric> i{(2 * k + 1) / k, (k + 1) / k, 1, -k};
+  const std::vector<std::string> names{"1", "2", "3", "R"};
+  // The closed forms are ratios of radii: at the tooth counts (the radii in mm) they are Willis'
+  // fractions exactly.
+  GiNaC::exmap teeth;
+  for (const auto& [name, z] : {std::pair{"r_s", 30}, {"r_p", 21}, {"r_r", 72}, {"r_c", 51}})
+    teeth[parameter_symbol(d.symbols, name)] = z;
+  // The values are at the model's radii, "30*mm" and so on as doubles (0.03 is not exact): the
+  // exact ratio at those radii, correctly rounded, is within a few ulps of the fraction's.
+  auto near = [](double value, const GiNaC::numeric& exact) {
+    return std::abs(value - exact.to_double()) <= 4e-16 * std::abs(exact.to_double());
+  };
+  ASSERT_EQ(g.gears.size(), 4u);
+  for (std::size_t n = 0; n < 4; ++n) {
+    EXPECT_EQ(g.gears[n].name, names[n]);
+    EXPECT_TRUE((g.gears[n].i.subs(teeth) - i[n]).normal().is_zero()) << names[n] << ": " << g.gears[n].i;
+    EXPECT_TRUE(near(g.gears[n].value, i[n])) << names[n] << ": " << g.gears[n].value;
+  }
+  ASSERT_TRUE(g.gears[0].step && g.gears[1].step);
+  EXPECT_TRUE(near(*g.gears[0].step, i[0] / i[1])) << *g.gears[0].step;
+  EXPECT_TRUE(near(*g.gears[1].step, i[1] / i[2])) << *g.gears[1].step;
+  EXPECT_FALSE(g.gears[2].step);  // the next gear is reverse
+  EXPECT_FALSE(g.gears[3].step);  // the last
+  ASSERT_TRUE(g.spread);
+  EXPECT_TRUE(near(*g.spread, i[0] / i[2])) << *g.spread;
 }
 
 }  // namespace

@@ -49,8 +49,8 @@ TEST_F(ModelFiles, TomlSyntax) {
 }
 
 TEST_F(ModelFiles, UnknownTopLevelKey) {
-  expect_model_error({{R"(keep = ["c", "r"])", "keep = [\"c\", \"r\"]\ngears = 2"}},
-      R"~(gear.toml:4:1: error: unknown key 'gears' in the model file; the keys are name, title, keep, body, mesh, brake, clutch, parameters)~");
+  expect_model_error({{R"(keep = ["c", "r"])", "keep = [\"c\", \"r\"]\nstages = 2"}},
+      R"~(gear.toml:4:1: error: unknown key 'stages' in the model file; the keys are name, title, keep, body, mesh, brake, clutch, gears, parameters)~");
 }
 
 // ---------------------------------------------------------------- model files: structure

@@ -14,6 +14,7 @@ struct RatiosCommand {
   std::string output;  // the output body
   ReportFormat format = ReportFormat::text;
   std::optional<std::string> report_file;  // none: standard output
+  bool all = false;  // with [gears], every other engagement too
 };
 
 int run_ratios(const RatiosCommand& command);

@@ -85,6 +85,58 @@ std::vector<OneWayHold> one_way_holds(const Topology& t, const Eigen::MatrixXd& 
   return holds;
 }
 
+// The engagement a named gear is, or its refusal: a gear between input and output has one degree
+// of freedom, and both turn.
+const EngagementRatio& engagement_of(const GearRatios& g, const Topology& t, const NamedGear& gear) {
+  const auto it = std::find_if(g.engagements.begin(), g.engagements.end(),
+                               [&](const EngagementRatio& e) { return e.engaged == gear.engaged; });
+  const std::string engaged = gear.engaged.empty() ? "nothing" : engaged_names(t, gear.engaged, ", ");
+  if (it == g.engagements.end())
+    throw InputError(gear.where, fmt::format("gear '{}' engages {}, of which one element adds no constraint to the "
+                                             "others (the set moves as it would without it); name the elements that "
+                                             "make the gear", gear.name, engaged));
+  switch (it->status) {
+    case EngagementStatus::ratio: return *it;
+    case EngagementStatus::free:
+      throw InputError(gear.where, fmt::format("gear '{}' ({}) leaves {} degrees of freedom; a gear leaves one: "
+                                               "engage more elements", gear.name, engaged, it->freedoms));
+    case EngagementStatus::locked:
+      throw InputError(gear.where, fmt::format("gear '{}' ({}) locks the gear: nothing turns; engage fewer elements",
+                                               gear.name, engaged));
+    case EngagementStatus::input_held:
+    case EngagementStatus::output_held: break;
+  }
+  throw InputError(gear.where, fmt::format("gear '{}' ({}) holds the {} '{}', so it has no ratio between {} and {}",
+                                           gear.name, engaged,
+                                           it->status == EngagementStatus::input_held ? "input" : "output",
+                                           it->status == EngagementStatus::input_held ? g.input : g.output, g.input,
+                                           g.output));
+}
+
+// The named gears with i = 1 / ratio, exactly; steps between neighbours that are both forward
+// gears, and the spread of the forward gears.
+void name_gears(const Topology& t, GearRatios& g) {
+  std::vector<GiNaC::ex> exact;
+  for (const NamedGear& gear : t.gears) {
+    const EngagementRatio& e = engagement_of(g, t, gear);
+    exact.push_back(1 / e.exact);
+    g.gears.push_back({gear.name, gear.engaged, (1 / *e.ratio).normal(), to_double(exact.back()), std::nullopt, e.one_way});
+  }
+  // Rounding keeps a sign, and the gears with the largest and smallest rounded i have the largest
+  // and smallest exact i (or one equal to it): the steps and the spread are computed exactly.
+  auto forward = [&](std::size_t k) { return g.gears[k].value > 0; };
+  std::optional<std::size_t> lowest, highest;
+  int forward_gears = 0;
+  for (std::size_t k = 0; k < exact.size(); ++k) {
+    if (!forward(k)) continue;
+    ++forward_gears;
+    if (k + 1 < exact.size() && forward(k + 1)) g.gears[k].step = to_double(exact[k] / exact[k + 1]);
+    if (!lowest || g.gears[k].value < g.gears[*lowest].value) lowest = k;
+    if (!highest || g.gears[k].value > g.gears[*highest].value) highest = k;
+  }
+  if (forward_gears >= 2) g.spread = to_double(exact[*highest] / exact[*lowest]);
+}
+
 }  // namespace
 
 GearRatios gear_ratios(const Derivation& d, const std::string& input, const std::string& output,
@@ -143,7 +195,8 @@ GearRatios gear_ratios(const Derivation& d, const std::string& input, const std:
           // its value is then the tooth ratio itself, not its value at pitch radii rounded to doubles.
           r.ratio = teeth.empty() ? closed : closed.subs(teeth).normal();
           const std::optional<GiNaC::ex> in_teeth = teeth.empty() ? std::nullopt : in_tooth_numbers(*r.ratio, t);
-          r.value = to_double(in_teeth ? *in_teeth : value);
+          r.exact = in_teeth ? *in_teeth : value;
+          r.value = to_double(r.exact);
           if (!(std::abs(r.value - direct) <= 1e-7 * std::max(1.0, std::abs(direct))))
             throw std::logic_error(fmt::format("the closed-form ratio with {} engaged, {}, disagrees with R at the "
                                                "model's values, {}", engaged_names(t, S, ","), r.value, direct));
@@ -154,6 +207,7 @@ GearRatios gear_ratios(const Derivation& d, const std::string& input, const std:
       g.engagements.push_back(std::move(r));
     }
   }
+  name_gears(t, g);
   return g;
 }
 

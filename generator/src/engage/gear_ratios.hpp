@@ -35,7 +35,19 @@ struct EngagementRatio {
   EngagementStatus status = EngagementStatus::free;
   std::optional<GiNaC::ex> ratio;  // ratio or output_held: omega_out/omega_in in the independent radii
   double value = 0;                // the ratio at the model's values, correctly rounded
+  GiNaC::ex exact;                 // the same, exact
   std::vector<OneWayHold> one_way; // of a ratio's one-way elements, in the order of `engaged`
+};
+
+// A gear the model names ([gears]), as the engineer writes its ratio: i = omega_in / omega_out,
+// negative in reverse.
+struct NamedGearRatio {
+  std::string name;
+  std::vector<int> engaged;    // friction element indices, ascending
+  GiNaC::ex i;                 // closed form, in tooth counts when the model gives them
+  double value = 0;            // i at the model's values, correctly rounded
+  std::optional<double> step;  // i / i of the next gear written, when both are forward gears
+  std::vector<OneWayHold> one_way;
 };
 
 struct GearRatios {
@@ -44,12 +56,16 @@ struct GearRatios {
   int gear_freedoms = 0;      // with nothing engaged
   std::vector<EngagementRatio> engagements;
   int redundant_sets = 0;     // sets not listed: one of their elements adds no constraint to the others
+  std::vector<NamedGearRatio> gears;  // the model's [gears], in the order written
+  std::optional<double> spread;       // largest over smallest forward i, with two forward gears or more
 };
 
 // Every set of engaged elements in which each element adds a constraint (a set with one that
 // does not moves exactly as the set without it), by size, then in file order. Ratios are of
 // rotations in one sense (each omega times its body's arrow), so a reverse gear is negative.
-// Throws InputError at `where` when input or output is not a body, or both are the same.
+// Throws InputError at `where` when input or output is not a body, or both are the same; at a named
+// gear's line when it is no gear between them (free, locked, an element that adds no constraint,
+// input or output held).
 GearRatios gear_ratios(const Derivation& d, const std::string& input, const std::string& output,
                        const SourceLocation& where);
 

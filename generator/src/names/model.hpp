@@ -86,6 +86,14 @@ struct FrictionElement {
   bool is_brake() const { return second < 0; }
 };
 
+// A gear the model names in [gears]: the brakes and clutches it engages (`pogear ratios` lists the
+// named gears with the engineer's ratio omega_in / omega_out, their steps and spread).
+struct NamedGear {
+  std::string name;
+  std::vector<int> engaged;  // friction element indices, ascending
+  SourceLocation where;      // the gear's key
+};
+
 struct Parameter {
   std::string name;
   std::string text;  // as written, e.g. "4.8*cm"
@@ -102,6 +110,7 @@ struct Topology {
   std::vector<Body> bodies;  // in the order of the velocity vector omega
   std::vector<Mesh> meshes;  // in the order of the force vector F
   std::vector<FrictionElement> friction_elements;  // brakes and clutches, in file order
+  std::vector<NamedGear> gears;                    // in the order written
   std::vector<Parameter> parameters;
   std::vector<std::string> default_keep;
   SourceLocation keep_where;

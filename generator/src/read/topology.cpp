@@ -3,6 +3,7 @@
 #include "read/topology.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include <functional>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -297,6 +299,55 @@ void read_parameters(const TomlReader& r, const toml::table& params, Topology& t
   });
 }
 
+// [gears]: "<name>" = ["<element>", ...], in the order written. Whether each is a gear (one degree
+// of freedom, input and output turning) depends on the input and output, which `pogear ratios` checks.
+void read_gears(const TomlReader& r, const toml::node& n, Topology& t) {
+  if (!n.is_table()) r.fail(n, "[gears] must be a table of gears, e.g. \"1\" = [\"A\", \"D\"]");
+  // A TOML table is ordered by key; the gears keep the file's order.
+  std::vector<std::pair<const toml::key*, const toml::node*>> entries;
+  for (const auto& [key, value] : *n.as_table()) entries.emplace_back(&key, &value);
+  std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+    const toml::source_position pa = a.first->source().begin, pb = b.first->source().begin;
+    return std::tie(pa.line, pa.column) < std::tie(pb.line, pb.column);
+  });
+  for (const auto& [key, node] : entries) {
+    const toml::node& value = *node;
+    const std::string name(key->str());
+    NamedGear gear{name, {}, toml_location(r.file, key->source())};
+    const bool plain = !name.empty() && name.size() <= max_name_length &&
+                       std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+    if (!plain)
+      throw InputError(gear.where, fmt::format("a gear's name is letters, digits and '_', at most {} characters, e.g. "
+                                               "\"1\" or R; rename the gear", max_name_length));
+    if (!value.is_array())
+      r.fail(value, fmt::format("gear '{}' must list the brakes and clutches it engages, e.g. \"{}\" = [\"{}\"]", name,
+                                name, t.friction_elements.empty() ? std::string("B1") : t.friction_elements.front().name));
+    for (const toml::node& e : *value.as_array()) {
+      const std::string element = r.identifier(e, "a brake or clutch of a gear");
+      const auto it = std::find_if(t.friction_elements.begin(), t.friction_elements.end(),
+                                   [&](const FrictionElement& f) { return f.name == element; });
+      if (it == t.friction_elements.end()) {
+        std::string names;
+        for (const FrictionElement& f : t.friction_elements) names += (names.empty() ? "" : ", ") + f.name;
+        r.fail(e, names.empty() ? fmt::format("gear '{}' names '{}', but the model has no brake or clutch; add "
+                                              "[[brake]] and [[clutch]] entries", name, element)
+                                : fmt::format("gear '{}' names '{}', which is no brake or clutch of the model; they "
+                                              "are {}", name, element, names));
+      }
+      const int k = static_cast<int>(it - t.friction_elements.begin());
+      if (std::find(gear.engaged.begin(), gear.engaged.end(), k) != gear.engaged.end())
+        r.fail(e, fmt::format("gear '{}' names '{}' twice", name, element));
+      gear.engaged.push_back(k);
+    }
+    std::sort(gear.engaged.begin(), gear.engaged.end());
+    for (const NamedGear& other : t.gears)
+      if (other.engaged == gear.engaged)
+        throw InputError(gear.where, fmt::format("gear '{}' engages the same elements as gear '{}' (line {}); give each "
+                                                 "gear its own elements", name, other.name, other.where.line));
+    t.gears.push_back(std::move(gear));
+  }
+}
+
 }  // namespace
 
 Topology parse_topology_text(const std::string& text, const std::string& path) {
@@ -304,7 +355,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   const toml::table root = parse_toml_document(
       text, path, max_model_file_bytes,
       fmt::format("the file is larger than {} bytes; a model or scene file is a few kilobytes", max_model_file_bytes));
-  r.only_keys(root, {"name", "title", "keep", "body", "mesh", "brake", "clutch", "parameters"}, "the model file");
+  r.only_keys(root, {"name", "title", "keep", "body", "mesh", "brake", "clutch", "gears", "parameters"}, "the model file");
 
   Topology t;
   t.file = path;
@@ -361,6 +412,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   check_unique_names(t, true);
   check_lumped_meshes(t);
   read_friction_elements(r, root, t);
+  if (const toml::node* g = root.get("gears")) read_gears(r, *g, t);
 
   if (const toml::node* p = root.get("parameters")) read_parameters(r, r.table(*p, "[parameters]"), t);
   evaluate_parameters(t.parameters);
