@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/commands.hpp"
+#include "read/loads_and_controllers.hpp"
 #include "../support/files.hpp"
 #include "names/model_variables.hpp"
 #include "vibrate/frequency_response.hpp"

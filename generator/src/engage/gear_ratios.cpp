@@ -120,7 +120,7 @@ void name_gears(const Topology& t, GearRatios& g) {
   for (const NamedGear& gear : t.gears) {
     const EngagementRatio& e = engagement_of(g, t, gear);
     exact.push_back(1 / e.exact);
-    g.gears.push_back({gear.name, gear.engaged, (1 / *e.ratio).normal(), to_double(exact.back()), std::nullopt, e.one_way});
+    g.gears.push_back({gear.name, gear.engaged, (1 / *e.ratio).normal(), to_double(exact.back()), std::nullopt});
   }
   // Rounding keeps a sign, and the gears with the largest and smallest rounded i have the largest
   // and smallest exact i (or one equal to it): the steps and the spread are computed exactly.

@@ -47,7 +47,6 @@ struct NamedGearRatio {
   GiNaC::ex i;                 // closed form, in tooth counts when the model gives them
   double value = 0;            // i at the model's values, correctly rounded
   std::optional<double> step;  // i / i of the next gear written, when both are forward gears
-  std::vector<OneWayHold> one_way;
 };
 
 struct GearRatios {

@@ -20,4 +20,11 @@ std::vector<LoadSpec> read_loads(const SceneReader& r, const toml::node& n);
 std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::node& n,
                                              const std::filesystem::path& scene_dir, const Topology& model);
 
+// The names of the scene's speed controllers, in order: they name the controllers' variables.
+std::vector<std::string> controller_names(const Scene& scene);
+// A variable of the scene by its name, among the given kinds: the model's, or one of its speed
+// controllers' (controller_variable_name).
+std::optional<Variable> find_scene_variable(const Scene& s, std::string_view name,
+                                            std::initializer_list<VariableKind> kinds);
+
 }  // namespace pogear

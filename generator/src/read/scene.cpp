@@ -133,22 +133,6 @@ bool nonlinear(const Scene& scene) {
   return std::any_of(scene.loads.begin(), scene.loads.end(), [](const LoadSpec& l) { return l.quadratic != 0; });
 }
 
-std::optional<Variable> find_scene_variable(const Scene& s, std::string_view name,
-                                            std::initializer_list<VariableKind> kinds) {
-  if (auto v = find_variable(s.model, name, kinds)) return v;
-  for (const VariableKind kind : kinds)
-    if (of_controller(kind))
-      for (std::size_t c = 0; c < s.controllers.size(); ++c)
-        if (controller_variable_name(kind, s.controllers[c].name) == name) return Variable{kind, static_cast<int>(c)};
-  return std::nullopt;
-}
-
-std::vector<std::string> controller_names(const Scene& scene) {
-  std::vector<std::string> names;
-  for (const ControllerSpec& c : scene.controllers) names.push_back(c.name);
-  return names;
-}
-
 bool identically_zero(const rt::Signal& signal) {
   struct Zero {
     bool operator()(const rt::Constant& c) const { return c.v == 0; }

@@ -112,12 +112,6 @@ struct Scene {
 Scene parse_scene(const std::string& path);
 // Whether a load of the scene is quadratic in speed: its equations are then nonlinear.
 bool nonlinear(const Scene& scene);
-// The names of the scene's speed controllers, in order: they name the controllers' variables.
-std::vector<std::string> controller_names(const Scene& scene);
-// A variable of the scene by its name, among the given kinds: the model's, or one of its speed
-// controllers' (controller_variable_name).
-std::optional<Variable> find_scene_variable(const Scene& s, std::string_view name,
-                                            std::initializer_list<VariableKind> kinds);
 Scene parse_scene_text(const std::string& text, const std::string& path);
 
 // The solver `name` (rt::parse_solver), or an InputError at `where`.

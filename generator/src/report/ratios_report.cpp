@@ -17,8 +17,8 @@
 namespace pogear {
 namespace {
 
-std::string engaged_or_none(const Topology& t, const EngagementRatio& e, const std::string& separator) {
-  return e.engaged.empty() ? std::string("(none)") : engaged_names(t, e.engaged, separator);
+std::string engaged_or_none(const Topology& t, const std::vector<int>& engaged, const std::string& separator) {
+  return engaged.empty() ? std::string("(none)") : engaged_names(t, engaged, separator);
 }
 
 std::string status_text(const EngagementRatio& e) {
@@ -98,7 +98,7 @@ std::string aligned(const std::vector<std::array<std::string, N>>& rows) {
 std::string named_gears_text(const GearRatios& g, const Topology& t) {
   std::vector<std::array<std::string, 5>> rows{{"gear", "engaged", "i", "value", "step"}};
   for (const NamedGearRatio& n : g.gears)
-    rows.push_back({n.name, n.engaged.empty() ? "(none)" : engaged_names(t, n.engaged, " "),
+    rows.push_back({n.name, engaged_or_none(t, n.engaged, " "),
                     print_expression(n.i, Notation::text), six_digits(n.value), step_text(n)});
   const std::string spread = spread_line(g);
   return gears_heading(g) + "\n\n" + aligned(rows) + (spread.empty() ? "" : "\n" + spread + "\n");
@@ -123,7 +123,7 @@ std::string latex_named_gears(const GearRatios& g, const Topology& t) {
   std::vector<std::string> ratios;
   for (const NamedGearRatio& n : g.gears) {
     ratios.push_back(print_expression(n.i, Notation::latex));
-    rows.push_back({latex_text(n.name), latex_text(n.engaged.empty() ? "(none)" : engaged_names(t, n.engaged, ", ")),
+    rows.push_back({latex_text(n.name), latex_text(engaged_or_none(t, n.engaged, ", ")),
                     "$\\displaystyle " + ratios.back() + "$", "$" + six_digits(n.value) + "$",
                     n.step ? "$" + step_text(n) + "$" : ""});
   }
@@ -143,10 +143,17 @@ std::string latex_engagements(const GearRatios& g, const Topology& t) {
   std::vector<std::string> ratios;
   for (const EngagementRatio& e : g.engagements) {
     ratios.push_back(e.ratio ? print_expression(*e.ratio, Notation::latex) : "");
-    rows.push_back({latex_text(engaged_or_none(t, e, ", ")), latex_text(status_text(e)),
+    rows.push_back({latex_text(engaged_or_none(t, e.engaged, ", ")), latex_text(status_text(e)),
                     e.ratio ? "$\\displaystyle " + ratios.back() + "$" : "", e.ratio ? "$" + six_digits(e.value) + "$" : ""});
   }
   return s + latex_ratio_table(header, std::move(rows), ratios);
+}
+
+// ["C1", "B2"]: the elements' names as a JSON array.
+std::string json_element_names(const Topology& t, const std::vector<int>& engaged) {
+  std::vector<std::string> names;
+  for (const int k : engaged) names.push_back(t.friction_elements[static_cast<std::size_t>(k)].name);
+  return json_strings(names);
 }
 
 }  // namespace
@@ -158,7 +165,7 @@ std::string ratios_text(const GearRatios& g, const Topology& t, bool all) {
   if (!lists_engagements(g, all)) return s + (one_way.empty() ? "" : one_way + "\n") + footer(g) + "\n";
   std::vector<std::array<std::string, 4>> rows{{"engaged", "status", "ratio", "value"}};
   for (const EngagementRatio& e : g.engagements)
-    rows.push_back({engaged_or_none(t, e, " "), status_text(e),
+    rows.push_back({engaged_or_none(t, e.engaged, " "), status_text(e),
                     e.ratio ? print_expression(*e.ratio, Notation::text) : "", e.ratio ? six_digits(e.value) : ""});
   s += heading(g) + "\n\n" + aligned(rows);
   return s + "\n" + (one_way.empty() ? "" : one_way + "\n") + footer(g) + "\n";
@@ -170,8 +177,8 @@ std::string ratios_markdown(const GearRatios& g, const Topology& t, bool all) {
     s += fmt::format("Input `{}`, output `{}`: {}.\n\n", g.input, g.output, gears_heading(g));
     s += "| gear | engaged | i | value | step |\n|---|---|---|---|---|\n";
     for (const NamedGearRatio& n : g.gears)
-      s += fmt::format("| {} | {} | `{}` | {} | {} |\n", n.name,
-                       n.engaged.empty() ? "(none)" : engaged_names(t, n.engaged, ", "),
+      s += fmt::format("| {} | {} | `{}` | {} | {} |\n", markdown_text(n.name),
+                       markdown_text(engaged_or_none(t, n.engaged, ", ")),
                        print_expression(n.i, Notation::text), six_digits(n.value), step_text(n));
     const std::string spread = spread_line(g);
     s += "\n" + (spread.empty() ? "" : spread + "\n\n");
@@ -181,7 +188,7 @@ std::string ratios_markdown(const GearRatios& g, const Topology& t, bool all) {
   s += fmt::format("Input `{}`, output `{}`: {}.\n\n", g.input, g.output, heading(g));
   s += "| engaged | status | ratio | value |\n|---|---|---|---|\n";
   for (const EngagementRatio& e : g.engagements)
-    s += fmt::format("| {} | {} | {} | {} |\n", engaged_or_none(t, e, ", "), status_text(e),
+    s += fmt::format("| {} | {} | {} | {} |\n", markdown_text(engaged_or_none(t, e.engaged, ", ")), status_text(e),
                      e.ratio ? fmt::format("`{}`", print_expression(*e.ratio, Notation::text)) : "", e.ratio ? six_digits(e.value) : "");
   return s + "\n" + (one_way.empty() ? "" : one_way + "\n") + footer(g) + "\n";
 }
@@ -212,28 +219,22 @@ std::string ratios_json(const GearRatios& g, const Topology& t) {
   j += "  \"engagements\": [\n";
   for (std::size_t i = 0; i < g.engagements.size(); ++i) {
     const EngagementRatio& e = g.engagements[i];
-    std::string names;
-    for (std::size_t k = 0; k < e.engaged.size(); ++k)
-      names += (k ? ", " : "") + json_string(t.friction_elements[e.engaged[k]].name);
     std::string one_way;
     for (std::size_t k = 0; k < e.one_way.size(); ++k)
       one_way += fmt::format("{}{{\"element\": {}, \"drive\": {}, \"coast\": {}}}", k ? ", " : "",
                              json_string(t.friction_elements[static_cast<std::size_t>(e.one_way[k].element)].name),
                              e.one_way[k].drive, e.one_way[k].coast);
-    j += fmt::format("    {{\"engaged\": [{}], \"status\": {}, \"degrees_of_freedom\": {}, \"ratio\": {}, \"value\": {}, "
+    j += fmt::format("    {{\"engaged\": {}, \"status\": {}, \"degrees_of_freedom\": {}, \"ratio\": {}, \"value\": {}, "
                      "\"one_way\": [{}]}}{}\n",
-                     names, json_string(status_name(e.status)), e.freedoms,
+                     json_element_names(t, e.engaged), json_string(status_name(e.status)), e.freedoms,
                      e.ratio ? json_string(print_expression(*e.ratio, Notation::ginac)) : std::string("null"),
                      e.ratio ? json_number(e.value) : std::string("null"), one_way, i + 1 < g.engagements.size() ? "," : "");
   }
   j += g.gears.empty() ? "  ],\n  \"gears\": [" : "  ],\n  \"gears\": [\n";
   for (std::size_t k = 0; k < g.gears.size(); ++k) {
     const NamedGearRatio& n = g.gears[k];
-    std::string names;
-    for (std::size_t e = 0; e < n.engaged.size(); ++e)
-      names += (e ? ", " : "") + json_string(t.friction_elements[static_cast<std::size_t>(n.engaged[e])].name);
-    j += fmt::format("    {{\"name\": {}, \"engaged\": [{}], \"i\": {}, \"value\": {}, \"step\": {}}}{}\n",
-                     json_string(n.name), names, json_string(print_expression(n.i, Notation::ginac)), json_number(n.value),
+    j += fmt::format("    {{\"name\": {}, \"engaged\": {}, \"i\": {}, \"value\": {}, \"step\": {}}}{}\n",
+                     json_string(n.name), json_element_names(t, n.engaged), json_string(print_expression(n.i, Notation::ginac)), json_number(n.value),
                      n.step ? json_number(*n.step) : std::string("null"), k + 1 < g.gears.size() ? "," : "");
   }
   return j + fmt::format("{}],\n  \"spread\": {}\n}}\n", g.gears.empty() ? "" : "  ",

@@ -13,6 +13,7 @@
 #include "specialize/initial_state.hpp"
 #include "specialize/linear_form.hpp"
 #include "specialize/loop_closure.hpp"
+#include "read/loads_and_controllers.hpp"
 #include "read/model_parameters.hpp"
 #include "specialize/operation_count.hpp"
 #include "specialize/parameter_folding.hpp"

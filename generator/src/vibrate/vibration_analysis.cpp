@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "derive/engagement.hpp"
+#include "read/loads_and_controllers.hpp"
 #include "read/model_parameters.hpp"
 #include "common/output_file.hpp"
 #include "specialize/parameter_folding.hpp"
