@@ -72,6 +72,7 @@ const std::map<std::string, std::string> ratio_bodies{
     {"gearshift_planetary", " --input s --output c"},
     {"power_split", " --input c --output r"},
     {"simpson_3speed", " --input i --output o"},
+    {"zf6hp26", " --input in --output out"},
 };
 
 bool has_friction_elements(const fs::path& model) {

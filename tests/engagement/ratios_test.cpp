@@ -13,6 +13,7 @@
 #include "common/exact_algebra.hpp"
 #include "derive/engagement.hpp"
 #include "engage/gear_ratios.hpp"
+#include "read/tooth_counts.hpp"
 #include "engagement_support.hpp"
 #include "pogear/hybrid.hpp"
 #include "specialize/reference_model.hpp"
@@ -320,6 +321,55 @@ TEST(Ratios, NamedGearsAsTheEngineerQuotesThem) {
   EXPECT_FALSE(g.gears[3].step);  // the last
   ASSERT_TRUE(g.spread);
   EXPECT_TRUE(near(*g.spread, i[0] / i[2])) << *g.spread;
+}
+
+// The 6HP26's seven gears from the Willis equations of its two sets, in exact rationals: the front
+// set's sun (37) held, ring (71) the input; the Ravigneaux set's small sun (31) through two pinions
+// and its large sun (38) through one to the ring (85). Written here from the teeth alone.
+GiNaC::numeric willis_6hp26(const std::vector<std::string>& engaged) {
+  const GiNaC::symbol c1("c1"), s2("s2"), s3("s3"), c2("c2"), out("out");
+  const GiNaC::ex in = 1;
+  GiNaC::lst equations{
+      (0 - c1) * 37 == -(in - c1) * 71,    // front: (w_s - w_c) Z_s = -(w_r - w_c) Z_r
+      (s2 - c2) * 31 == (out - c2) * 85,   // small sun, two pinions: the ring turns with it
+      (s3 - c2) * 38 == -(out - c2) * 85}; // large sun, one pinion: against it
+  for (const std::string& e : engaged) {
+    if (e == "A") equations.append(s2 == c1);
+    if (e == "B") equations.append(s3 == c1);
+    if (e == "C") equations.append(s3 == 0);
+    if (e == "D") equations.append(c2 == 0);
+    if (e == "E") equations.append(c2 == in);
+  }
+  const GiNaC::ex solution = GiNaC::lsolve(equations, GiNaC::lst{c1, s2, s3, c2, out});
+  for (const GiNaC::ex& eq : solution)
+    if (eq.lhs().is_equal(out)) return GiNaC::ex_to<GiNaC::numeric>(1 / eq.rhs());
+  ADD_FAILURE() << "no solution for the output";
+  return 0;
+}
+
+TEST(Ratios, ZF6HP26GearsAreTheWillisFractionsOfItsTeeth) {
+  const Derivation d = derive_file("zf6hp26");
+  const GearRatios g = gear_ratios(d, "in", "out", SourceLocation{"zf6hp26.toml", 0, 0});
+  const std::vector<std::pair<std::string, std::vector<std::string>>> gears{
+      {"1", {"A", "D"}}, {"2", {"A", "C"}}, {"3", {"A", "B"}}, {"4", {"A", "E"}},
+      {"5", {"B", "E"}}, {"6", {"C", "E"}}, {"R", {"B", "D"}}};
+  // As published, to the three decimals quoted.
+  const std::vector<double> published{4.171, 2.340, 1.521, 1.143, 0.867, 0.691, -3.403};
+  ASSERT_EQ(g.gears.size(), gears.size());
+  for (std::size_t n = 0; n < gears.size(); ++n) {
+    SCOPED_TRACE(gears[n].first);
+    EXPECT_EQ(g.gears[n].name, gears[n].first);
+    const GiNaC::numeric exact = willis_6hp26(gears[n].second);
+    // The closed form is in tooth counts only (the long pinion's operating centre distance
+    // cancels), and at the counts it is Willis' fraction exactly.
+    const auto in_numbers = in_tooth_numbers(g.gears[n].i, d.topology);
+    ASSERT_TRUE(in_numbers) << g.gears[n].i;
+    EXPECT_TRUE((*in_numbers - exact).is_zero()) << *in_numbers << " vs " << exact;
+    // The value is at the operating radii a Z / (Z_2 +- Z_1) and the pitch radii m Z / 2, doubles:
+    // within a few ulps of the fraction.
+    EXPECT_NEAR(g.gears[n].value, exact.to_double(), 4e-16 * std::abs(exact.to_double()));
+    EXPECT_NEAR(g.gears[n].value, published[n], 5e-4);
+  }
 }
 
 }  // namespace

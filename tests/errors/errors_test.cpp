@@ -100,7 +100,7 @@ TEST_F(ModelStructure, TooManyBodies) {
 
 TEST_F(ModelStructure, BodyUnknownKey) {
   expect_model_error({{R"(axis = { fixed = "below" })", R"(axsi = { fixed = "below" })"}},
-      R"~(gear.toml:22:1: error: unknown key 'axsi' in a [[body]]; the keys are name, axis, arrow, inertia, friction, wheels, teeth, module, count)~");
+      R"~(gear.toml:22:1: error: unknown key 'axsi' in a [[body]]; the keys are name, axis, arrow, inertia, friction, wheels, teeth, module, count, fixed)~");
 }
 
 TEST_F(ModelStructure, BodyWithoutName) {
@@ -223,7 +223,7 @@ TEST_F(ModelStructure, TooManyMeshes) {
 
 TEST_F(ModelStructure, MeshUnknownKey) {
   expect_model_error({{R"(second = "g")", "second = \"g\"\nratio = 2"}},
-      R"~(gear.toml:35:1: error: unknown key 'ratio' in a [[mesh]]; the keys are first, second, name, stiffness, damping, module)~");
+      R"~(gear.toml:35:1: error: unknown key 'ratio' in a [[mesh]]; the keys are first, second, name, stiffness, damping, module, centre_distance)~");
 }
 
 TEST_F(ModelStructure, MeshIncomplete) {

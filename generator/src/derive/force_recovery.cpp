@@ -93,4 +93,15 @@ std::vector<int> force_recovery_bodies(const Eigen::MatrixXd& Rn) {
   return picked;
 }
 
+std::vector<GiNaC::ex> fixed_body_torques(const Topology& t, const std::vector<GiNaC::exvector>& fixed_columns,
+                                          const std::vector<GiNaC::ex>& forces) {
+  std::vector<GiNaC::ex> torques;
+  for (std::size_t k = 0; k < fixed_columns.size(); ++k) {
+    GiNaC::ex torque = 0;
+    for (std::size_t i = 0; i < fixed_columns[k].size(); ++i) torque -= fixed_columns[k][i] * forces[i];
+    torques.push_back((t.grounded[k].arrow * torque).expand());
+  }
+  return torques;
+}
+
 }  // namespace pogear

@@ -25,6 +25,12 @@ ForceRecovery recover_mesh_forces(const Topology& t, const ElasticModel& e, cons
                                   const std::vector<int>& kept, int rank, const Eigen::MatrixXd& Rn,
                                   const GiNaC::exmap& values, const SymbolTable& s);
 
+// The torque each fixed body puts on the housing, as a stuck brake holding it would take it (T in
+// one rotation sense, acting as -T on the body): the meshes' torque on it, -a column . F, a its
+// arrow, with F the recovered `forces` (meshes first).
+std::vector<GiNaC::ex> fixed_body_torques(const Topology& t, const std::vector<GiNaC::exvector>& fixed_columns,
+                                          const std::vector<GiNaC::ex>& forces);
+
 // m bodies whose columns of R are independent, preferring sparse columns (short expressions).
 std::vector<int> force_recovery_bodies(const Eigen::MatrixXd& R_numeric);
 

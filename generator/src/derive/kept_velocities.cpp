@@ -86,10 +86,21 @@ KeptVelocities choose_kept_velocities(const Topology& t, const GiNaC::matrix& R,
   KeptVelocities out;
   for (const auto& name : keep) {
     const int b = find_body(t, name);
+    if (const std::string why = fixed_body_refusal(t, name, "keep"); !why.empty()) throw InputError(where, why);
     if (b < 0) throw InputError(where, fmt::format("cannot keep '{}': there is no such body", name));
     if (std::find(out.kept.begin(), out.kept.end(), b) != out.kept.end())
       throw InputError(where, fmt::format("'{}' is kept twice", name));
     out.kept.push_back(b);
+  }
+  if (dof == 0) {
+    std::string fixed;
+    for (const Body& b : t.grounded) fixed += (fixed.empty() ? "" : ", ") + b.name;
+    throw InputError(where, t.grounded.empty()
+                                ? fmt::format("the gear cannot turn: its meshes leave its {} bodies no degree of "
+                                              "freedom (rank of R {}); check the meshes", n, rank)
+                                : fmt::format("the gear cannot turn: with {} fixed, its meshes leave its {} other "
+                                              "bodies no degree of freedom (rank of R {}); fix fewer bodies",
+                                              fixed, n, rank));
   }
   const auto valid = valid_keep_sets(Rn, 12);
   if (static_cast<int>(out.kept.size()) != dof) {

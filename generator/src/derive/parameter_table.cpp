@@ -9,10 +9,13 @@
 namespace pogear {
 namespace {
 
+// A pitch radius m Z / 2, or an operating one a Z / (Z_2 +- Z_1).
 bool is_pitch_radius(const Topology& t, const std::string& name) {
-  for (const Body& b : t.bodies)
-    for (const Wheel& w : b.wheels)
+  for (const Body* b : every_body(t))
+    for (const Wheel& w : b->wheels)
       if (w.teeth > 0 && w.radius_parameter == name) return true;
+  for (const Mesh& m : t.meshes)
+    if (!m.centre_distance.empty() && (contact_radius(t, m, m.first) == name || contact_radius(t, m, m.second) == name)) return true;
   return false;
 }
 

@@ -144,12 +144,13 @@ std::optional<ContactSides> contact_sides(const Topology& t, int mi, Heights& h,
     c.second = -*j_above;
   }
   // A fixed axis is placed by its first mesh: contact heights must agree.
-  auto place = [&](int fixed_body, int other_body, int side_fixed, int side_other, const Wheel& wf, const Wheel& wo) {
-    h.symbolic[fixed_body] = h.symbolic[other_body] + side_other * parameter_symbol(s, wo.radius_parameter) - side_fixed * parameter_symbol(s, wf.radius_parameter);
+  auto place = [&](int fixed_body, int other_body, int side_fixed, int side_other, const std::string& rf,
+                   const std::string& ro) {
+    h.symbolic[fixed_body] = h.symbolic[other_body] + side_other * parameter_symbol(s, ro) - side_fixed * parameter_symbol(s, rf);
     h.value[fixed_body] = value_of(h.symbolic[fixed_body], values);
   };
-  if (fi) place(bi, bj, c.first, c.second, wi, wj);
-  if (fj) place(bj, bi, c.second, c.first, wj, wi);
+  if (fi) place(bi, bj, c.first, c.second, contact_radius(t, m, m.first), contact_radius(t, m, m.second));
+  if (fj) place(bj, bi, c.second, c.first, contact_radius(t, m, m.second), contact_radius(t, m, m.first));
   return c;
 }
 
@@ -171,13 +172,13 @@ std::vector<ex> carrier_frame_row(const Topology& t, const SymbolTable& s, int m
   const Mesh& m = t.meshes[mi];
   const int carrier = find_body(t, t.bodies[m.first.body].carrier);
   std::vector<ex> row(t.bodies.size(), ex(0));
-  auto add = [&](WheelRef w, int side, int sign) {
-    const ex r = parameter_symbol(s, wheel(t, w).radius_parameter);
+  auto add = [&](WheelRef w, const std::string& radius, int side, int sign) {
+    const ex r = parameter_symbol(s, radius);
     row[w.body] += sign * side * r * t.bodies[w.body].arrow;
     row[carrier] -= sign * side * r * t.bodies[carrier].arrow;
   };
-  add(m.first, c.first, +1);
-  add(m.second, c.second, -1);
+  add(m.first, contact_radius(t, m, m.first), c.first, +1);
+  add(m.second, contact_radius(t, m, m.second), c.second, -1);
   for (ex& e : row) e = e.expand();
   return row;
 }
@@ -191,6 +192,13 @@ int unknown_rank(const Topology& t, const std::string& name, int& order) {
     for (const auto& w : b.wheels)
       if (w.radius_parameter == name) return w.internal ? 1 : 0;
   }
+  // An operating pitch radius ranks as its wheel's radius.
+  for (const Mesh& m : t.meshes)
+    for (const bool first : {true, false})
+      if (const WheelRef ref = first ? m.first : m.second; contact_radius(t, m, ref) == name) {
+        order = ref.body;
+        return wheel(t, ref).internal ? 1 : 0;
+      }
   order = -1;
   return -1;
 }
@@ -203,8 +211,8 @@ double pinion_angle(const Topology& t, const SymbolTable& s, int mi, const Radiu
   const Wheel& wj = wheel(t, mesh.second);
   const Body& bi = t.bodies[mesh.first.body];
   const Body& bj = t.bodies[mesh.second.body];
-  const ex ri = parameter_symbol(s, wi.radius_parameter);
-  const ex rj = parameter_symbol(s, wj.radius_parameter);
+  const ex ri = parameter_symbol(s, contact_radius(t, mesh, mesh.first));
+  const ex rj = parameter_symbol(s, contact_radius(t, mesh, mesh.second));
   const ex centre = wi.internal ? ri - rj : (wj.internal ? rj - ri : ri + rj);
   const auto d = value_of(centre, known);
   const auto ai = value_of(parameter_symbol(s, bi.distance_parameter), known);
@@ -259,7 +267,9 @@ std::string describe_mesh(const Topology& t, int mesh) {
   return fmt::format("mesh {} ({} with {})", m.name, wheel_label(t, m.first), wheel_label(t, m.second));
 }
 
-RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
+// The side view of every body, the fixed ones among them (after the turning ones, as their
+// indices say): the layout and the contact rows do not care which bodies turn.
+RadiusMatrix derive_side_view(const Topology& t, const SymbolTable& s) {
   const auto n = t.bodies.size();
   const auto m = t.meshes.size();
   RadiusMatrix rm;
@@ -311,8 +321,8 @@ RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
   auto angled_pair = [&](std::size_t mi) -> std::optional<bool> {
     const Mesh& mesh = t.meshes[mi];
     const auto residual = value_of(contact_equations[mi].subs(solved), known);
-    const auto scale = value_of((parameter_symbol(s, wheel(t, mesh.first).radius_parameter) +
-                                 parameter_symbol(s, wheel(t, mesh.second).radius_parameter)).subs(solved), known);
+    const auto scale = value_of((parameter_symbol(s, contact_radius(t, mesh, mesh.first)) + parameter_symbol(s, contact_radius(t, mesh, mesh.second))).subs(solved),
+                                known);
     if (!residual || !scale) return std::nullopt;
     // The same 1e-9 relative as the check of given radii against the relations below.
     return std::abs(*residual) > 1e-9 * std::abs(*scale);
@@ -327,8 +337,8 @@ RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
     const auto c = contact_sides(t, static_cast<int>(mi), h, s, known, solved, pinions && may_wait);
     if (!c) return false;
     rm.sides[mi] = *c;
-    const ex ri = parameter_symbol(s, wheel(t, mesh.first).radius_parameter);
-    const ex rj = parameter_symbol(s, wheel(t, mesh.second).radius_parameter);
+    const ex ri = parameter_symbol(s, contact_radius(t, mesh, mesh.first));
+    const ex rj = parameter_symbol(s, contact_radius(t, mesh, mesh.second));
     std::vector<ex> row(n, ex(0));
     add_point_velocity(t, s, mesh.first.body, c->first * ri, +1, row);
     add_point_velocity(t, s, mesh.second.body, c->second * rj, -1, row);
@@ -367,8 +377,9 @@ RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
 
   // Every radius the relations leave free must be given; the dependent ones may be omitted.
   for (std::size_t mi = 0; mi < m; ++mi)
-    for (WheelRef w : {t.meshes[mi].first, t.meshes[mi].second}) {
-      const std::string& r = wheel(t, w).radius_parameter;
+    for (const bool first : {true, false}) {
+      const WheelRef w = first ? t.meshes[mi].first : t.meshes[mi].second;
+      const std::string r = contact_radius(t, t.meshes[mi], w);
       const bool dependent = std::any_of(rm.relations.begin(), rm.relations.end(),
                                          [&](const GeometryRelation& g) { return g.parameter == r; });
       if (!dependent && !given.count(r))
@@ -417,6 +428,24 @@ RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
           distances[parameter_symbol(s, g.parameter)] = g.rhs;
     rm.R = GiNaC::ex_to<GiNaC::matrix>(rm.R.subs(distances).expand());
   }
+  return rm;
+}
+
+RadiusMatrix derive_radius_matrix(const Topology& t, const SymbolTable& s) {
+  if (t.grounded.empty()) return derive_side_view(t, s);
+  Topology all = t;
+  all.bodies.insert(all.bodies.end(), t.grounded.begin(), t.grounded.end());
+  all.grounded.clear();
+  RadiusMatrix rm = derive_side_view(all, s);
+  // A fixed body's omega is 0: its column drops out of every contact velocity.
+  const unsigned m = rm.R.rows(), n = t.bodies.size(), g = t.grounded.size();
+  GiNaC::matrix turning(m, n);
+  rm.fixed_columns.assign(g, GiNaC::exvector(m));
+  for (unsigned i = 0; i < m; ++i) {
+    for (unsigned k = 0; k < n; ++k) turning(i, k) = rm.R(i, k);
+    for (unsigned k = 0; k < g; ++k) rm.fixed_columns[k][i] = rm.R(i, n + k);
+  }
+  rm.R = turning;
   return rm;
 }
 

@@ -44,6 +44,9 @@ struct DerivedRadius {
 
 struct RadiusMatrix {
   GiNaC::matrix R;  // meshes x bodies, entries in the model's named radii
+  // Per fixed body, the column of R it would have (one entry per mesh): F's torque on it is
+  // -column . F, so the housing holds it with +column . F.
+  std::vector<GiNaC::exvector> fixed_columns;
   std::vector<GeometryRelation> relations;
   std::vector<ContactSides> sides;  // per mesh
   std::vector<DerivedRadius> derived;  // radii not in the file, computed from the relations

@@ -33,6 +33,7 @@ namespace {
 int body_named(const Topology& t, const std::string& name, const char* option, const SourceLocation& where) {
   const int b = find_body(t, name);
   if (b >= 0) return b;
+  if (const std::string why = fixed_body_refusal(t, name, option); !why.empty()) throw InputError(where, why);
   std::string list;
   for (const auto& x : t.bodies) list += (list.empty() ? "" : ", ") + x.name;
   throw InputError(where, fmt::format("{} '{}' is not a body of the model; its bodies are {}", option, name, list));

@@ -13,8 +13,43 @@ int find_body(const Topology& t, const std::string& name) {
   return -1;
 }
 
+const Body& body(const Topology& t, int index) {
+  const auto turning = static_cast<int>(t.bodies.size());
+  return index < turning ? t.bodies.at(index) : t.grounded.at(index - turning);
+}
+
+bool is_grounded(const Topology& t, int index) { return index >= static_cast<int>(t.bodies.size()); }
+
+std::vector<const Body*> every_body(const Topology& t) {
+  std::vector<const Body*> all;
+  for (const Body& b : t.bodies) all.push_back(&b);
+  for (const Body& b : t.grounded) all.push_back(&b);
+  return all;
+}
+
+std::string fixed_body_refusal(const Topology& t, const std::string& name, std::string_view what) {
+  if (std::none_of(t.grounded.begin(), t.grounded.end(), [&](const Body& b) { return b.name == name; })) return "";
+  std::string turning;
+  for (const Body& b : t.bodies) turning += (turning.empty() ? "" : ", ") + b.name;
+  return fmt::format("{} '{}' is fixed (the housing holds it), so it has no speed and takes no torque; name a body "
+                     "that turns: {}", what, name, turning);
+}
+
+std::string fixed_variable_refusal(const Topology& t, std::string_view variable) {
+  for (const std::string_view prefix : {"omega_", "tau_"}) {
+    if (!variable.starts_with(prefix)) continue;
+    const std::string body(variable.substr(prefix.size()));
+    if (fixed_body_refusal(t, body, "").empty()) continue;
+    std::string turning;
+    for (const Body& b : t.bodies) turning += (turning.empty() ? "" : ", ") + b.name;
+    return fmt::format("'{}' is of body '{}', which is fixed (the housing holds it), so it has no speed and takes no "
+                       "torque; name a body that turns: {}", variable, body, turning);
+  }
+  return "";
+}
+
 int mesh_count(const Topology& t, const Mesh& m) {
-  return std::max(t.bodies[m.first.body].count, t.bodies[m.second.body].count);
+  return std::max(body(t, m.first.body).count, body(t, m.second.body).count);
 }
 
 int find_friction_element(const Topology& t, const std::string& name) {
@@ -23,10 +58,14 @@ int find_friction_element(const Topology& t, const std::string& name) {
   return -1;
 }
 
-const Wheel& wheel(const Topology& t, WheelRef w) { return t.bodies.at(w.body).wheels.at(w.wheel); }
+const Wheel& wheel(const Topology& t, WheelRef w) { return body(t, w.body).wheels.at(w.wheel); }
+
+std::string contact_radius(const Topology& t, const Mesh& m, WheelRef w) {
+  return m.centre_distance.empty() ? wheel(t, w).radius_parameter : "rw_" + wheel(t, w).name + "_" + m.name;
+}
 
 std::string wheel_label(const Topology& t, WheelRef w) {
-  const Body& b = t.bodies.at(w.body);
+  const Body& b = body(t, w.body);
   const Wheel& wh = b.wheels.at(w.wheel);
   return wh.name == b.name ? b.name : fmt::format("{} of body {}", wh.name, b.name);
 }

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/input_error.hpp"
@@ -48,6 +49,9 @@ struct Body {
   // multiplies its inertia and friction, and its meshes' stiffness and damping, by the count.
   int count = 1;
   SourceLocation count_where;
+  // Held by the housing (`fixed = true`, central bodies only): omega is 0, so it has no velocity,
+  // no state and no inertia in the model; its wheels mesh like any other.
+  bool fixed = false;
 };
 
 struct WheelRef {
@@ -64,6 +68,11 @@ struct Mesh {
   std::string module;  // the module of its toothed wheels, when they do not give it
   SourceLocation module_where;
   int module_column_offset = 1;
+  // The operating centre distance (profile-shifted wheels), an expression of length; empty: the
+  // wheels roll on their pitch circles.
+  std::string centre_distance;
+  SourceLocation centre_distance_where;
+  int centre_distance_column_offset = 1;
 };
 
 // A brake (holds a body against the housing) or a clutch (joins two bodies on one axis). Its
@@ -107,7 +116,10 @@ struct Topology {
   std::string digest;  // of the model file's text (text_digest)
   std::string name;
   std::string title;
-  std::vector<Body> bodies;  // in the order of the velocity vector omega
+  std::vector<Body> bodies;  // the bodies that turn, in the order of the velocity vector omega
+  // The fixed bodies, in file order. A body index past the turning ones (in a WheelRef) names one
+  // of them: bodies.size() + k is grounded[k]. Their column of R is the housing's reaction.
+  std::vector<Body> grounded;
   std::vector<Mesh> meshes;  // in the order of the force vector F
   std::vector<FrictionElement> friction_elements;  // brakes and clutches, in file order
   std::vector<NamedGear> gears;                    // in the order written
@@ -116,12 +128,25 @@ struct Topology {
   SourceLocation keep_where;
 };
 
-int find_body(const Topology& t, const std::string& name);  // -1 when absent
+int find_body(const Topology& t, const std::string& name);  // a body that turns; -1 when absent
+// Any body by index, turning (index < bodies.size()) or fixed (past them).
+const Body& body(const Topology& t, int index);
+bool is_grounded(const Topology& t, int index);
+// Every body, the turning ones then the fixed ones: a body's index in it is its index.
+std::vector<const Body*> every_body(const Topology& t);
+// For a name that a command or scene expects to turn: why a fixed body does not, or "" when the
+// name is no fixed body.
+std::string fixed_body_refusal(const Topology& t, const std::string& name, std::string_view what);
+// The same for a body's variable, omega_<body> or tau_<body>.
+std::string fixed_variable_refusal(const Topology& t, std::string_view variable);
 // How many identical planets a mesh stands for: its lumped planet's count, 1 for other meshes. The
 // model's F_<mesh> is their sum; the outputs and reports give one planet's share.
 int mesh_count(const Topology& t, const Mesh& m);
 int find_friction_element(const Topology& t, const std::string& name);  // -1 when absent
 const Wheel& wheel(const Topology& t, WheelRef w);
+// The radius parameter of wheel w's contact in mesh m: the wheel's own, or with a centre distance
+// its operating pitch radius in that mesh, rw_<wheel>_<mesh> (read/tooth_counts.hpp).
+std::string contact_radius(const Topology& t, const Mesh& m, WheelRef w);
 std::string wheel_label(const Topology& t, WheelRef w);  // "s1 (body s)" or "p"
 
 }  // namespace pogear

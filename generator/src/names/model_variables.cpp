@@ -71,6 +71,8 @@ std::string controller_variable_name(VariableKind kind, std::string_view control
 }
 
 std::string element_torque_name(std::string_view element) { return "T_" + std::string(element); }
+
+std::string fixed_body_torque_name(std::string_view body) { return "T_" + std::string(body); }
 std::string element_slip_name(std::string_view element) { return "slip_" + std::string(element); }
 std::string capacity_parameter_name(std::string_view element) { return "Tcap_" + std::string(element); }
 std::string quadratic_load_name(std::string_view body) { return "TQ_" + std::string(body); }

@@ -53,6 +53,9 @@ std::string controller_variable_name(VariableKind kind, std::string_view control
 // as the reports and the simulations' CSV files print them (T_, slip_; the runtime writes E_), and
 // the default name of its capacity parameter, Tcap_, which is not its torque.
 std::string element_torque_name(std::string_view element);
+// The torque the housing holds a fixed body with: T_<body> (a brake or clutch never has that name:
+// the model file refuses it).
+std::string fixed_body_torque_name(std::string_view body);
 std::string element_slip_name(std::string_view element);
 std::string capacity_parameter_name(std::string_view element);
 // A quadratic load's torque -c omega |omega| on a body, a temporary TQ_ of the generated rhs.

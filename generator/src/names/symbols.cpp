@@ -18,13 +18,15 @@ SymbolTable make_symbol_table(const Topology& t) {
   for (const auto& p : t.parameters) given.push_back(p.name);
   std::sort(given.begin(), given.end());
   for (const auto& name : given) parameter(name);
-  for (const auto& b : t.bodies) {
-    parameter(b.inertia_parameter);
-    parameter(b.friction_parameter);
-    parameter(b.distance_parameter);
-    for (const auto& w : b.wheels) parameter(w.radius_parameter);
+  for (const Body* b : every_body(t)) {
+    parameter(b->inertia_parameter);
+    parameter(b->friction_parameter);
+    parameter(b->distance_parameter);
+    for (const auto& w : b->wheels) parameter(w.radius_parameter);
   }
   for (const auto& m : t.meshes) {
+    parameter(contact_radius(t, m, m.first));
+    parameter(contact_radius(t, m, m.second));
     parameter(m.stiffness_parameter);
     parameter(m.damping_parameter);
   }

@@ -26,7 +26,8 @@ void read_teeth(const TomlReader& r, const toml::table& t, Wheel& w) {
 
 }  // namespace
 
-void read_module(const TomlReader& r, const toml::node& n, std::string& text, SourceLocation& where, int& column_offset) {
+void read_module(const TomlReader& r, const toml::node& n, std::string& text, SourceLocation& where, int& column_offset,
+                 std::string_view key) {
   where = r.loc(n);
   if (n.is_string()) {
     text = *n.value<std::string>();
@@ -35,12 +36,13 @@ void read_module(const TomlReader& r, const toml::node& n, std::string& text, So
     text = fmt::format("{}", *n.value<double>());
     column_offset = 0;
   } else {
-    r.fail(n, "a module is a length, e.g. module = \"2*mm\"");
+    r.fail(n, fmt::format("a {} is a length, e.g. {} = \"{}\"", key, key, key == "module" ? "2*mm" : "60*mm"));
   }
 }
 
 Body read_body(const TomlReader& r, const toml::table& t) {
-  r.only_keys(t, {"name", "axis", "arrow", "inertia", "friction", "wheels", "teeth", "module", "count"}, "a [[body]]");
+  r.only_keys(t, {"name", "axis", "arrow", "inertia", "friction", "wheels", "teeth", "module", "count", "fixed"},
+              "a [[body]]");
   Body b;
   b.where = r.loc(t);
   const toml::node* name = t.get("name");
@@ -96,10 +98,26 @@ Body read_body(const TomlReader& r, const toml::table& t) {
     b.count = static_cast<int>(**n->as_integer());
     b.count_where = r.loc(*n);
   }
-  b.inertia_parameter = "J_" + b.name;
-  b.friction_parameter = "b_" + b.name;
-  if (const toml::node* n = t.get("inertia")) b.inertia_parameter = r.identifier(*n, "inertia");
-  if (const toml::node* n = t.get("friction")) b.friction_parameter = r.identifier(*n, "friction");
+  if (const toml::node* f = t.get("fixed")) {
+    if (!f->is_boolean()) r.fail(*f, "fixed must be true or false: true when the housing holds the body");
+    b.fixed = **f->as_boolean();
+    if (b.fixed && b.axis == AxisKind::carried)
+      r.fail(*f, fmt::format("body '{}' is a planet, whose axis moves with its carrier; fixed = true holds a body on "
+                             "the central axis (a ring, sun or carrier): fix its carrier instead", b.name));
+    if (b.fixed && b.axis == AxisKind::fixed)
+      r.fail(*f, fmt::format("body '{}' turns about a fixed parallel axis; fixed = true holds a body on the central "
+                             "axis (a ring, sun or carrier): hold '{}' with a [[brake]]", b.name, b.name));
+    // A body that never turns has no inertia or bearing friction in the model: naming them is a mistake.
+    for (std::string_view key : {"inertia", "friction"})
+      if (const toml::node* n = t.get(key); n && b.fixed)
+        r.fail(*n, fmt::format("body '{}' is fixed: it does not turn, so its {} plays no part; leave it out", b.name, key));
+  }
+  if (!b.fixed) {
+    b.inertia_parameter = "J_" + b.name;
+    b.friction_parameter = "b_" + b.name;
+    if (const toml::node* n = t.get("inertia")) b.inertia_parameter = r.identifier(*n, "inertia");
+    if (const toml::node* n = t.get("friction")) b.friction_parameter = r.identifier(*n, "friction");
+  }
 
   if (const toml::node* wheels = t.get("wheels")) {
     if (!wheels->is_array()) r.fail(*wheels, "wheels must be a list: [ { name = \"s1\", radius = \"r_s1\" } ]");

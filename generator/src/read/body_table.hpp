@@ -13,7 +13,9 @@ namespace pogear {
 
 Body read_body(const TomlReader& r, const toml::table& t);
 
-// A `module` value (of a wheel, a body or a mesh): a length expression, or a number in metres.
-void read_module(const TomlReader& r, const toml::node& n, std::string& text, SourceLocation& where, int& column_offset);
+// A `module` value (of a wheel, a body or a mesh), or another length such as a mesh's
+// `centre_distance` (`key`): a length expression, or a number in metres.
+void read_module(const TomlReader& r, const toml::node& n, std::string& text, SourceLocation& where, int& column_offset,
+                 std::string_view key = "module");
 
 }  // namespace pogear

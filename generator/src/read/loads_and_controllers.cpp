@@ -19,6 +19,7 @@ Dimension times_seconds(Dimension d, int power) {
 
 int body_named(const SceneReader& r, const toml::node& n, const std::string& name, std::string_view what) {
   const int b = find_body(*r.model, name);
+  if (const std::string why = fixed_body_refusal(*r.model, name, what); !why.empty()) r.fail(n, why);
   if (b < 0) {
     std::string names;
     for (const auto& body : r.model->bodies) names += (names.empty() ? "" : ", ") + body.name;

@@ -59,6 +59,7 @@ void check_parameter_roles(const Topology& t) {
   };
   std::vector<Role> roles;
   for (const auto& b : t.bodies) {
+    if (b.fixed) continue;  // no inertia, no friction, no planet axis
     roles.push_back({b.inertia_parameter, inertia_dimension(), true, "an inertia", b.where});
     roles.push_back({b.friction_parameter, rotational_damping_dimension(), false, "a bearing friction coefficient", b.where});
     if (b.axis == AxisKind::carried) roles.push_back({b.distance_parameter, length_dimension(), true, "an axis distance", b.where});
@@ -66,8 +67,8 @@ void check_parameter_roles(const Topology& t) {
   for (const auto& m : t.meshes) {
     roles.push_back({m.stiffness_parameter, stiffness_dimension(), true, "a mesh stiffness", m.where});
     roles.push_back({m.damping_parameter, linear_damping_dimension(), false, "a mesh damping coefficient", m.where});
-    for (WheelRef w : {m.first, m.second})
-      roles.push_back({wheel(t, w).radius_parameter, length_dimension(), true, "a radius", m.where});
+    for (const std::string& radius : {contact_radius(t, m, m.first), contact_radius(t, m, m.second)})
+      roles.push_back({radius, length_dimension(), true, "a radius", m.where});
   }
   for (const auto& e : t.friction_elements)
     roles.push_back({e.capacity_parameter, torque_dimension(), true,

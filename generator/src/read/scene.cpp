@@ -127,6 +127,41 @@ void check_solver(Scene& s, bool engaged) {
                                                  traits.nonlinear ? ", or a linear load" : ""));
 }
 
+// [initial] gear = "<name>" (of the model's [gears]) or engaged = ["<element>", ...].
+void read_initial_gear(const SceneReader& r, const toml::node& value, const std::string& key, const Topology& t, Scene& s) {
+  if (!s.initial_engaged.empty())
+    r.fail(value, "[initial] names the gear it starts in once: gear = \"1\" or engaged = [\"A\", \"D\"], not both");
+  s.initial_engaged_where = r.loc(value);
+  std::string elements;
+  for (const FrictionElement& e : t.friction_elements) elements += (elements.empty() ? "" : ", ") + e.name;
+  if (key == "gear") {
+    const std::string name = r.string(value, "gear");
+    const auto g = std::find_if(t.gears.begin(), t.gears.end(), [&](const NamedGear& x) { return x.name == name; });
+    if (g == t.gears.end()) {
+      std::string gears;
+      for (const NamedGear& x : t.gears) gears += (gears.empty() ? "" : ", ") + x.name;
+      r.fail(value, gears.empty() ? fmt::format("gear '{}': the model names no gears ([gears]); name the elements the "
+                                                "start engages, e.g. engaged = [\"{}\"]", name,
+                                                elements.empty() ? std::string("B1") : t.friction_elements.front().name)
+                                  : fmt::format("'{}' is not a gear of the model; its gears are {}", name, gears));
+    }
+    if (g->engaged.empty()) r.fail(value, fmt::format("gear '{}' engages no brake or clutch; start from given speeds", name));
+    s.initial_gear = name;
+    s.initial_engaged = g->engaged;
+    return;
+  }
+  const std::vector<std::string> names = r.strings(value, "engaged");
+  if (names.empty()) r.fail(value, "engaged = [] names no brake or clutch; name those stuck at t = 0, or leave it out");
+  for (const std::string& name : names) {
+    const int k = find_friction_element(t, name);
+    if (k < 0) r.fail(value, fmt::format("engaged names '{}', which is no brake or clutch of the model; they are {}", name, elements));
+    if (std::find(s.initial_engaged.begin(), s.initial_engaged.end(), k) != s.initial_engaged.end())
+      r.fail(value, fmt::format("engaged names '{}' twice", name));
+    s.initial_engaged.push_back(k);
+  }
+  std::sort(s.initial_engaged.begin(), s.initial_engaged.end());
+}
+
 }  // namespace
 
 bool nonlinear(const Scene& scene) {
@@ -218,8 +253,10 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   if (const toml::node* n = root.get("keep")) {
     s.keep = r.strings(*n, "keep");
     s.keep_where = r.loc(*n);
-    for (const auto& k : s.keep)
+    for (const auto& k : s.keep) {
+      if (const std::string why = fixed_body_refusal(topology, k, "keep"); !why.empty()) r.fail(*n, why);
       if (find_body(topology, k) < 0) r.fail(*n, fmt::format("keep names '{}', which is not a body of the model", k));
+    }
   } else {
     s.keep_where = SourceLocation{path, 0, 0};
   }
@@ -256,6 +293,8 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     for (const auto& [key, value] : *n->as_table()) {
       const std::string name(key.str());
       const auto tau = find_variable(topology, name, {VariableKind::torque});
+      if (const std::string why = fixed_variable_refusal(topology, name); !why.empty())
+        throw InputError(toml_location(path, key.source()), why);
       if (!tau)
         throw InputError(toml_location(path, key.source()),
                          fmt::format("input '{}' names no body; inputs are tau_<body>, e.g. tau_{}", name,
@@ -289,6 +328,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   if (const toml::node* n = root.get("initial")) {
     if (!n->is_table()) r.fail(*n, "[initial] must be a table of omega_<body> and F_<mesh> values");
     s.initial_where = r.loc(*n);
+    bool start_given = false;
     for (const auto& [key, value] : *n->as_table()) {
       const std::string name(key.str());
       if (name == "start") {
@@ -298,9 +338,16 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         else if (start == "steady") s.start = Start::steady;
         else if (start == "given") s.start = Start::given;
         else r.fail(value, fmt::format("start \"{}\" is not known; write \"given\" (the default), \"rigid\" or \"steady\"", start));
+        start_given = true;
+        continue;
+      }
+      if (name == "gear" || name == "engaged") {
+        read_initial_gear(r, value, name, topology, s);
         continue;
       }
       const auto v = find_scene_variable(s, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+      if (const std::string why = fixed_variable_refusal(topology, name); !why.empty())
+        throw InputError(toml_location(path, key.source()), why);
       if (!v)
         throw InputError(toml_location(path, key.source()),
                          fmt::format("'{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene; name a "
@@ -329,6 +376,14 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         s.initial[*v] = r.quantity(value, force_dimension(), name);
       }
     }
+    // A start in a gear is on the gear's rigid model, at the named speeds unless at equilibrium.
+    if (!s.initial_engaged.empty() && !start_given) {
+      s.start = Start::rigid;
+      s.start_where = s.initial_engaged_where;
+    } else if (!s.initial_engaged.empty() && s.start == Start::given) {
+      r.fail(*n->as_table()->get("start"), "a start in a gear is \"rigid\" (the default: at the named speeds, with "
+                                           "eq. (8)'s forces and torques) or \"steady\"; remove start, or write \"steady\"");
+    }
   }
 
   if (const toml::node* n = root.get("outputs")) {
@@ -340,6 +395,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                  "them");
     for (const auto& o : listed) {
       const auto v = find_scene_variable(s, o, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+      if (const std::string why = fixed_variable_refusal(topology, o); !why.empty()) r.fail(*n, why);
       if (!v) r.fail(*n, fmt::format("output '{}' is neither omega_<body>, F_<mesh> nor Tc_<controller>", o));
       if (std::find(s.outputs.begin(), s.outputs.end(), *v) != s.outputs.end())
         r.fail(*n, fmt::format("output '{}' is listed twice", o));

@@ -95,6 +95,11 @@ struct Scene {
   std::map<Variable, double> initial;  // velocities [rad/s] and forces [N]
   Start start = Start::given;
   SourceLocation start_where;
+  // [initial] gear = "<name>" or engaged = [...]: the brakes and clutches stuck at t = 0 (indices,
+  // ascending), the start ("rigid" unless "steady") then that mode's (specialize/gear_start.hpp).
+  std::vector<int> initial_engaged;
+  std::string initial_gear;  // the gear's name in the model's [gears]; empty for engaged = [...]
+  SourceLocation initial_engaged_where;
   std::vector<std::string> tunable;
   std::vector<Variable> outputs;  // velocities and forces; empty: every velocity, and every force with mesh_forces
   double horizon = 1.0;

@@ -93,13 +93,67 @@ void add_pitch_radii(Topology& t) {
   }
 }
 
+void add_operating_radii(Topology& t) {
+  std::map<std::string, Quantity> known;
+  for (const auto& p : t.parameters) known[p.name] = p.value;
+  for (const Mesh& m : t.meshes) {
+    if (m.centre_distance.empty()) continue;
+    const SourceLocation& where = m.centre_distance_where;
+    for (const WheelRef w : {m.first, m.second})
+      if (wheel(t, w).teeth == 0)
+        throw InputError(where, fmt::format("mesh {}: a centre distance sets the operating pitch radii from the teeth, "
+                                            "but {} is given by its radius; give its teeth and module",
+                                            m.name, wheel_label(t, w)));
+    const Quantity a = evaluate_quantity(m.centre_distance, known, where, m.centre_distance_column_offset);
+    if (!a.has_unit || !(a.dimension == length_dimension()) || !(a.si > 0))
+      throw InputError(where, fmt::format("the centre distance '{}' of mesh {} is {}; it is a positive length, e.g. "
+                                          "\"60*mm\"", m.centre_distance, m.name,
+                                          !a.has_unit ? std::string("without a unit")
+                                          : !(a.dimension == length_dimension()) ? "in " + describe(a.dimension)
+                                                                                   : fmt::format("{} m", a.si)));
+    const Wheel& w1 = wheel(t, m.first);
+    const Wheel& w2 = wheel(t, m.second);
+    const bool internal = w1.internal || w2.internal;
+    // An internal mesh's wheels turn the same way: the ring's circle holds the pinion's.
+    const int span = internal ? std::abs(w1.teeth - w2.teeth) : w1.teeth + w2.teeth;
+    const double r1 = find_parameter(t, w1.radius_parameter)->value.si;
+    const double r2 = find_parameter(t, w2.radius_parameter)->value.si;
+    const double reference = internal ? std::abs(r1 - r2) : r1 + r2;
+    const double module = 2 * r1 / w1.teeth;
+    if (span == 0 || !(std::abs(a.si - reference) <= module))
+      throw InputError(where, fmt::format("mesh {}: centre distance {} is {} from the reference centre distance of "
+                                          "its teeth, m ({} {} {})/2 = {} with module {}; profile shifts move it by a "
+                                          "fraction of the module: check the centre distance and the teeth",
+                                          m.name, millimetres(a.si), millimetres(std::abs(a.si - reference)),
+                                          std::max(w1.teeth, w2.teeth), internal ? "-" : "+",
+                                          std::min(w1.teeth, w2.teeth), millimetres(reference), millimetres(module)));
+    auto operating_radius = [&](WheelRef ref) {
+      const Wheel& w = wheel(t, ref);
+      const std::string name = contact_radius(t, m, ref);
+      if (const Parameter* p = find_parameter(t, name))
+        throw InputError(p->where, fmt::format("'{}' is the operating pitch radius of {} in mesh {}, which its centre "
+                                               "distance gives; leave it out of [parameters]", name, w.name, m.name));
+      Parameter p;
+      p.name = name;
+      p.text = fmt::format("({})*{}/{}", m.centre_distance, w.teeth, span);
+      p.value = Quantity{a.si * w.teeth / span, length_dimension(), true};
+      p.where = where;
+      p.column_offset = 0;
+      t.parameters.push_back(std::move(p));
+    };
+    operating_radius(m.first);
+    operating_radius(m.second);
+  }
+}
+
 GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s) {
   // Wheels as one index each; meshes between toothed wheels join their sets.
   std::vector<std::pair<int, int>> wheels;
   std::map<std::pair<int, int>, int> index;
-  for (int bi = 0; bi < static_cast<int>(t.bodies.size()); ++bi)
-    for (int wi = 0; wi < static_cast<int>(t.bodies[bi].wheels.size()); ++wi)
-      if (t.bodies[bi].wheels[wi].teeth > 0) {
+  const std::vector<const Body*> bodies = every_body(t);
+  for (int bi = 0; bi < static_cast<int>(bodies.size()); ++bi)
+    for (int wi = 0; wi < static_cast<int>(bodies[bi]->wheels.size()); ++wi)
+      if (bodies[bi]->wheels[wi].teeth > 0) {
         index[{bi, wi}] = static_cast<int>(wheels.size());
         wheels.push_back({bi, wi});
       }
@@ -111,6 +165,7 @@ GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s) 
     return i;
   };
   for (const Mesh& m : t.meshes) {
+    if (!m.centre_distance.empty()) continue;  // rolling on operating circles, written below
     const auto a = index.find({m.first.body, m.first.wheel});
     const auto b = index.find({m.second.body, m.second.wheel});
     if (a != index.end() && b != index.end()) parent[root(a->second)] = root(b->second);
@@ -121,18 +176,38 @@ GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s) 
   for (const auto& [r, k] : set_number)
     module[r] = GiNaC::realsymbol(set_number.size() == 1 ? std::string("m") : fmt::format("m_{}", k));
   GiNaC::exmap out;
+  std::map<std::string, GiNaC::realsymbol> teeth;  // one symbol per name: GiNaC compares symbols by identity
+  auto tooth_count = [&](const Wheel& w) { return teeth.emplace(w.name, GiNaC::realsymbol("Z_" + w.name)).first->second; };
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    const Wheel& w = t.bodies[wheels[i].first].wheels[wheels[i].second];
+    const Wheel& w = bodies[wheels[i].first]->wheels[wheels[i].second];
     out[parameter_symbol(s, w.radius_parameter)] =
-        module[root(static_cast<int>(i))] * GiNaC::realsymbol("Z_" + w.name) / 2;
+        module[root(static_cast<int>(i))] * tooth_count(w) / 2;
+  }
+  // An operating pitch radius is a Z / (Z_2 +- Z_1): across its mesh the ratio is Z_1 / Z_2. A planet's
+  // meshes with central wheels share one centre distance, its axis distance (the geometry checks
+  // that they agree), so that it cancels between them: one symbol, named after it.
+  std::map<std::string, GiNaC::realsymbol> distances;
+  for (const Mesh& m : t.meshes) {
+    if (m.centre_distance.empty()) continue;
+    const Wheel& w1 = wheel(t, m.first);
+    const Wheel& w2 = wheel(t, m.second);
+    std::string distance = "a_" + m.name;
+    for (const auto& [planet, other] : {std::pair{m.first.body, m.second.body}, std::pair{m.second.body, m.first.body}})
+      if (body(t, planet).axis == AxisKind::carried && body(t, other).axis == AxisKind::central)
+        distance = body(t, planet).distance_parameter;
+    const GiNaC::realsymbol a = distances.emplace(distance, GiNaC::realsymbol(distance)).first->second;
+    const GiNaC::realsymbol z1 = tooth_count(w1), z2 = tooth_count(w2);
+    const GiNaC::ex span = w1.internal ? z1 - z2 : w2.internal ? z2 - z1 : z1 + z2;
+    out[parameter_symbol(s, contact_radius(t, m, m.first))] = a * z1 / span;
+    out[parameter_symbol(s, contact_radius(t, m, m.second))] = a * z2 / span;
   }
   return out;
 }
 
 std::optional<GiNaC::ex> in_tooth_numbers(const GiNaC::ex& e, const Topology& t) {
   std::map<std::string, int> teeth;
-  for (const Body& b : t.bodies)
-    for (const Wheel& w : b.wheels)
+  for (const Body* b : every_body(t))
+    for (const Wheel& w : b->wheels)
       if (w.teeth > 0) teeth["Z_" + w.name] = w.teeth;
   GiNaC::exmap numbers;
   for (GiNaC::const_preorder_iterator i = e.preorder_begin(); i != e.preorder_end(); ++i) {

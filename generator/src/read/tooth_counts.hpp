@@ -16,6 +16,13 @@ namespace pogear {
 // of different modules, or a radius given twice.
 void add_pitch_radii(Topology& t);
 
+// For each mesh with a centre distance a (wheels of Z_1 and Z_2 teeth), its operating pitch radii
+// rw_<wheel>_<mesh> = a Z_k / (Z_2 + Z_1), or / (Z_ring - Z_pinion) for an internal mesh, as
+// parameters, which the mesh's contact uses (contact_radius): a ratio across it stays Z_1 / Z_2.
+// Throws InputError when a wheel has no teeth, or a is not within one module of the reference
+// centre distance m (Z_2 +- Z_1) / 2 (profile shifts move it by a fraction of a module).
+void add_operating_radii(Topology& t);
+
 // r_w -> m Z_w / 2 for every toothed wheel, with one module symbol per set of wheels joined by
 // meshes (`m` when there is one set, else m_1, m_2, ... in the order of the wheels) and Z_w named
 // after the wheel. Empty when no wheel has teeth. The symbols are for printing only.

@@ -190,6 +190,9 @@ void read_friction_elements(const TomlReader& r, const toml::table& root, Topolo
         const toml::node* b = et.get("body");
         if (!b) r.fail(et, fmt::format("brake '{}' needs the body it holds, e.g. body = \"r\"", e.name));
         e.first = body_of(*b);
+        if (t.bodies[e.first].fixed)
+          r.fail(*b, fmt::format("brake '{}' holds '{}', which is fixed already (fixed = true); remove the brake, or "
+                                 "fixed = true if the brake releases it", e.name, t.bodies[e.first].name));
         if (t.bodies[e.first].axis == AxisKind::carried)
           r.fail(*b, fmt::format("brake '{}' holds '{}', a planet, whose axis moves with its carrier; a brake holds a "
                                  "body on the central axis or on a fixed axis", e.name, t.bodies[e.first].name));
@@ -205,6 +208,10 @@ void read_friction_elements(const TomlReader& r, const toml::table& root, Topolo
         const Body& f = t.bodies[e.first];
         const Body& g = t.bodies[e.second];
         if (e.first == e.second) r.fail(pair[1], fmt::format("clutch '{}' joins body '{}' to itself; name two bodies", e.name, f.name));
+        for (const std::size_t k : {0u, 1u})
+          if (const Body& x = t.bodies[k == 0 ? e.first : e.second]; x.fixed)
+            r.fail(pair[k], fmt::format("clutch '{}' joins '{}', which is fixed (fixed = true); a clutch to the housing is "
+                                      "a [[brake]], and a fixed body needs none", e.name, x.name));
         if (!coaxial(f, g))
           r.fail(pair[1], fmt::format("clutch '{}' joins '{}' on {} and '{}' on {}; a clutch joins two bodies that turn "
                                       "about one axis", e.name, f.name, axis_description(f), g.name, axis_description(g)));
@@ -248,6 +255,11 @@ void read_friction_elements(const TomlReader& r, const toml::table& root, Topolo
   std::map<std::string, const FrictionElement*> names;
   std::map<std::pair<int, int>, const FrictionElement*> pairs;
   for (const auto& e : t.friction_elements) {
+    // T_<name> is an engaged element's torque and a fixed body's holding torque alike.
+    if (const int b = find_body(t, e.name); b >= 0 && t.bodies[b].fixed)
+      throw InputError(e.where, fmt::format("'{}' is the name of a fixed body (line {}), whose holding torque is T_{}; "
+                                            "give the {} another name", e.name, t.bodies[b].where.line, e.name,
+                                            e.is_brake() ? "brake" : "clutch"));
     if (auto [it, fresh] = names.emplace(e.name, &e); !fresh)
       throw InputError(e.where, fmt::format("duplicate name '{}' (brake or clutch); it is already used at line {}", e.name,
                                             it->second->where.line));
@@ -348,6 +360,33 @@ void read_gears(const TomlReader& r, const toml::node& n, Topology& t) {
   }
 }
 
+// The velocity vector holds the bodies that turn; the fixed ones move past them (Topology::grounded)
+// and every body index is renumbered to match.
+void set_fixed_bodies_apart(Topology& t) {
+  std::vector<int> index(t.bodies.size());
+  std::vector<Body> turning, fixed;
+  for (std::size_t i = 0; i < t.bodies.size(); ++i)
+    if (!t.bodies[i].fixed) {
+      index[i] = static_cast<int>(turning.size());
+      turning.push_back(t.bodies[i]);
+    }
+  for (std::size_t i = 0; i < t.bodies.size(); ++i)
+    if (t.bodies[i].fixed) {
+      index[i] = static_cast<int>(turning.size() + fixed.size());
+      fixed.push_back(t.bodies[i]);
+    }
+  for (Mesh& m : t.meshes) {
+    m.first.body = index[m.first.body];
+    m.second.body = index[m.second.body];
+  }
+  for (FrictionElement& e : t.friction_elements) {
+    e.first = index[e.first];
+    if (!e.is_brake()) e.second = index[e.second];
+  }
+  t.bodies = std::move(turning);
+  t.grounded = std::move(fixed);
+}
+
 }  // namespace
 
 Topology parse_topology_text(const std::string& text, const std::string& path) {
@@ -391,7 +430,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
                                "with the size); model a smaller part of the gear", meshes.size(), max_meshes));
   for (const toml::node& n : meshes) {
     const toml::table& mt = *n.as_table();
-    r.only_keys(mt, {"first", "second", "name", "stiffness", "damping", "module"}, "a [[mesh]]");
+    r.only_keys(mt, {"first", "second", "name", "stiffness", "damping", "module", "centre_distance"}, "a [[mesh]]");
     const toml::node* f = mt.get("first");
     const toml::node* s = mt.get("second");
     if (!f || !s) r.fail(mt, "a [[mesh]] needs first = \"<wheel>\" and second = \"<wheel>\"");
@@ -400,6 +439,9 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
     m.first = resolve_wheel(r, t, *f);
     m.second = resolve_wheel(r, t, *s);
     if (m.first.body == m.second.body) r.fail(*s, "a body cannot mesh with itself");
+    if (t.bodies[m.first.body].fixed && t.bodies[m.second.body].fixed)
+      r.fail(*s, fmt::format("'{}' and '{}' are both fixed, so their mesh never turns; leave it out, or let one of "
+                             "them turn", t.bodies[m.first.body].name, t.bodies[m.second.body].name));
     m.name = t.bodies[m.first.body].name + t.bodies[m.second.body].name;
     if (const toml::node* nn = mt.get("name")) m.name = r.identifier(*nn, "a mesh name");
     m.stiffness_parameter = "K_" + m.name;
@@ -407,6 +449,8 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
     if (const toml::node* nn = mt.get("stiffness")) m.stiffness_parameter = r.identifier(*nn, "stiffness");
     if (const toml::node* nn = mt.get("damping")) m.damping_parameter = r.identifier(*nn, "damping");
     if (const toml::node* nn = mt.get("module")) read_module(r, *nn, m.module, m.module_where, m.module_column_offset);
+    if (const toml::node* nn = mt.get("centre_distance"))
+      read_module(r, *nn, m.centre_distance, m.centre_distance_where, m.centre_distance_column_offset, "centre_distance");
     t.meshes.push_back(std::move(m));
   }
   check_unique_names(t, true);
@@ -417,6 +461,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   if (const toml::node* p = root.get("parameters")) read_parameters(r, r.table(*p, "[parameters]"), t);
   evaluate_parameters(t.parameters);
   add_pitch_radii(t);
+  add_operating_radii(t);
   check_parameter_roles(t);
 
   if (const toml::node* k = root.get("keep")) {
@@ -425,9 +470,12 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
     for (const toml::node& e : *k->as_array()) {
       std::string name = r.identifier(e, "a kept velocity");
       if (find_body(t, name) < 0) r.fail(e, fmt::format("keep names '{}', which is not a body", name));
+      if (t.bodies[find_body(t, name)].fixed)
+        r.fail(e, fmt::format("keep names '{}', which is fixed; keep velocities of bodies that turn", name));
       t.default_keep.push_back(std::move(name));
     }
   }
+  set_fixed_bodies_apart(t);
   return t;
 }
 

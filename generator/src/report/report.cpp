@@ -11,6 +11,7 @@
 #include "common/exact_algebra.hpp"
 #include "common/json_text.hpp"
 #include "common/latex_layout.hpp"
+#include "derive/force_recovery.hpp"
 #include "derive/parameter_table.hpp"
 #include "common/printer.hpp"
 #include "read/tooth_counts.hpp"
@@ -34,6 +35,7 @@ struct Printed {
   std::vector<std::string> reactions;  // what force_recovery gives: F_<mesh>..., T_<element>...
   std::vector<std::string> engaged;
   std::vector<std::vector<std::string>> E;  // rows of the engaged elements under R
+  std::vector<std::string> fixed, holding;  // T_<fixed body> and the housing's torque on it
 };
 
 std::vector<std::vector<std::string>> print_matrix(const GiNaC::matrix& m, Notation n) {
@@ -105,7 +107,7 @@ Printed print_all(const Derivation& d, Notation n) {
     if (b.count == 1) continue;
     std::vector<std::string> meshes;
     for (const Mesh& m : d.topology.meshes)
-      if (&d.topology.bodies[m.first.body] == &b || &d.topology.bodies[m.second.body] == &b) meshes.push_back(text(m.name));
+      if (&body(d.topology, m.first.body) == &b || &body(d.topology, m.second.body) == &b) meshes.push_back(text(m.name));
     p.lumped.push_back(fmt::format("{} stands for {} planets (meshes {})", text(b.name), b.count, joined(meshes)));
   }
   p.R = print_matrix(d.elastic.R, n);
@@ -130,6 +132,11 @@ Printed print_all(const Derivation& d, Notation n) {
     p.force_recovery.push_back(print_expression(d.rigid.redundant_meshes ? f.evalf() : f, n, variables));
   }
   for (const auto& r : d.rigid.reactions) p.reactions.push_back(name(r));
+  const std::vector<GiNaC::ex> holding = fixed_body_torques(d.topology, d.radius.fixed_columns, d.rigid.force_recovery);
+  for (std::size_t k = 0; k < holding.size(); ++k) {
+    p.fixed.push_back(name(fixed_body_torque_name(d.topology.grounded[k].name)));
+    p.holding.push_back(print_expression(d.rigid.redundant_meshes ? holding[k].evalf() : holding[k], n, variables));
+  }
   for (int k : d.engaged) p.engaged.push_back(d.topology.friction_elements[k].name);
   const unsigned meshes = d.elastic.R.rows();
   for (unsigned i = meshes; i < d.constraints.rows(); ++i) {
@@ -291,6 +298,16 @@ std::string math_body(const Derivation& d, const Diagnostics& diagnostics, const
                      "$(" + C + "_S^{\\mathsf{T}})^{-1}$ applied to the rows $S$ = (" + latex_text(force_bodies(d)) + ") of the bracket:");
     s += w.aligned(recovery_rows(p));
   }
+  if (!p.fixed.empty()) {
+    s += w.heading("Fixed bodies");
+    s += w.paragraph("Held by the housing ($\\omega = 0$: no column of $\\mathbf{R}$, no state). Each puts on the "
+                     "housing the torque the meshes put on it, $T = -a\\,\\mathbf{r}^{\\mathsf{T}}\\mathbf{F}$, "
+                     "$\\mathbf{r}$ the column of $\\mathbf{R}$ it would have and $a$ its arrow; as a stuck brake "
+                     "holding it would take it, $T$ acts as $-T$ on the body:");
+    std::vector<AlignedRow> rows;
+    for (std::size_t i = 0; i < p.fixed.size(); ++i) rows.push_back({p.fixed[i], p.holding[i], ""});
+    s += w.aligned(rows);
+  }
   s += w.heading("Parameters");
   s += w.table({"parameter", "as given", "value (SI)", "defined at"}, parameter_report_rows(d.parameters));
   return s;
@@ -359,6 +376,11 @@ std::string report_text(const Derivation& d, const Diagnostics& diagnostics) {
            "which on the rigid model equals (C_S^T)^-1 g_S for S = (" + joined(S, ", ") + "); domega = d omega/dt:\n";
     for (std::size_t i = 0; i < p.reactions.size(); ++i) s += fmt::format("  {} = {}\n", p.reactions[i], p.force_recovery[i]);
   }
+  if (!p.fixed.empty()) {
+    s += "\nfixed bodies (held by the housing): the torque each puts on the housing, T = -a (its column of R) . F\n"
+         "(a its arrow), as a stuck brake holding it would take it (acting as -T on the body):\n";
+    for (std::size_t i = 0; i < p.fixed.size(); ++i) s += fmt::format("  {} = {}\n", p.fixed[i], p.holding[i]);
+  }
   return s;
 }
 
@@ -402,6 +424,9 @@ std::string report_json(const Derivation& d, const Diagnostics& diagnostics) {
   for (const Body& b : d.topology.bodies)
     if (b.count > 1) lumped.push_back(fmt::format("{{\"body\": {}, \"count\": {}}}", json_string(b.name), b.count));
   j += "  \"lumped_planets\": [" + joined(lumped, ", ") + "],\n";
+  std::vector<std::string> fixed;
+  for (const Body& b : d.topology.grounded) fixed.push_back(b.name);
+  j += "  \"fixed\": " + json_strings(fixed) + ",\n";
   j += "  \"R\": " + json_string_matrix(p.R, "  ") + ",\n";
   j += "  \"Q1\": " + json_string_matrix(p.Q1, "  ") + ",\n";
   j += "  \"L1\": " + json_string_matrix(p.L1, "  ") + ",\n";
@@ -416,6 +441,10 @@ std::string report_json(const Derivation& d, const Diagnostics& diagnostics) {
   j += "  \"E\": " + (p.E.empty() ? std::string("[]") : json_string_matrix(p.E, "  ")) + ",\n";
   j += "  \"reactions\": " + json_strings(p.reactions) + ",\n";
   j += "  \"force_recovery\": " + json_strings(p.force_recovery) + ",\n";
+  j += "  \"housing_torques\": {";
+  for (std::size_t i = 0; i < p.fixed.size(); ++i)
+    j += (i ? ", " : "") + json_string(p.fixed[i]) + ": " + json_string(p.holding[i]);
+  j += "},\n";
   j += "  \"numeric\": {\n";
   j += "    \"J\": " + json_numbers(diag(d.elastic.J)) + ",\n";
   j += "    \"b\": " + json_numbers(diag(d.elastic.B_J)) + ",\n";

@@ -69,10 +69,10 @@ TunableParameter tunable_parameter(const Topology& t, const std::string& name, d
           p.units.push_back({spelling.first, spelling.second});
   }
   bool positive = false, non_negative = false;
-  for (const auto& b : t.bodies) {
-    positive = positive || b.inertia_parameter == name || (b.axis == AxisKind::carried && b.distance_parameter == name);
-    non_negative = non_negative || b.friction_parameter == name;
-    for (const auto& w : b.wheels) positive = positive || w.radius_parameter == name;
+  for (const Body* b : every_body(t)) {
+    positive = positive || b->inertia_parameter == name || (b->axis == AxisKind::carried && b->distance_parameter == name);
+    non_negative = non_negative || b->friction_parameter == name;
+    for (const auto& w : b->wheels) positive = positive || w.radius_parameter == name;
   }
   for (const auto& m : t.meshes) {
     positive = positive || m.stiffness_parameter == name;

@@ -5,20 +5,27 @@
 #include <fmt/format.h>
 
 #include "common/exact_algebra.hpp"
+#include "specialize/gear_start.hpp"
 #include "specialize/initial_state.hpp"
 #include "names/symbols.hpp"
 
 namespace pogear {
 namespace {
 
-// The torque on each body at t = 0 from the scene's inputs, exactly as the runtime evaluates them.
+GiNaC::matrix as_column(const std::vector<GiNaC::numeric>& v) {
+  GiNaC::matrix m(static_cast<unsigned>(v.size()), 1);
+  for (std::size_t b = 0; b < v.size(); ++b) m(static_cast<unsigned>(b), 0) = v[b];
+  return m;
+}
+
+}  // namespace
+
 std::vector<GiNaC::numeric> torques_at_start(const Scene& sc, std::size_t bodies) {
   std::vector<GiNaC::numeric> tau(bodies, 0);
   for (const InputSpec& in : sc.inputs) tau[static_cast<std::size_t>(in.body)] += exact_number(rt::value(in.signal, 0.0));
   return tau;
 }
 
-// The loads' torques -(c0 + c1 omega + c2 omega |omega|) added to tau at the body speeds omega.
 void add_load_torques(const Scene& sc, const GiNaC::matrix& omega, std::vector<GiNaC::numeric>& tau) {
   for (const LoadSpec& l : sc.loads) {
     const auto b = static_cast<std::size_t>(l.body);
@@ -26,6 +33,47 @@ void add_load_torques(const Scene& sc, const GiNaC::matrix& omega, std::vector<G
     tau[b] -= exact_number(l.constant) + exact_number(l.linear) * w + exact_number(l.quadratic) * w * abs(w);
   }
 }
+
+GiNaC::matrix rigid_acceleration(const RigidValues& rv, const GiNaC::matrix& x, const std::vector<GiNaC::numeric>& tau) {
+  return exact_solve(rv.L1, exact_product(rv.A1, x).add(exact_product(rv.Q1.transpose(), as_column(tau))));
+}
+
+GiNaC::matrix steady_rigid_state(const Scene& sc, const RigidValues& rv, std::vector<GiNaC::numeric>& tau) {
+  const unsigned k = rv.Q1.cols();
+  // The loads' constant parts drive, their linear parts damp: A1 - Q1^T diag(c1) Q1 (a quadratic
+  // part is refused when the scene is read: the equilibrium would not be linear).
+  std::vector<GiNaC::numeric> driving_tau = tau, c1(tau.size(), 0);
+  for (const LoadSpec& l : sc.loads) {
+    driving_tau[static_cast<std::size_t>(l.body)] -= exact_number(l.constant);
+    c1[static_cast<std::size_t>(l.body)] += exact_number(l.linear);
+  }
+  GiNaC::matrix damped = rv.A1;
+  for (unsigned i = 0; i < k; ++i)
+    for (unsigned j = 0; j < k; ++j)
+      for (std::size_t b = 0; b < c1.size(); ++b)
+        if (!c1[b].is_zero())
+          damped(i, j) = damped(i, j) - rv.Q1(static_cast<unsigned>(b), i) * c1[b] * rv.Q1(static_cast<unsigned>(b), j);
+  const GiNaC::matrix drive = exact_product(rv.Q1.transpose(), as_column(driving_tau)).mul_scalar(-1);
+  bool undriven = true;
+  for (unsigned j = 0; j < k; ++j) undriven = undriven && drive(j, 0).is_zero();
+  // Nothing drives at t = 0: rest is an equilibrium, with or without bearing friction (without,
+  // every constant speed is one too; the steady start is the one that does not move).
+  GiNaC::matrix x(k, 1);
+  if (undriven) {
+    for (unsigned j = 0; j < k; ++j) x(j, 0) = 0;
+  } else try {
+    x = exact_solve(damped, drive);
+  } catch (const std::domain_error&) {
+    throw InputError(sc.start_where,
+                     "start = \"steady\": the gear has no equilibrium (a rigid motion meets no bearing friction, so "
+                     "a constant torque accelerates it for ever); add bearing_friction to the effects, or start "
+                     "from given speeds");
+  }
+  add_load_torques(sc, exact_product(rv.Q1, x), tau);  // at the equilibrium speeds
+  return x;
+}
+
+namespace {
 
 // The states on the rigid model's trajectory at x1 (exact, in the kept order) moving at dx1: the rigid
 // system's x1 and the elastic one's speeds Q1 x1 with eq. (8)'s mesh forces (the split by stiffness
@@ -69,47 +117,14 @@ StartState start_from_rigid_model(const SpecializedScene& model, const GiNaC::ex
   const Scene& sc = model.scene;
   std::vector<GiNaC::numeric> tau = torques_at_start(sc, d.topology.bodies.size());
   const unsigned k = rv.Q1.cols();
-  auto as_column = [](const std::vector<GiNaC::numeric>& v) {
-    GiNaC::matrix m(static_cast<unsigned>(v.size()), 1);
-    for (std::size_t b = 0; b < v.size(); ++b) m(static_cast<unsigned>(b), 0) = v[b];
-    return m;
-  };
   GiNaC::matrix x(k, 1), dx(k, 1);
   if (sc.start == Start::rigid) {
     const std::vector<double> x1 = rigid_initial_state(sc, d, values);
     for (unsigned j = 0; j < k; ++j) x(j, 0) = exact_number(x1[j]);
     add_load_torques(sc, exact_product(rv.Q1, x), tau);  // at the given speeds
-    dx = exact_solve(rv.L1, exact_product(rv.A1, x).add(exact_product(rv.Q1.transpose(), as_column(tau))));
+    dx = rigid_acceleration(rv, x, tau);
   } else {
-    // The loads' constant parts drive, their linear parts damp: A1 - Q1^T diag(c1) Q1 (a quadratic
-    // part is refused when the scene is read: the equilibrium would not be linear).
-    std::vector<GiNaC::numeric> driving_tau = tau, c1(tau.size(), 0);
-    for (const LoadSpec& l : sc.loads) {
-      driving_tau[static_cast<std::size_t>(l.body)] -= exact_number(l.constant);
-      c1[static_cast<std::size_t>(l.body)] += exact_number(l.linear);
-    }
-    GiNaC::matrix damped = rv.A1;
-    for (unsigned i = 0; i < k; ++i)
-      for (unsigned j = 0; j < k; ++j)
-        for (std::size_t b = 0; b < c1.size(); ++b)
-          if (!c1[b].is_zero())
-            damped(i, j) = damped(i, j) - rv.Q1(static_cast<unsigned>(b), i) * c1[b] * rv.Q1(static_cast<unsigned>(b), j);
-    const GiNaC::matrix drive = exact_product(rv.Q1.transpose(), as_column(driving_tau)).mul_scalar(-1);
-    bool undriven = true;
-    for (unsigned j = 0; j < k; ++j) undriven = undriven && drive(j, 0).is_zero();
-    // Nothing drives at t = 0: rest is an equilibrium, with or without bearing friction (without,
-    // every constant speed is one too; the steady start is the one that does not move).
-    if (undriven) {
-      for (unsigned j = 0; j < k; ++j) x(j, 0) = 0;
-    } else try {
-      x = exact_solve(damped, drive);
-    } catch (const std::domain_error&) {
-      throw InputError(sc.start_where,
-                       "start = \"steady\": the gear has no equilibrium (a rigid motion meets no bearing friction, so "
-                       "a constant torque accelerates it for ever); add bearing_friction to the effects, or start "
-                       "from given speeds");
-    }
-    add_load_torques(sc, exact_product(rv.Q1, x), tau);  // at the equilibrium speeds
+    x = steady_rigid_state(sc, rv, tau);
   }
   return start_on_rigid_trajectory(model, values, rv, tau, x, dx);
 }
@@ -124,12 +139,13 @@ std::optional<StartState> start_state(const SpecializedScene& model) {
   auto refuse = [&](const std::string& why) {
     throw InputError(sc.start_where, fmt::format("start = \"{}\" {}", start, why));
   };
-  if (!model.friction.empty())
-    refuse("is not available with brakes or clutches engaged (whether each one sticks at t = 0 is a choice of its "
-           "own); start from given speeds");
   if (!sc.tunable.empty())
     refuse("is computed at the scene's parameter values, which tunable parameters change at run time; set them in "
            "[parameters], or start from given speeds");
+  if (!sc.initial_engaged.empty()) return start_in_gear(model);
+  if (!model.friction.empty())
+    refuse("is not available with brakes or clutches engaged (whether each one sticks at t = 0 is a choice of its "
+           "own); start in a gear ([initial] gear = \"1\"), or from given speeds");
   for (const auto& [v, value] : sc.initial) {
     if (sc.start == Start::steady)
       refuse(fmt::format("computes the whole state from the inputs at t = 0; remove {} from [initial]", variable_name(t, v)));

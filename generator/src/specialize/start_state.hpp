@@ -15,6 +15,17 @@ struct StartState {
   std::vector<double> main, rigid;  // rigid: empty without the comparison
 };
 
+// The torque on each body at t = 0 from the scene's inputs, exactly as the runtime evaluates them.
+std::vector<GiNaC::numeric> torques_at_start(const Scene& sc, std::size_t bodies);
+// The loads' torques -(c0 + c1 omega + c2 omega |omega|) added to tau at the body speeds omega.
+void add_load_torques(const Scene& sc, const GiNaC::matrix& omega, std::vector<GiNaC::numeric>& tau);
+// The rigid model's x1' at x1 under the torques tau: L1 x1' = A1 x1 + Q1^T tau.
+GiNaC::matrix rigid_acceleration(const RigidValues& rv, const GiNaC::matrix& x, const std::vector<GiNaC::numeric>& tau);
+// The rigid model's equilibrium A1 x1 + Q1^T tau = 0 with the loads' constant parts driving and
+// their linear parts damping; adds the loads' torques at it to tau. Throws InputError at the scene's
+// `start` when there is none.
+GiNaC::matrix steady_rigid_state(const Scene& sc, const RigidValues& rv, std::vector<GiNaC::numeric>& tau);
+
 // The initial states the scene's `start` asks for; nothing for `given`, which leaves them as
 // specialize_system set them. Throws InputError at the scene's `start` when the request cannot be
 // met: brakes or clutches engaged, tunable parameters, speeds or forces named that the start

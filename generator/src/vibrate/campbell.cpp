@@ -60,7 +60,7 @@ Eigen::VectorXd operating_line(const Derivation& d, const GiNaC::exmap& values, 
 // The frame in which both axes of a mesh stand still: a planet's carrier, else the housing (-1).
 int mesh_frame(const Topology& t, const Mesh& m) {
   for (int b : {m.first.body, m.second.body})
-    if (t.bodies[b].axis == AxisKind::carried) return find_body(t, t.bodies[b].carrier);
+    if (body(t, b).axis == AxisKind::carried) return find_body(t, body(t, b).carrier);  // -1: a fixed carrier
   return -1;
 }
 
@@ -105,7 +105,8 @@ CampbellDiagram campbell_diagram(const Derivation& d, const GiNaC::exmap& values
       line.teeth = wheel(t, w).teeth;
       line.frame = frame < 0 ? "housing" : t.bodies[frame].name;
       // Z |omega_w - omega_F| / 2 pi per rad/s of input; an rpm is 2 pi / 60 rad/s.
-      const double relative = c.speeds(w.body) - (frame < 0 ? 0.0 : c.speeds(frame));
+      const double speed = is_grounded(t, w.body) ? 0.0 : c.speeds(w.body);
+      const double relative = speed - (frame < 0 ? 0.0 : c.speeds(frame));
       line.hz_per_rpm = line.teeth * std::abs(relative) / 60;
       break;
     }

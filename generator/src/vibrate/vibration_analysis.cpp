@@ -123,6 +123,7 @@ ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<
     const Topology& t = in.d.topology;
     auto body = [&](const std::string& name, const std::string& option) {
       const int b = find_body(t, name);
+      if (const std::string why = fixed_body_refusal(t, name, option); !why.empty()) throw InputError(where, why);
       if (b < 0) {
         std::vector<std::string> names;
         for (const Body& x : t.bodies) names.push_back(x.name);
