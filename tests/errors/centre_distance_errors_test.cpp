@@ -92,6 +92,20 @@ TEST_F(CentreDistance, MeshesOfOnePlanetDisagree) {
       R"~(shifted.toml:31:19: error: 'rw_r_pr' = (50.7*mm)*71/51 (0.0705824 m) contradicts the geometry: mesh pr (p with r) implies rw_r_pr = rw_p_pr+rw_p_ps+rw_s_ps = 0.0703824 m; correct the value, or the layout if the drawing differs)~");
 }
 
+// A scene's override of a parameter the centre distance names is checked as the model's value is.
+TEST_F(CentreDistance, SceneOverrideBeyondAProfileShift) {
+  const std::string model = edited(shifted_set, {{R"(centre_distance = "50.5*mm"
+
+[[mesh]])", "centre_distance = \"a_p\"\n\n[[mesh]]"},
+                                                 {R"(centre_distance = "50.5*mm"
+
+[parameters])", "centre_distance = \"a_p\"\n\n[parameters]\na_p = \"50.5*mm\""}});
+  const std::string scene = "name = \"shifted\"\nmodel = \"gear.toml\"\n[parameters]\na_p = \"54*mm\"\n"
+                            "[inputs]\ntau_s = \"10*Nm\"\n";
+  expect_documented(scene_error(scene, model),
+      R"~(gear.toml:25:19: error: mesh ps: centre distance 54 mm is 4 mm from the reference centre distance of its teeth, m (30 + 20)/2 = 50 mm with module 2 mm; profile shifts move it by a fraction of the module: check the centre distance and the teeth)~");
+}
+
 TEST_F(CentreDistance, NotAPositiveLength) {
   expect_shifted_error({{R"(centre_distance = "50.5*mm"
 

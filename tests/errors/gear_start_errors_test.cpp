@@ -60,6 +60,11 @@ TEST_F(StartInGear, ElementOpenAtTheStart) {
       R"~(scene.toml:13:8: error: gear '1' engages D, but [engagement] leaves it open at t = 0; command it engaged from the start, e.g. D = "1")~");
 }
 
+TEST_F(StartInGear, ElementOutsideTheGearEngagedAtTheStart) {
+  expect_start_error({{R"(D = "1")", "D = \"1\"\nB = \"0.5\""}},
+      R"~(scene.toml:14:8: error: starting in gear '1', B is commanded 0.5 at t = 0, but the gear does not engage it; open it at t = 0 (its command 0), or start in a gear that engages it)~");
+}
+
 TEST_F(StartInGear, StuckTorqueBeyondCapacity) {
   expect_start_error({{R"(tau_in = "200*Nm")", R"(tau_in = "5000*Nm")"}},
       R"~(scene.toml:13:8: error: starting in gear '1', A carries 1177.19 N m at t = 0, beyond its static capacity of 900 N m (900 N m x static ratio 1 x command 1); raise its capacity or its command, or start with smaller torques)~");
@@ -68,7 +73,7 @@ TEST_F(StartInGear, StuckTorqueBeyondCapacity) {
 TEST_F(StartInGear, SpeedsTheGearDoesNotDetermine) {
   expect_start_error({{R"(omega_in = "2500*rpm")", "omega_in = \"2500*rpm\"\nomega_out = \"600*rpm\""}},
       R"~(scene.toml:12:1: error: gear '1' leaves 1 degree of freedom, so the start needs the speed of 1 body in [initial] (2 named), e.g. omega_in)~");
-  expect_start_error({{R"(gear = "1")", R"(engaged = ["A"])"}},
+  expect_start_error({{R"(gear = "1")", R"(engaged = ["A"])"}, {R"(D = "1")", R"(D = "0")"}},
       R"~(scene.toml:12:1: error: engaged = [A] leaves 2 degrees of freedom, so the start needs the speed of 2 bodies in [initial] (1 named), e.g. omega_in, omega_s3)~");
   expect_start_error({{R"(gear = "1")", R"(engaged = ["A", "D", "E"])"}},
       R"~(scene.toml:13:11: error: engaging A, D, E locks the gear: no body can turn, so there is no rigid model; engage fewer elements (pogear ratios lists the sets))~");

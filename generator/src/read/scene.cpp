@@ -22,6 +22,7 @@
 #include "read/loads_and_controllers.hpp"
 #include "read/scene_reader.hpp"
 #include "read/toml_reader.hpp"
+#include "read/tooth_counts.hpp"
 
 namespace pogear {
 namespace {
@@ -80,6 +81,7 @@ void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
   // An override of 0 for an inertia or a length for a stiffness would reach the algebra as a
   // singular matrix; it is the scene's mistake, and the location is the override's.
   check_parameter_roles(t);
+  check_centre_distances(t);
 }
 
 // What loads and controllers cannot be combined with (yet), each refused at the line that asks for it.

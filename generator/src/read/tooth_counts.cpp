@@ -22,6 +22,11 @@ struct Module {
 
 std::string millimetres(double m) { return fmt::format("{:.6g} mm", m * 1e3); }
 
+// Z_1 + Z_2, or for an internal mesh, whose wheels turn the same way, Z_ring - Z_pinion.
+int teeth_span(const Wheel& w1, const Wheel& w2) {
+  return w1.internal || w2.internal ? std::abs(w1.teeth - w2.teeth) : w1.teeth + w2.teeth;
+}
+
 Module evaluate_module(const std::string& text, const SourceLocation& where, int column_offset,
                        const std::map<std::string, Quantity>& known) {
   const Quantity q = evaluate_quantity(text, known, where, column_offset);
@@ -93,57 +98,79 @@ void add_pitch_radii(Topology& t) {
   }
 }
 
-void add_operating_radii(Topology& t) {
+namespace {
+
+// Mesh m's centre distance in metres, checked against its teeth: both wheels toothed, a positive
+// length, within one module of the reference m (Z_2 +- Z_1) / 2.
+double checked_centre_distance(const Topology& t, const Mesh& m, const std::map<std::string, Quantity>& known) {
+  const SourceLocation& where = m.centre_distance_where;
+  for (const WheelRef w : {m.first, m.second})
+    if (wheel(t, w).teeth == 0)
+      throw InputError(where, fmt::format("mesh {}: a centre distance sets the operating pitch radii from the teeth, "
+                                          "but {} is given by its radius; give its teeth and module",
+                                          m.name, wheel_label(t, w)));
+  const Quantity a = evaluate_quantity(m.centre_distance, known, where, m.centre_distance_column_offset);
+  if (!a.has_unit || !(a.dimension == length_dimension()) || !(a.si > 0))
+    throw InputError(where, fmt::format("the centre distance '{}' of mesh {} is {}; it is a positive length, e.g. "
+                                        "\"60*mm\"", m.centre_distance, m.name,
+                                        !a.has_unit ? std::string("without a unit")
+                                        : !(a.dimension == length_dimension()) ? "in " + describe(a.dimension)
+                                                                                 : fmt::format("{} m", a.si)));
+  const Wheel& w1 = wheel(t, m.first);
+  const Wheel& w2 = wheel(t, m.second);
+  const bool internal = w1.internal || w2.internal;
+  const double r1 = known.at(w1.radius_parameter).si;
+  const double r2 = known.at(w2.radius_parameter).si;
+  const double reference = internal ? std::abs(r1 - r2) : r1 + r2;
+  const double module = 2 * r1 / w1.teeth;
+  if (teeth_span(w1, w2) == 0 || !(std::abs(a.si - reference) <= module))
+    throw InputError(where, fmt::format("mesh {}: centre distance {} is {} from the reference centre distance of "
+                                        "its teeth, m ({} {} {})/2 = {} with module {}; profile shifts move it by a "
+                                        "fraction of the module: check the centre distance and the teeth",
+                                        m.name, millimetres(a.si), millimetres(std::abs(a.si - reference)),
+                                        std::max(w1.teeth, w2.teeth), internal ? "-" : "+",
+                                        std::min(w1.teeth, w2.teeth), millimetres(reference), millimetres(module)));
+  return a.si;
+}
+
+std::map<std::string, Quantity> parameter_values(const Topology& t) {
   std::map<std::string, Quantity> known;
   for (const auto& p : t.parameters) known[p.name] = p.value;
+  return known;
+}
+
+}  // namespace
+
+void add_operating_radii(Topology& t) {
+  const std::map<std::string, Quantity> known = parameter_values(t);
   for (const Mesh& m : t.meshes) {
     if (m.centre_distance.empty()) continue;
-    const SourceLocation& where = m.centre_distance_where;
-    for (const WheelRef w : {m.first, m.second})
-      if (wheel(t, w).teeth == 0)
-        throw InputError(where, fmt::format("mesh {}: a centre distance sets the operating pitch radii from the teeth, "
-                                            "but {} is given by its radius; give its teeth and module",
-                                            m.name, wheel_label(t, w)));
-    const Quantity a = evaluate_quantity(m.centre_distance, known, where, m.centre_distance_column_offset);
-    if (!a.has_unit || !(a.dimension == length_dimension()) || !(a.si > 0))
-      throw InputError(where, fmt::format("the centre distance '{}' of mesh {} is {}; it is a positive length, e.g. "
-                                          "\"60*mm\"", m.centre_distance, m.name,
-                                          !a.has_unit ? std::string("without a unit")
-                                          : !(a.dimension == length_dimension()) ? "in " + describe(a.dimension)
-                                                                                   : fmt::format("{} m", a.si)));
-    const Wheel& w1 = wheel(t, m.first);
-    const Wheel& w2 = wheel(t, m.second);
-    const bool internal = w1.internal || w2.internal;
-    // An internal mesh's wheels turn the same way: the ring's circle holds the pinion's.
-    const int span = internal ? std::abs(w1.teeth - w2.teeth) : w1.teeth + w2.teeth;
-    const double r1 = find_parameter(t, w1.radius_parameter)->value.si;
-    const double r2 = find_parameter(t, w2.radius_parameter)->value.si;
-    const double reference = internal ? std::abs(r1 - r2) : r1 + r2;
-    const double module = 2 * r1 / w1.teeth;
-    if (span == 0 || !(std::abs(a.si - reference) <= module))
-      throw InputError(where, fmt::format("mesh {}: centre distance {} is {} from the reference centre distance of "
-                                          "its teeth, m ({} {} {})/2 = {} with module {}; profile shifts move it by a "
-                                          "fraction of the module: check the centre distance and the teeth",
-                                          m.name, millimetres(a.si), millimetres(std::abs(a.si - reference)),
-                                          std::max(w1.teeth, w2.teeth), internal ? "-" : "+",
-                                          std::min(w1.teeth, w2.teeth), millimetres(reference), millimetres(module)));
+    const double a = checked_centre_distance(t, m, known);
+    const int span = teeth_span(wheel(t, m.first), wheel(t, m.second));
     auto operating_radius = [&](WheelRef ref) {
       const Wheel& w = wheel(t, ref);
       const std::string name = contact_radius(t, m, ref);
       if (const Parameter* p = find_parameter(t, name))
         throw InputError(p->where, fmt::format("'{}' is the operating pitch radius of {} in mesh {}, which its centre "
                                                "distance gives; leave it out of [parameters]", name, w.name, m.name));
+      // As text too: a scene's override of a parameter the centre distance names reaches it.
       Parameter p;
       p.name = name;
       p.text = fmt::format("({})*{}/{}", m.centre_distance, w.teeth, span);
-      p.value = Quantity{a.si * w.teeth / span, length_dimension(), true};
-      p.where = where;
+      p.value = Quantity{a * w.teeth / span, length_dimension(), true};
+      p.where = m.centre_distance_where;
       p.column_offset = 0;
       t.parameters.push_back(std::move(p));
     };
     operating_radius(m.first);
     operating_radius(m.second);
   }
+}
+
+void check_centre_distances(const Topology& t) {
+  const std::map<std::string, Quantity> known = parameter_values(t);
+  for (const Mesh& m : t.meshes)
+    if (!m.centre_distance.empty()) checked_centre_distance(t, m, known);
 }
 
 GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s) {
@@ -185,17 +212,42 @@ GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s) 
   }
   // An operating pitch radius is a Z / (Z_2 +- Z_1): across its mesh the ratio is Z_1 / Z_2. A planet's
   // meshes with central wheels share one centre distance, its axis distance (the geometry checks
-  // that they agree), so that it cancels between them: one symbol, named after it.
-  std::map<std::string, GiNaC::realsymbol> distances;
+  // that they agree), so that it cancels between them: one symbol, named after it, or the reference
+  // centre distance m (Z_c +- Z_p) / 2 of a mesh of the planet that is not shifted.
+  auto reference_distance = [&](int planet) -> std::optional<GiNaC::ex> {
+    for (const Mesh& m : t.meshes) {
+      if (!m.centre_distance.empty()) continue;
+      for (const bool planet_first : {true, false}) {
+        const WheelRef p = planet_first ? m.first : m.second, c = planet_first ? m.second : m.first;
+        if (p.body != planet || body(t, c.body).axis != AxisKind::central) continue;
+        const auto ip = index.find({p.body, p.wheel});
+        if (ip == index.end() || !index.count({c.body, c.wheel})) continue;
+        const Wheel& wp = wheel(t, p);
+        const Wheel& wc = wheel(t, c);
+        return module[root(ip->second)] * (wc.internal ? tooth_count(wc) - tooth_count(wp) : tooth_count(wc) + tooth_count(wp)) / 2;
+      }
+    }
+    return std::nullopt;
+  };
+  std::map<std::string, GiNaC::ex> distances;
   for (const Mesh& m : t.meshes) {
     if (m.centre_distance.empty()) continue;
     const Wheel& w1 = wheel(t, m.first);
     const Wheel& w2 = wheel(t, m.second);
     std::string distance = "a_" + m.name;
-    for (const auto& [planet, other] : {std::pair{m.first.body, m.second.body}, std::pair{m.second.body, m.first.body}})
-      if (body(t, planet).axis == AxisKind::carried && body(t, other).axis == AxisKind::central)
-        distance = body(t, planet).distance_parameter;
-    const GiNaC::realsymbol a = distances.emplace(distance, GiNaC::realsymbol(distance)).first->second;
+    int planet = -1;
+    for (const bool first : {true, false}) {
+      const int p = first ? m.first.body : m.second.body, other = first ? m.second.body : m.first.body;
+      if (body(t, p).axis == AxisKind::carried && body(t, other).axis == AxisKind::central) {
+        distance = body(t, p).distance_parameter;
+        planet = p;
+      }
+    }
+    if (!distances.count(distance)) {
+      const std::optional<GiNaC::ex> reference = planet < 0 ? std::nullopt : reference_distance(planet);
+      distances.emplace(distance, reference ? *reference : GiNaC::ex(GiNaC::realsymbol(distance)));
+    }
+    const GiNaC::ex a = distances.at(distance);
     const GiNaC::realsymbol z1 = tooth_count(w1), z2 = tooth_count(w2);
     const GiNaC::ex span = w1.internal ? z1 - z2 : w2.internal ? z2 - z1 : z1 + z2;
     out[parameter_symbol(s, contact_radius(t, m, m.first))] = a * z1 / span;

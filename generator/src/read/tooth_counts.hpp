@@ -22,6 +22,9 @@ void add_pitch_radii(Topology& t);
 // Throws InputError when a wheel has no teeth, or a is not within one module of the reference
 // centre distance m (Z_2 +- Z_1) / 2 (profile shifts move it by a fraction of a module).
 void add_operating_radii(Topology& t);
+// The same checks of every centre distance at the parameters' present values (after a scene's
+// overrides, which the operating radii follow through their texts).
+void check_centre_distances(const Topology& t);
 
 // r_w -> m Z_w / 2 for every toothed wheel, with one module symbol per set of wheels joined by
 // meshes (`m` when there is one set, else m_1, m_2, ... in the order of the wheels) and Z_w named

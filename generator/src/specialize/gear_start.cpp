@@ -58,6 +58,22 @@ Derivation mode_derivation(const Scene& sc, const Topology& t, const std::vector
   return derive_topology(t, named, sc.initial_where, false, sc.initial_engaged);
 }
 
+// The elements the gear does not engage are open at t = 0: one commanded would slip with a torque
+// the gear's rigid model does not carry, or stick into another mode.
+void check_others_open(const SpecializedScene& model, const std::string& gear) {
+  const Scene& sc = model.scene;
+  const Topology& t = model.derivation.topology;
+  for (const FrictionRun& run : model.friction) {
+    const bool in_gear = std::find(sc.initial_engaged.begin(), sc.initial_engaged.end(), run.element) != sc.initial_engaged.end();
+    const double command = rt::value(run.command, 0.0);
+    if (!in_gear && command != 0)
+      throw InputError(sc.initial_engaged_where,
+                       fmt::format("starting in {}, {} is commanded {:.6g} at t = 0, but the gear does not engage it; "
+                                   "open it at t = 0 (its command 0), or start in a gear that engages it",
+                                   gear, t.friction_elements[static_cast<std::size_t>(run.element)].name, command));
+  }
+}
+
 // The engaged elements' commands at t = 0, and their stuck torques within static capacity.
 void check_stuck_torques(const SpecializedScene& model, const std::string& gear, const Derivation& mode,
                          const std::vector<GiNaC::numeric>& recovered) {
@@ -96,6 +112,7 @@ StartState start_in_gear(const SpecializedScene& model) {
   const Scene& sc = model.scene;
   const Topology& t = model.derivation.topology;
   const std::string gear = gear_label(sc, t);
+  check_others_open(model, gear);
   const std::vector<std::string> named = named_speeds(sc, t, gear);
   const Derivation mode = mode_derivation(sc, t, named, gear);
   const RigidValues rv = exact_rigid_values(mode.rigid, mode.elastic, mode.values);
