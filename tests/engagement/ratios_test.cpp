@@ -376,43 +376,13 @@ TEST(Ratios, ZF6HP26GearsAreTheWillisFractionsOfItsTeeth) {
 // ring 71, module 2 mm: 51 mm, the sun's reference being 50 mm): the carrier's ratio is Willis'
 // Z_s / (Z_s + Z_r) in tooth counts, the unshifted mesh's module cancelling the centre distance.
 TEST(Ratios, OneShiftedMeshOfAPlanetKeepsTheRatioInTeeth) {
-  const std::string model = R"(name = "half_shifted"
-[[body]]
-name = "s"
-teeth = 30
-[[body]]
-name = "c"
-[[body]]
-name = "p"
-axis = { carrier = "c", distance = "a_p" }
-teeth = 20
-[[body]]
-name = "r"
-fixed = true
-wheels = [ { name = "r", teeth = 71, internal = true } ]
-[[mesh]]
-first = "p"
-second = "s"
-module = "2*mm"
-centre_distance = "51*mm"
-[[mesh]]
-first = "p"
-second = "r"
-module = "2*mm"
-[parameters]
-J_s = "1e-3*kg*m^2"
-J_c = "1e-2*kg*m^2"
-J_p = "1e-5*kg*m^2"
-b_s = 0
-b_c = 0
-b_p = 0
-K_ps = "3e5*N/mm"
-K_pr = "3e5*N/mm"
-b_ps = "50*N*s/m"
-b_pr = "50*N*s/m"
-)";
-  const Derivation d = derive_topology(parse_topology_text(model, "half_shifted.toml"), std::nullopt, SourceLocation{});
-  const GearRatios g = gear_ratios(d, "s", "c", SourceLocation{"half_shifted.toml", 0, 0});
+  // tests/errors/shifted.toml with its ring mesh at its reference and its sun mesh shifted to it.
+  std::string model = read_text(source_path("tests/errors/shifted.toml"));
+  const std::string shifted = "centre_distance = \"50.5*mm\"\n";
+  model.replace(model.find(shifted), shifted.size(), "centre_distance = \"51*mm\"\n");
+  model.erase(model.find(shifted), shifted.size());
+  const Derivation d = derive_topology(parse_topology_text(model, "shifted.toml"), std::nullopt, SourceLocation{});
+  const GearRatios g = gear_ratios(d, "s", "c", SourceLocation{"shifted.toml", 0, 0});
   ASSERT_EQ(g.engagements.size(), 1u);  // nothing to engage: the ring is fixed
   ASSERT_TRUE(g.engagements[0].ratio);
   const auto in_numbers = in_tooth_numbers(*g.engagements[0].ratio, d.topology);
