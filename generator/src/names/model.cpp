@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "common/printer.hpp"
+
 namespace pogear {
 
 int find_body(const Topology& t, const std::string& name) {
@@ -27,24 +29,31 @@ std::vector<const Body*> every_body(const Topology& t) {
   return all;
 }
 
+namespace {
+
+bool is_fixed_body(const Topology& t, std::string_view name) {
+  return std::any_of(t.grounded.begin(), t.grounded.end(), [&](const Body& b) { return b.name == name; });
+}
+
+std::string turning_bodies(const Topology& t) {
+  std::vector<std::string> names;
+  for (const Body& b : t.bodies) names.push_back(b.name);
+  return joined(names);
+}
+
+}  // namespace
+
 std::string fixed_body_refusal(const Topology& t, const std::string& name, std::string_view what) {
-  if (std::none_of(t.grounded.begin(), t.grounded.end(), [&](const Body& b) { return b.name == name; })) return "";
-  std::string turning;
-  for (const Body& b : t.bodies) turning += (turning.empty() ? "" : ", ") + b.name;
+  if (!is_fixed_body(t, name)) return "";
   return fmt::format("{} '{}' is fixed (the housing holds it), so it has no speed and takes no torque; name a body "
-                     "that turns: {}", what, name, turning);
+                     "that turns: {}", what, name, turning_bodies(t));
 }
 
 std::string fixed_variable_refusal(const Topology& t, std::string_view variable) {
-  for (const std::string_view prefix : {"omega_", "tau_"}) {
-    if (!variable.starts_with(prefix)) continue;
-    const std::string body(variable.substr(prefix.size()));
-    if (fixed_body_refusal(t, body, "").empty()) continue;
-    std::string turning;
-    for (const Body& b : t.bodies) turning += (turning.empty() ? "" : ", ") + b.name;
-    return fmt::format("'{}' is of body '{}', which is fixed (the housing holds it), so it has no speed and takes no "
-                       "torque; name a body that turns: {}", variable, body, turning);
-  }
+  for (const std::string_view prefix : {"omega_", "tau_"})
+    if (variable.starts_with(prefix) && is_fixed_body(t, variable.substr(prefix.size())))
+      return fmt::format("'{}' is of body '{}', which is fixed (the housing holds it), so it has no speed and takes no "
+                         "torque; name a body that turns: {}", variable, variable.substr(prefix.size()), turning_bodies(t));
   return "";
 }
 

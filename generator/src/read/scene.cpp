@@ -19,6 +19,7 @@
 #include "pogear/signal_table.hpp"
 #include "read/model_parameters.hpp"
 #include "names/model_variables.hpp"
+#include "read/gear_table.hpp"
 #include "read/loads_and_controllers.hpp"
 #include "read/scene_reader.hpp"
 #include "read/toml_reader.hpp"
@@ -127,41 +128,6 @@ void check_solver(Scene& s, bool engaged) {
     throw InputError(s.solver_where, fmt::format("{}; use solver = {}{}", rt::describe(*refusal),
                                                  rt::solver_alternatives(admissible, true),
                                                  traits.nonlinear ? ", or a linear load" : ""));
-}
-
-// [initial] gear = "<name>" (of the model's [gears]) or engaged = ["<element>", ...].
-void read_initial_gear(const SceneReader& r, const toml::node& value, const std::string& key, const Topology& t, Scene& s) {
-  if (!s.initial_engaged.empty())
-    r.fail(value, "[initial] names the gear it starts in once: gear = \"1\" or engaged = [\"A\", \"D\"], not both");
-  s.initial_engaged_where = r.loc(value);
-  std::string elements;
-  for (const FrictionElement& e : t.friction_elements) elements += (elements.empty() ? "" : ", ") + e.name;
-  if (key == "gear") {
-    const std::string name = r.string(value, "gear");
-    const auto g = std::find_if(t.gears.begin(), t.gears.end(), [&](const NamedGear& x) { return x.name == name; });
-    if (g == t.gears.end()) {
-      std::string gears;
-      for (const NamedGear& x : t.gears) gears += (gears.empty() ? "" : ", ") + x.name;
-      r.fail(value, gears.empty() ? fmt::format("gear '{}': the model names no gears ([gears]); name the elements the "
-                                                "start engages, e.g. engaged = [\"{}\"]", name,
-                                                elements.empty() ? std::string("B1") : t.friction_elements.front().name)
-                                  : fmt::format("'{}' is not a gear of the model; its gears are {}", name, gears));
-    }
-    if (g->engaged.empty()) r.fail(value, fmt::format("gear '{}' engages no brake or clutch; start from given speeds", name));
-    s.initial_gear = name;
-    s.initial_engaged = g->engaged;
-    return;
-  }
-  const std::vector<std::string> names = r.strings(value, "engaged");
-  if (names.empty()) r.fail(value, "engaged = [] names no brake or clutch; name those stuck at t = 0, or leave it out");
-  for (const std::string& name : names) {
-    const int k = find_friction_element(t, name);
-    if (k < 0) r.fail(value, fmt::format("engaged names '{}', which is no brake or clutch of the model; they are {}", name, elements));
-    if (std::find(s.initial_engaged.begin(), s.initial_engaged.end(), k) != s.initial_engaged.end())
-      r.fail(value, fmt::format("engaged names '{}' twice", name));
-    s.initial_engaged.push_back(k);
-  }
-  std::sort(s.initial_engaged.begin(), s.initial_engaged.end());
 }
 
 }  // namespace
@@ -344,7 +310,12 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         continue;
       }
       if (name == "gear" || name == "engaged") {
-        read_initial_gear(r, value, name, topology, s);
+        if (!s.initial_engaged.empty())
+          r.fail(value, "[initial] names the gear it starts in once: gear = \"1\" or engaged = [\"A\", \"D\"], not both");
+        InitialGear gear = read_initial_gear(r, value, name, topology);
+        s.initial_engaged = std::move(gear.engaged);
+        s.initial_gear = std::move(gear.name);
+        s.initial_engaged_where = gear.where;
         continue;
       }
       const auto v = find_scene_variable(s, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});

@@ -3,7 +3,6 @@
 #include "read/topology.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -12,7 +11,6 @@
 #include <functional>
 #include <set>
 #include <sstream>
-#include <tuple>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -20,6 +18,7 @@
 #include "pogear/input_file.hpp"
 #include "read/model_parameters.hpp"
 #include "read/body_table.hpp"
+#include "read/gear_table.hpp"
 #include "read/toml_reader.hpp"
 #include "read/tooth_counts.hpp"
 #include "names/model_variables.hpp"
@@ -311,55 +310,6 @@ void read_parameters(const TomlReader& r, const toml::table& params, Topology& t
   });
 }
 
-// [gears]: "<name>" = ["<element>", ...], in the order written. Whether each is a gear (one degree
-// of freedom, input and output turning) depends on the input and output, which `pogear ratios` checks.
-void read_gears(const TomlReader& r, const toml::node& n, Topology& t) {
-  if (!n.is_table()) r.fail(n, "[gears] must be a table of gears, e.g. \"1\" = [\"A\", \"D\"]");
-  // A TOML table is ordered by key; the gears keep the file's order.
-  std::vector<std::pair<const toml::key*, const toml::node*>> entries;
-  for (const auto& [key, value] : *n.as_table()) entries.emplace_back(&key, &value);
-  std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
-    const toml::source_position pa = a.first->source().begin, pb = b.first->source().begin;
-    return std::tie(pa.line, pa.column) < std::tie(pb.line, pb.column);
-  });
-  for (const auto& [key, node] : entries) {
-    const toml::node& value = *node;
-    const std::string name(key->str());
-    NamedGear gear{name, {}, toml_location(r.file, key->source())};
-    const bool plain = !name.empty() && name.size() <= max_name_length &&
-                       std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-    if (!plain)
-      throw InputError(gear.where, fmt::format("a gear's name is letters, digits and '_', at most {} characters, e.g. "
-                                               "\"1\" or R; rename the gear", max_name_length));
-    if (!value.is_array())
-      r.fail(value, fmt::format("gear '{}' must list the brakes and clutches it engages, e.g. \"{}\" = [\"{}\"]", name,
-                                name, t.friction_elements.empty() ? std::string("B1") : t.friction_elements.front().name));
-    for (const toml::node& e : *value.as_array()) {
-      const std::string element = r.identifier(e, "a brake or clutch of a gear");
-      const auto it = std::find_if(t.friction_elements.begin(), t.friction_elements.end(),
-                                   [&](const FrictionElement& f) { return f.name == element; });
-      if (it == t.friction_elements.end()) {
-        std::string names;
-        for (const FrictionElement& f : t.friction_elements) names += (names.empty() ? "" : ", ") + f.name;
-        r.fail(e, names.empty() ? fmt::format("gear '{}' names '{}', but the model has no brake or clutch; add "
-                                              "[[brake]] and [[clutch]] entries", name, element)
-                                : fmt::format("gear '{}' names '{}', which is no brake or clutch of the model; they "
-                                              "are {}", name, element, names));
-      }
-      const int k = static_cast<int>(it - t.friction_elements.begin());
-      if (std::find(gear.engaged.begin(), gear.engaged.end(), k) != gear.engaged.end())
-        r.fail(e, fmt::format("gear '{}' names '{}' twice", name, element));
-      gear.engaged.push_back(k);
-    }
-    std::sort(gear.engaged.begin(), gear.engaged.end());
-    for (const NamedGear& other : t.gears)
-      if (other.engaged == gear.engaged)
-        throw InputError(gear.where, fmt::format("gear '{}' engages the same elements as gear '{}' (line {}); give each "
-                                                 "gear its own elements", name, other.name, other.where.line));
-    t.gears.push_back(std::move(gear));
-  }
-}
-
 // The velocity vector holds the bodies that turn; the fixed ones move past them (Topology::grounded)
 // and every body index is renumbered to match.
 void set_fixed_bodies_apart(Topology& t) {
@@ -456,7 +406,7 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
   check_unique_names(t, true);
   check_lumped_meshes(t);
   read_friction_elements(r, root, t);
-  if (const toml::node* g = root.get("gears")) read_gears(r, *g, t);
+  if (const toml::node* g = root.get("gears")) t.gears = read_gears(r, *g, t);
 
   if (const toml::node* p = root.get("parameters")) read_parameters(r, r.table(*p, "[parameters]"), t);
   evaluate_parameters(t.parameters);
@@ -469,8 +419,9 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
     if (!k->is_array()) r.fail(*k, "keep must be a list of body names, e.g. keep = [\"c\", \"r\"]");
     for (const toml::node& e : *k->as_array()) {
       std::string name = r.identifier(e, "a kept velocity");
-      if (find_body(t, name) < 0) r.fail(e, fmt::format("keep names '{}', which is not a body", name));
-      if (t.bodies[find_body(t, name)].fixed)
+      const int b = find_body(t, name);
+      if (b < 0) r.fail(e, fmt::format("keep names '{}', which is not a body", name));
+      if (t.bodies[b].fixed)
         r.fail(e, fmt::format("keep names '{}', which is fixed; keep velocities of bodies that turn", name));
       t.default_keep.push_back(std::move(name));
     }

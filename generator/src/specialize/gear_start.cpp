@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "common/exact_algebra.hpp"
+#include "derive/engagement.hpp"
 #include "names/model_variables.hpp"
 #include "names/symbols.hpp"
 
@@ -17,11 +18,7 @@ namespace {
 
 std::string gear_label(const Scene& sc, const Topology& t) {
   if (!sc.initial_gear.empty()) return fmt::format("gear '{}'", sc.initial_gear);
-  std::vector<std::string> names;
-  for (int k : sc.initial_engaged) names.push_back(t.friction_elements[static_cast<std::size_t>(k)].name);
-  std::string list;
-  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-  return "engaged = [" + list + "]";
+  return "engaged = [" + engaged_names(t, sc.initial_engaged, ", ") + "]";
 }
 
 // The bodies whose speeds [initial] names, in body order; refuses what the gear's model computes.
