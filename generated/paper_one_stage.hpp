@@ -118,7 +118,7 @@ struct Elastic {
     dx[9] = 1000000.0*v_rm;
   }
 
-  // Outputs: 0 operations (0 multiplications, 0 additions).
+  // Outputs: 20 operations (10 multiplications, 10 additions).
   static void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] const State& x,
                       [[maybe_unused]] const Input& u, Output& y) {
     const double omega_c = x[0];
@@ -137,10 +137,10 @@ struct Elastic {
     y[3] = omega_r;
     y[4] = omega_g;
     y[5] = omega_m;
-    y[6] = F_ps;
-    y[7] = F_pr;
-    y[8] = F_sg;
-    y[9] = F_rm;
+    y[6] = F_ps + 5.920000000000001*omega_c - 1.92*omega_p - 4.0*omega_s;
+    y[7] = F_pr + 5.920000000000001*omega_c + 1.92*omega_p - 7.84*omega_r;
+    y[8] = F_sg - 6.4*omega_g - 6.4*omega_s;
+    y[9] = F_rm - 4.8*omega_m - 8.8*omega_r;
   }
 
   // The linear form dx/dt = M x + N u, for exact stepping and as the implicit method's Jacobian.
@@ -199,9 +199,19 @@ struct Elastic {
     C(3, 3) = 1.0;
     C(4, 4) = 1.0;
     C(5, 5) = 1.0;
+    C(6, 0) = 5.920000000000001;
+    C(6, 1) = -1.92;
+    C(6, 2) = -4.0;
     C(6, 6) = 1.0;
+    C(7, 0) = 5.920000000000001;
+    C(7, 1) = 1.92;
+    C(7, 3) = -7.84;
     C(7, 7) = 1.0;
+    C(8, 2) = -6.4;
+    C(8, 4) = -6.4;
     C(8, 8) = 1.0;
+    C(9, 3) = -8.8;
+    C(9, 5) = -4.8;
     C(9, 9) = 1.0;
   }
 

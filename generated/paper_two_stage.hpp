@@ -130,7 +130,7 @@ struct Elastic {
     dx[11] = 1000000.0*v_bq;
   }
 
-  // Outputs: 0 operations (0 multiplications, 0 additions).
+  // Outputs: 30 operations (15 multiplications, 15 additions).
   static void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] const State& x,
                       [[maybe_unused]] const Input& u, Output& y) {
     const double omega_s = x[0];
@@ -152,11 +152,11 @@ struct Elastic {
     y[4] = omega_r;
     y[5] = omega_b;
     y[6] = omega_q;
-    y[7] = F_sp;
-    y[8] = F_sa;
-    y[9] = F_pr;
-    y[10] = F_ab;
-    y[11] = F_bq;
+    y[7] = F_sp - 73.6*omega_c + 30.4*omega_p + 43.2*omega_s;
+    y[8] = F_sa + 46.4*omega_a - 67.2*omega_c + 20.8*omega_s;
+    y[9] = F_pr + 73.6*omega_c + 30.4*omega_p - 104.0*omega_r;
+    y[10] = F_ab + 46.4*omega_a + 40.0*omega_b - 86.4*omega_c;
+    y[11] = F_bq + 40.0*omega_b + 153.6*omega_c - 193.6*omega_q;
   }
 
   // The linear form dx/dt = M x + N u, for exact stepping and as the implicit method's Jacobian.
@@ -235,10 +235,25 @@ struct Elastic {
     C(4, 4) = 1.0;
     C(5, 5) = 1.0;
     C(6, 6) = 1.0;
+    C(7, 0) = 43.2;
+    C(7, 1) = -73.6;
+    C(7, 2) = 30.4;
     C(7, 7) = 1.0;
+    C(8, 0) = 20.8;
+    C(8, 1) = -67.2;
+    C(8, 3) = 46.4;
     C(8, 8) = 1.0;
+    C(9, 1) = 73.6;
+    C(9, 2) = 30.4;
+    C(9, 4) = -104.0;
     C(9, 9) = 1.0;
+    C(10, 1) = -86.4;
+    C(10, 3) = 46.4;
+    C(10, 5) = 40.0;
     C(10, 10) = 1.0;
+    C(11, 1) = 153.6;
+    C(11, 5) = 40.0;
+    C(11, 6) = -193.6;
     C(11, 11) = 1.0;
   }
 

@@ -35,6 +35,12 @@ inline const std::string& base_scene() {
 
 using Edits = std::vector<std::pair<std::string, std::string>>;
 
+// The edits, then more.
+inline Edits with(Edits edits, const Edits& more) {
+  edits.insert(edits.end(), more.begin(), more.end());
+  return edits;
+}
+
 // `text` with each `from` (which must occur exactly once) replaced by its `to`.
 inline std::string edited(std::string text, const Edits& edits) {
   for (const auto& [from, to] : edits) {

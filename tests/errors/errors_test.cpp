@@ -50,7 +50,7 @@ TEST_F(ModelFiles, TomlSyntax) {
 
 TEST_F(ModelFiles, UnknownTopLevelKey) {
   expect_model_error({{R"(keep = ["c", "r"])", "keep = [\"c\", \"r\"]\nstages = 2"}},
-      R"~(gear.toml:4:1: error: unknown key 'stages' in the model file; the keys are name, title, keep, body, mesh, brake, clutch, gears, parameters)~");
+      R"~(gear.toml:4:1: error: unknown key 'stages' in the model file; the keys are name, title, keep, body, mesh, shaft, brake, clutch, gears, parameters)~");
 }
 
 // ---------------------------------------------------------------- model files: structure
@@ -732,7 +732,7 @@ TEST_F(Scenes, EffectNotAString) {
 }
 TEST_F(Scenes, UnknownEffect) {
   expect_scene_error({{R"("mesh_forces"])", R"("mesh_forces", "backlash"])"}},
-      R"~(scene.toml:4:11: error: unknown effect 'backlash'; the effects are mesh_compliance, mesh_damping, bearing_friction, mesh_forces)~");
+      R"~(scene.toml:4:11: error: unknown effect 'backlash'; the effects are mesh_compliance, shaft_compliance, mesh_damping, shaft_damping, bearing_friction, mesh_forces)~");
 }
 TEST_F(Scenes, DampingWithoutCompliance) {
   expect_scene_error({{R"("mesh_compliance", )", ""}, {"compare_rigid = true\n", ""}},
@@ -956,7 +956,7 @@ TEST_F(Outputs, NotAList) {
 }
 TEST_F(Outputs, Unknown) {
   expect_scene_error({{"compare_rigid = true", "compare_rigid = true\noutputs = [\"omega_x\"]"}},
-      R"~(scene.toml:7:11: error: output 'omega_x' is neither omega_<body>, F_<mesh> nor Tc_<controller>)~");
+      R"~(scene.toml:7:11: error: output 'omega_x' is none of omega_<body>, F_<mesh>, Fspring_<mesh>, Tc_<controller>)~");
 }
 TEST_F(Outputs, ForceWithoutMeshForces) {
   expect_scene_error({{R"(, "mesh_forces"])", "]"}, {"compare_rigid = true", "compare_rigid = true\noutputs = [\"F_ps\"]"}},

@@ -10,11 +10,6 @@ namespace {
 // gear.toml with its ring r fixed: c, p, s and g turn, one degree of freedom (kept: c).
 const Edits ring_fixed{{R"(name = "r")", "name = \"r\"\nfixed = true"}, {R"(keep = ["c", "r"])", R"(keep = ["c"])"}};
 
-Edits with(Edits edits, const Edits& more) {
-  edits.insert(edits.end(), more.begin(), more.end());
-  return edits;
-}
-
 class Fixed : public ErrorTest {
  protected:
   // scene.toml on gear.toml with its ring fixed, keeping c.

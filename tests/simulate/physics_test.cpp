@@ -1,6 +1,7 @@
 // Physics along simulated trajectories: the elastic model tends to the rigid one as K grows
 // (the paper's claim), eq. (8) recovers the elastic forces, and power balances (docs/design.md §3);
 // a sine input at its frequency.
+#include <array>
 #include <numbers>
 #include <variant>
 
@@ -124,19 +125,25 @@ TEST(ElasticToRigid, OneStageGapAfterTheStepIsTheResidualOscillation) {
 
 TEST(ElasticToRigid, OneStageGapFallsAsOneOverKWithoutAStep) {
   // The same gear driven by a ramp (no step to excite the meshes): the O(1/K) part is left.
-  // Measured 100.0x (velocities) and 64x (forces, where the ramp's kink at t = 0 still rings).
+  // Measured 100.0x (velocities), 64x (spring forces, where the ramp's kink at t = 0 still rings)
+  // and 28.5x (transmitted forces, whose damper share b_K R omega carries that ringing too).
   auto gaps = [](const std::string& overrides) {
     std::string text = with_line(scene_text("paper_one_stage"), "tau_c = { constant = \"100*Nm\" }",
                                  "tau_c = { ramp = \"100*Nm/s\" }");
+    text = with_line(text, "compare_rigid = true",
+                     "compare_rigid = true\noutputs = [\"omega_c\", \"omega_p\", \"omega_s\", \"omega_r\", "
+                     "\"omega_g\", \"omega_m\", \"Fspring_ps\", \"Fspring_pr\", \"Fspring_sg\", \"Fspring_rm\", "
+                     "\"F_ps\", \"F_pr\", \"F_sg\", \"F_rm\"]");
     if (!overrides.empty()) text = with_parameters(text, overrides);
     const SpecializedScene m = scene_model(text);
     const Trajectory e = interpret_trajectory(m, m.main, run_settings(m));
     const Trajectory r = interpret_trajectory(m, *m.rigid, run_settings(m));
-    return Gaps{gap_after(e, r, 1.0, 0, 6), gap_after(e, r, 1.0, 6, 4)};
+    return std::array{gap_after(e, r, 1.0, 0, 6), gap_after(e, r, 1.0, 6, 4), gap_after(e, r, 1.0, 10, 4)};
   };
-  const Gaps soft = gaps(""), stiff = gaps("K_ps = \"100000*Newton/mm\"");
-  EXPECT_GT(soft.velocity / stiff.velocity, 80.0) << soft.velocity << " " << stiff.velocity;
-  EXPECT_GT(soft.force / stiff.force, 40.0) << soft.force << " " << stiff.force;
+  const auto soft = gaps(""), stiff = gaps("K_ps = \"100000*Newton/mm\"");
+  EXPECT_GT(soft[0] / stiff[0], 80.0) << soft[0] << " " << stiff[0];
+  EXPECT_GT(soft[1] / stiff[1], 40.0) << soft[1] << " " << stiff[1];
+  EXPECT_GT(soft[2] / stiff[2], 20.0) << soft[2] << " " << stiff[2];
 }
 
 // E(T) - E(0) = integral of the power supplied minus the power dissipated, along a trajectory.

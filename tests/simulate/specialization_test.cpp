@@ -310,7 +310,7 @@ TEST(Specialization, SpeedsInRpm) {
     const Trajectory tb = interpret_trajectory(rpm, b, run_settings(rpm));
     ASSERT_TRUE(ta.status.ok && tb.status.ok);
     ASSERT_EQ(output_names(si, a), output_names(rpm, b));
-    const std::vector<std::string> units_a = output_units(a), units_b = output_units(b);
+    const std::vector<std::string> units_a = output_units(si.derivation.topology, a), units_b = output_units(rpm.derivation.topology, b);
     for (std::size_t j = 0; j < a.outputs.size(); ++j) {
       const bool speed = a.outputs[j].variable.kind == VariableKind::velocity;
       EXPECT_EQ(units_b[j], speed ? "rpm" : units_a[j]);

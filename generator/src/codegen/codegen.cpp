@@ -26,7 +26,9 @@ namespace {
 CppText effects_list(const Effects& e) {
   std::vector<CppText> on;
   if (e.mesh_compliance) on.push_back(code("mesh_compliance"));
+  if (e.shaft_compliance) on.push_back(code("shaft_compliance"));
   if (e.mesh_damping) on.push_back(code("mesh_damping"));
+  if (e.shaft_damping) on.push_back(code("shaft_damping"));
   if (e.bearing_friction) on.push_back(code("bearing_friction"));
   if (e.mesh_forces) on.push_back(code("mesh_forces"));
   return on.empty() ? code("none (rigid, frictionless)") : join(on, code(", "));

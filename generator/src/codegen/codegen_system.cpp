@@ -202,10 +202,10 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
     s += code("  static constexpr std::array<std::string_view, {}> {}{{{}}};\n", size, what, literal_list(v));
   };
   names(code("state_names"), port_names(d.symbols, state_variables(sys)), code("nx"));
-  names(code("state_units"), state_units(sys), code("nx"));
+  names(code("state_units"), state_units(d.topology, sys), code("nx"));
   names(code("input_names"), port_names(d.symbols, input_variables(sys)), code("nu"));
   names(code("output_names"), port_names(d.symbols, output_variables(sys)), code("ny"));
-  names(code("output_units"), output_units(sys), code("ny"));
+  names(code("output_units"), output_units(d.topology, sys), code("ny"));
   s += types(fixed);
 
   if (sys.params.empty()) {

@@ -95,12 +95,14 @@ KeptVelocities choose_kept_velocities(const Topology& t, const GiNaC::matrix& R,
   if (dof == 0) {
     std::string fixed;
     for (const Body& b : t.grounded) fixed += (fixed.empty() ? "" : ", ") + b.name;
+    // Rigid shafts join their bodies like meshes; one to the housing holds its body.
+    const std::string rows = !has_shafts(t) ? "meshes" : toothed_mesh_count(t) == 0 ? "rigid shafts" : "meshes and rigid shafts";
     throw InputError(where, t.grounded.empty()
-                                ? fmt::format("the gear cannot turn: its meshes leave its {} bodies no degree of "
-                                              "freedom (rank of R {}); check the meshes", n, rank)
-                                : fmt::format("the gear cannot turn: with {} fixed, its meshes leave its {} other "
+                                ? fmt::format("the gear cannot turn: its {} leave its {} bodies no degree of "
+                                              "freedom (rank of R {}); check the {}", rows, n, rank, rows)
+                                : fmt::format("the gear cannot turn: with {} fixed, its {} leave its {} other "
                                               "bodies no degree of freedom (rank of R {}); fix fewer bodies",
-                                              fixed, n, rank));
+                                              fixed, rows, n, rank));
   }
   const auto valid = valid_keep_sets(Rn, 12);
   if (static_cast<int>(out.kept.size()) != dof) {

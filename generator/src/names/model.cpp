@@ -2,6 +2,7 @@
 #include "names/model.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -61,6 +62,12 @@ int mesh_count(const Topology& t, const Mesh& m) {
   return std::max(body(t, m.first.body).count, body(t, m.second.body).count);
 }
 
+std::size_t toothed_mesh_count(const Topology& t) {
+  return static_cast<std::size_t>(std::count_if(t.meshes.begin(), t.meshes.end(), [](const Mesh& m) { return !m.shaft; }));
+}
+
+bool has_shafts(const Topology& t) { return toothed_mesh_count(t) < t.meshes.size(); }
+
 int find_friction_element(const Topology& t, const std::string& name) {
   for (int i = 0; i < static_cast<int>(t.friction_elements.size()); ++i)
     if (t.friction_elements[i].name == name) return i;
@@ -70,6 +77,7 @@ int find_friction_element(const Topology& t, const std::string& name) {
 const Wheel& wheel(const Topology& t, WheelRef w) { return body(t, w.body).wheels.at(w.wheel); }
 
 std::string contact_radius(const Topology& t, const Mesh& m, WheelRef w) {
+  if (m.shaft) throw std::logic_error("a shaft has no wheels, so no contact radius");
   return m.centre_distance.empty() ? wheel(t, w).radius_parameter : "rw_" + wheel(t, w).name + "_" + m.name;
 }
 

@@ -59,9 +59,14 @@ struct WheelRef {
   int wheel = -1;
 };
 
+// A mesh between two toothed wheels, or a shaft (a [[shaft]]: a torsional spring-damper between two
+// coaxial bodies): both are a row of R and a force of F (a shaft's is its torque, T_<name>).
 struct Mesh {
   std::string name;       // F_<name> is positive from the first terminal to the second
-  WheelRef first, second;
+  WheelRef first, second;  // a shaft's name bodies only (wheel -1)
+  // A shaft: its row of R is a_first u_first - a_second u_second (arrows as a clutch's slip), its
+  // stiffness N m/rad, its damping N m s/rad; shafts come after the meshes, in file order.
+  bool shaft = false;
   std::string stiffness_parameter;  // K_<name> unless set
   std::string damping_parameter;    // b_<name> unless set
   SourceLocation where;
@@ -142,6 +147,9 @@ std::string fixed_variable_refusal(const Topology& t, std::string_view variable)
 // How many identical planets a mesh stands for: its lumped planet's count, 1 for other meshes. The
 // model's F_<mesh> is their sum; the outputs and reports give one planet's share.
 int mesh_count(const Topology& t, const Mesh& m);
+// The toothed meshes, the leading part of Topology::meshes (the shafts follow them).
+std::size_t toothed_mesh_count(const Topology& t);
+bool has_shafts(const Topology& t);
 int find_friction_element(const Topology& t, const std::string& name);  // -1 when absent
 const Wheel& wheel(const Topology& t, WheelRef w);
 // The radius parameter of wheel w's contact in mesh m: the wheel's own, or with a centre distance

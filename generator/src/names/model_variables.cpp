@@ -21,6 +21,7 @@ KindText text_of(VariableKind kind) {
     case VariableKind::force_rate: return {"dF_", "N/s"};
     case VariableKind::mesh_velocity: return {"v_", "m/s"};
     case VariableKind::transmitted_force: return {"w_", "N"};
+    case VariableKind::spring_force: return {"Fspring_", "N"};
     case VariableKind::friction_torque: return {"Tf_", "N m"};
     case VariableKind::load_torque: return {"TL_", "N m"};
     case VariableKind::controller_torque: return {"Tc_", "N m"};
@@ -33,7 +34,7 @@ KindText text_of(VariableKind kind) {
 
 constexpr std::array all_kinds{VariableKind::velocity,  VariableKind::acceleration,  VariableKind::torque,
                                VariableKind::force,     VariableKind::force_rate,    VariableKind::mesh_velocity,
-                               VariableKind::transmitted_force, VariableKind::friction_torque,
+                               VariableKind::transmitted_force, VariableKind::spring_force, VariableKind::friction_torque,
                                VariableKind::load_torque, VariableKind::controller_torque,
                                VariableKind::controller_integral, VariableKind::controller_error,
                                VariableKind::set_point};
@@ -56,6 +57,27 @@ std::size_t variable_count(const Topology& t, VariableKind kind) {
   return of_body(kind) ? t.bodies.size() : t.meshes.size();
 }
 
+namespace {
+
+// A shaft's row of R has no radius: its "force" is a torque and its "mesh velocity" a twist rate.
+KindText shaft_text(VariableKind kind) {
+  switch (kind) {
+    case VariableKind::force: return {"T_", "N m"};
+    case VariableKind::force_rate: return {"dT_", "N m/s"};
+    case VariableKind::mesh_velocity: return {"v_", "rad/s"};
+    case VariableKind::transmitted_force: return {"w_", "N m"};
+    case VariableKind::spring_force: return {"Tspring_", "N m"};
+    default: return text_of(kind);
+  }
+}
+
+bool of_shaft(const Topology& t, Variable v) {
+  return !of_body(v.kind) && !of_controller(v.kind) && v.kind != VariableKind::friction_torque &&
+         t.meshes.at(static_cast<std::size_t>(v.index)).shaft;
+}
+
+}  // namespace
+
 std::string variable_name(const Topology& t, Variable v) {
   if (of_controller(v.kind))
     throw std::logic_error("a controller's variable is the scene's: its name comes from the symbol table");
@@ -63,7 +85,7 @@ std::string variable_name(const Topology& t, Variable v) {
   const std::string& owner = v.kind == VariableKind::friction_torque ? t.friction_elements.at(i).name
                              : of_body(v.kind)                       ? t.bodies.at(i).name
                                                                      : t.meshes.at(i).name;
-  return std::string(text_of(v.kind).prefix) + owner;
+  return std::string((of_shaft(t, v) ? shaft_text(v.kind) : text_of(v.kind)).prefix) + owner;
 }
 
 std::string controller_variable_name(VariableKind kind, std::string_view controller) {
@@ -82,7 +104,10 @@ Variable derivative_of(Variable state) {
   return {state.kind == VariableKind::force ? VariableKind::force_rate : VariableKind::acceleration, state.index};
 }
 
-std::string_view unit_of(VariableKind kind) { return text_of(kind).unit; }
+std::string_view unit_of(const Topology& t, Variable v) {
+  if (of_controller(v.kind)) return text_of(v.kind).unit;
+  return (of_shaft(t, v) ? shaft_text(v.kind) : text_of(v.kind)).unit;
+}
 
 std::optional<Variable> find_variable(const Topology& t, std::string_view name,
                                       std::initializer_list<VariableKind> kinds) {

@@ -18,7 +18,8 @@ enum class VariableKind {
   force,              // F_<mesh> [N], positive from the first terminal to the second
   force_rate,         // dF_<mesh> = dF/dt [N/s]
   mesh_velocity,      // v_<mesh> = R omega, a temporary of the generated rhs [m/s]
-  transmitted_force,  // w_<mesh> = F + b v, the force a damped mesh passes on [N]
+  transmitted_force,  // w_<mesh> = F + b v, the force a damped mesh passes on [N], a temporary of the rhs
+  spring_force,       // Fspring_<mesh> = F, the elastic model's spring force alone [N], an output
   friction_torque,    // Tf_<element> [N m]: a brake's or clutch's torque, -T on its first body, +T on its second
   load_torque,        // TL_<body> [N m]: a scene's load on the body (its constant part, an input)
   controller_torque,  // Tc_<controller> [N m]: a speed controller's torque on its body
@@ -43,8 +44,10 @@ bool of_controller(VariableKind kind);
 std::size_t variable_count(const Topology& t, VariableKind kind);
 // A model variable's name; a controller's variable has none here (std::logic_error): its name is
 // its symbol's, made by add_controller_symbols (symbols.hpp).
+// A shaft's variables (a row of R like a mesh's) are torques and twist rates: T_<shaft> [N m],
+// dT_, v_ [rad/s], w_ and Tspring_ [N m].
 std::string variable_name(const Topology& t, Variable v);
-std::string_view unit_of(VariableKind kind);  // SI, as CSV headers write it: "rad/s", "N", ...
+std::string_view unit_of(const Topology& t, Variable v);  // SI, as CSV headers write it: "rad/s", "N", ...
 
 // A controller's variable (a controller_* or set_point kind) by the controller's name.
 std::string controller_variable_name(VariableKind kind, std::string_view controller);

@@ -25,14 +25,16 @@ SymbolTable make_symbol_table(const Topology& t) {
     for (const auto& w : b->wheels) parameter(w.radius_parameter);
   }
   for (const auto& m : t.meshes) {
-    parameter(contact_radius(t, m, m.first));
-    parameter(contact_radius(t, m, m.second));
+    if (!m.shaft) {
+      parameter(contact_radius(t, m, m.first));
+      parameter(contact_radius(t, m, m.second));
+    }
     parameter(m.stiffness_parameter);
     parameter(m.damping_parameter);
   }
   for (const VariableKind kind : {VariableKind::torque, VariableKind::acceleration, VariableKind::velocity,
                                   VariableKind::force, VariableKind::force_rate, VariableKind::mesh_velocity,
-                                  VariableKind::transmitted_force, VariableKind::friction_torque,
+                                  VariableKind::transmitted_force, VariableKind::spring_force, VariableKind::friction_torque,
                                   VariableKind::load_torque}) {
     const std::size_t count = variable_count(t, kind);
     for (std::size_t i = 0; i < count; ++i) {

@@ -65,6 +65,12 @@ void check_parameter_roles(const Topology& t) {
     if (b.axis == AxisKind::carried) roles.push_back({b.distance_parameter, length_dimension(), true, "an axis distance", b.where});
   }
   for (const auto& m : t.meshes) {
+    if (m.shaft) {
+      // N m/rad and N m s/rad: the radian is a plain number.
+      roles.push_back({m.stiffness_parameter, torque_dimension(), true, "a shaft's torsional stiffness", m.where});
+      roles.push_back({m.damping_parameter, rotational_damping_dimension(), false, "a shaft's damping coefficient", m.where});
+      continue;
+    }
     roles.push_back({m.stiffness_parameter, stiffness_dimension(), true, "a mesh stiffness", m.where});
     roles.push_back({m.damping_parameter, linear_damping_dimension(), false, "a mesh damping coefficient", m.where});
     for (const std::string& radius : {contact_radius(t, m, m.first), contact_radius(t, m, m.second)})

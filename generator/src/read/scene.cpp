@@ -40,20 +40,39 @@ bool clashes_with_generated_code(const std::string& name, const Scene& s) {
              .has_value();
 }
 
-Effects read_effects(const SceneReader& r, const toml::node& n) {
+Effects read_effects(const SceneReader& r, const toml::node& n, const Topology& t) {
   Effects e;
   for (const std::string& name : r.strings(n, "effects")) {
     if (name == "mesh_compliance") e.mesh_compliance = true;
+    else if (name == "shaft_compliance") e.shaft_compliance = true;
     else if (name == "mesh_damping") e.mesh_damping = true;
+    else if (name == "shaft_damping") e.shaft_damping = true;
     else if (name == "bearing_friction") e.bearing_friction = true;
     else if (name == "mesh_forces") e.mesh_forces = true;
     else
-      r.fail(n, fmt::format("unknown effect '{}'; the effects are mesh_compliance, mesh_damping, bearing_friction, "
-                            "mesh_forces", name));
+      r.fail(n, fmt::format("unknown effect '{}'; the effects are mesh_compliance, shaft_compliance, mesh_damping, "
+                            "shaft_damping, bearing_friction, mesh_forces", name));
   }
+  const bool meshes = toothed_mesh_count(t) > 0, shafts = has_shafts(t);
+  if (!meshes && (e.mesh_compliance || e.mesh_damping))
+    r.fail(n, fmt::format("model {} has no [[mesh]], so {} has nothing to act on; its shafts' effects are "
+                          "shaft_compliance and shaft_damping", t.name, e.mesh_compliance ? "mesh_compliance" : "mesh_damping"));
+  if (!shafts && (e.shaft_compliance || e.shaft_damping))
+    r.fail(n, fmt::format("model {} has no [[shaft]], so {} has nothing to act on; drop it", t.name,
+                          e.shaft_compliance ? "shaft_compliance" : "shaft_damping"));
   if (e.mesh_damping && !e.mesh_compliance)
     r.fail(n, "mesh_damping needs mesh_compliance: a rigid mesh has no deflection to damp; add mesh_compliance "
               "or drop mesh_damping");
+  if (e.shaft_damping && !e.shaft_compliance)
+    r.fail(n, "shaft_damping needs shaft_compliance: a rigid shaft has no twist to damp; add shaft_compliance "
+              "or drop shaft_damping");
+  if (meshes && shafts && e.mesh_compliance != e.shaft_compliance)
+    r.fail(n, fmt::format("{} without {}: pogear derives a gear whose meshes and shafts are both compliant or both "
+                          "rigid, not one of each; add {} or drop {}",
+                          e.mesh_compliance ? "mesh_compliance" : "shaft_compliance",
+                          e.mesh_compliance ? "shaft_compliance" : "mesh_compliance",
+                          e.mesh_compliance ? "shaft_compliance" : "mesh_compliance",
+                          e.mesh_compliance ? "mesh_compliance" : "shaft_compliance"));
   return e;
 }
 
@@ -208,7 +227,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   // Before anything that evaluates a quantity: [initial] and [inputs] may name parameters.
   if (const toml::node* n = root.get("parameters")) apply_overrides(r, *n, s.model);
 
-  if (const toml::node* n = root.get("effects")) s.effects = read_effects(r, *n);
+  if (const toml::node* n = root.get("effects")) s.effects = read_effects(r, *n, topology);
   // Before the tunables, whose names must not be the controllers' variables.
   if (const toml::node* n = root.get("loads")) {
     s.loads = read_loads(r, *n);
@@ -236,9 +255,10 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   if (const toml::node* n = root.get("compare_rigid")) {
     if (!n->is_boolean()) r.fail(*n, "compare_rigid must be true or false");
     s.compare_rigid = **n->as_boolean();
-    if (s.compare_rigid && !s.effects.mesh_compliance)
-      r.fail(*n, "compare_rigid compares the elastic model with the rigid one, but this scene is already rigid "
-                 "(no mesh_compliance); drop compare_rigid or add mesh_compliance");
+    if (s.compare_rigid && !s.effects.elastic())
+      r.fail(*n, fmt::format("compare_rigid compares the elastic model with the rigid one, but this scene is already rigid "
+                             "(no {0}); drop compare_rigid or add {0}",
+                             toothed_mesh_count(topology) > 0 ? "mesh_compliance" : "shaft_compliance"));
   }
 
   std::set<std::string> parameter_names;
@@ -343,10 +363,12 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       } else if (v->kind == VariableKind::velocity) {
         s.initial[*v] = r.quantity(value, angular_velocity_dimension(), name);
       } else {
-        if (!s.effects.mesh_compliance)
-          throw InputError(toml_location(path, key.source()), fmt::format("initial force '{}' needs mesh_compliance: the rigid "
-                                                               "model has no force states", name));
-        s.initial[*v] = r.quantity(value, force_dimension(), name);
+        const bool shaft = topology.meshes[static_cast<std::size_t>(v->index)].shaft;
+        if (!s.effects.elastic())
+          throw InputError(toml_location(path, key.source()),
+                           fmt::format("initial {} '{}' needs {}: the rigid model has no force states",
+                                       shaft ? "shaft torque" : "force", name, shaft ? "shaft_compliance" : "mesh_compliance"));
+        s.initial[*v] = r.quantity(value, shaft ? torque_dimension() : force_dimension(), name);
       }
     }
     // A start in a gear is on the gear's rigid model, at the named speeds unless at equilibrium.
@@ -367,14 +389,25 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       r.fail(*n, "outputs = [] names no output; name the speeds and forces to write, or leave outputs out for all of "
                  "them");
     for (const auto& o : listed) {
-      const auto v = find_scene_variable(s, o, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+      const auto v = find_scene_variable(s, o, {VariableKind::velocity, VariableKind::force, VariableKind::spring_force,
+                                                VariableKind::controller_torque});
       if (const std::string why = fixed_variable_refusal(topology, o); !why.empty()) r.fail(*n, why);
-      if (!v) r.fail(*n, fmt::format("output '{}' is neither omega_<body>, F_<mesh> nor Tc_<controller>", o));
+      if (!v)
+        r.fail(*n, fmt::format("output '{}' is none of omega_<body>, F_<mesh>, Fspring_<mesh>, {}Tc_<controller>", o,
+                               has_shafts(topology) ? "T_<shaft>, Tspring_<shaft>, " : ""));
       if (std::find(s.outputs.begin(), s.outputs.end(), *v) != s.outputs.end())
         r.fail(*n, fmt::format("output '{}' is listed twice", o));
-      if (v->kind == VariableKind::force && !s.effects.mesh_forces)
-        r.fail(*n, fmt::format("output '{}' is a mesh force, but the scene does not ask for mesh_forces; add it to "
-                               "effects", o));
+      const bool shaft = v->kind != VariableKind::velocity && v->kind != VariableKind::controller_torque &&
+                         topology.meshes[static_cast<std::size_t>(v->index)].shaft;
+      if ((v->kind == VariableKind::force || v->kind == VariableKind::spring_force) && !s.effects.mesh_forces)
+        r.fail(*n, fmt::format("output '{}' is a {}, but the scene does not ask for mesh_forces; add it to effects", o,
+                               shaft ? "shaft torque" : "mesh force"));
+      if (v->kind == VariableKind::spring_force && !s.effects.elastic())
+        r.fail(*n, fmt::format("output '{}' is the spring's {} alone, which only a compliant {} has; add {} to effects, "
+                               "or ask for {}, what the rigid {} transmits",
+                               o, shaft ? "torque" : "force", shaft ? "shaft" : "mesh",
+                               shaft ? "shaft_compliance" : "mesh_compliance",
+                               variable_name(topology, {VariableKind::force, v->index}), shaft ? "shaft" : "mesh"));
       s.outputs.push_back(*v);
     }
   }

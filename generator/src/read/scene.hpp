@@ -16,10 +16,15 @@
 namespace pogear {
 
 struct Effects {
-  bool mesh_compliance = false;  // the elastic model; without it the rigid model
-  bool mesh_damping = false;     // B_K (needs compliance)
-  bool bearing_friction = false; // B_J
-  bool mesh_forces = false;      // force outputs
+  bool mesh_compliance = false;   // the toothed meshes are springs
+  bool shaft_compliance = false;  // the shafts are springs
+  bool mesh_damping = false;      // the meshes' B_K (needs mesh_compliance)
+  bool shaft_damping = false;     // the shafts' B_K (needs shaft_compliance)
+  bool bearing_friction = false;  // B_J
+  bool mesh_forces = false;       // force and shaft torque outputs
+  // The elastic model (meshes and shafts compliant: the scene reader refuses one without the other);
+  // without it the rigid model.
+  bool elastic() const { return mesh_compliance || shaft_compliance; }
 };
 
 // An input torque of the scene, in SI units, as the runtime evaluates it.

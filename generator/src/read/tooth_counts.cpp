@@ -54,7 +54,7 @@ void add_pitch_radii(Topology& t) {
     }
   for (int mi = 0; mi < static_cast<int>(t.meshes.size()); ++mi) {
     const Mesh& m = t.meshes[mi];
-    if (m.module.empty()) continue;
+    if (m.shaft || m.module.empty()) continue;
     const Module given = evaluate_module(m.module, m.module_where, m.module_column_offset, known);
     if (wheel(t, m.first).teeth == 0 && wheel(t, m.second).teeth == 0)
       throw InputError(m.module_where, fmt::format("mesh {} gives a module, but neither {} nor {} has teeth; give "
@@ -86,6 +86,7 @@ void add_pitch_radii(Topology& t) {
       t.parameters.push_back(std::move(p));
     }
   for (const Mesh& m : t.meshes) {
+    if (m.shaft) continue;
     const auto a = modules.find({m.first.body, m.first.wheel});
     const auto b = modules.find({m.second.body, m.second.wheel});
     if (a == modules.end() || b == modules.end()) continue;
@@ -192,7 +193,7 @@ GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s) 
     return i;
   };
   for (const Mesh& m : t.meshes) {
-    if (!m.centre_distance.empty()) continue;  // rolling on operating circles, written below
+    if (m.shaft || !m.centre_distance.empty()) continue;  // rolling on operating circles, written below
     const auto a = index.find({m.first.body, m.first.wheel});
     const auto b = index.find({m.second.body, m.second.wheel});
     if (a != index.end() && b != index.end()) parent[root(a->second)] = root(b->second);
@@ -216,7 +217,7 @@ GiNaC::exmap tooth_count_substitutions(const Topology& t, const SymbolTable& s) 
   // centre distance m (Z_c +- Z_p) / 2 of a mesh of the planet that is not shifted.
   auto reference_distance = [&](int planet) -> std::optional<GiNaC::ex> {
     for (const Mesh& m : t.meshes) {
-      if (!m.centre_distance.empty()) continue;
+      if (m.shaft || !m.centre_distance.empty()) continue;
       for (const bool planet_first : {true, false}) {
         const WheelRef p = planet_first ? m.first : m.second, c = planet_first ? m.second : m.first;
         if (p.body != planet || body(t, c.body).axis != AxisKind::central) continue;

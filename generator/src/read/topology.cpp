@@ -19,6 +19,7 @@
 #include "read/model_parameters.hpp"
 #include "read/body_table.hpp"
 #include "read/gear_table.hpp"
+#include "read/shaft_table.hpp"
 #include "read/toml_reader.hpp"
 #include "read/tooth_counts.hpp"
 #include "names/model_variables.hpp"
@@ -76,6 +77,7 @@ void check_unique_names(const Topology& t, bool meshes) {
   seen.clear();
   if (!meshes) return;
   for (const auto& m : t.meshes) {
+    if (m.shaft) continue;  // check_shaft_names
     claim(m.name, m.where, "mesh");
     // A body's bearing friction and a mesh's damping are both b_<name>: one name, two parameters.
     if (const int b = find_body(t, m.name); b >= 0)
@@ -337,40 +339,7 @@ void set_fixed_bodies_apart(Topology& t) {
   t.grounded = std::move(fixed);
 }
 
-}  // namespace
-
-Topology parse_topology_text(const std::string& text, const std::string& path) {
-  TomlReader r{path};
-  const toml::table root = parse_toml_document(
-      text, path, max_model_file_bytes,
-      fmt::format("the file is larger than {} bytes; a model or scene file is a few kilobytes", max_model_file_bytes));
-  r.only_keys(root, {"name", "title", "keep", "body", "mesh", "brake", "clutch", "gears", "parameters"}, "the model file");
-
-  Topology t;
-  t.file = path;
-  t.digest = text_digest(text);
-  if (const toml::node* n = root.get("name")) t.name = r.identifier(*n, "the model name");
-  else t.name = std::filesystem::path(path).stem().string();
-  if (auto s = r.optional_string(root, "title", "title")) {
-    // The title is quoted in one-line comments of generated code, which a line break would end.
-    if (std::any_of(s->begin(), s->end(), [](char c) { return c == '\n' || c == '\r'; }))
-      r.fail(*root.get("title"), "the title is one line; remove the line break");
-    t.title = *s;
-  }
-
-  const toml::array& bodies = array_of_tables(r, root, "body", "[[body]] name = \"c\"");
-  if (bodies.size() > max_bodies)
-    r.fail(bodies, fmt::format("{} bodies; pogear derives gears of at most {} (the symbolic derivation grows steeply "
-                               "with the size); model a smaller part of the gear", bodies.size(), max_bodies));
-  for (const toml::node& n : bodies) t.bodies.push_back(read_body(r, *n.as_table()));
-  check_unique_names(t, false);
-  check_carriers(t);
-
-  // The example names the model's own bodies (a body of one wheel is named by the body).
-  if (!root.get("mesh") && t.bodies.size() < 2)
-    throw InputError(SourceLocation{r.file, 0, 0},
-                     "no [[mesh]] entries, and one body: a gear is two or more bodies whose wheels mesh; add a second "
-                     "[[body]] and a [[mesh]] between them");
+void read_meshes(const TomlReader& r, const toml::table& root, Topology& t) {
   const toml::array& meshes = array_of_tables(
       r, root, "mesh",
       t.bodies.size() < 2 ? std::string("[[mesh]] first = \"p\", second = \"s1\"")
@@ -403,9 +372,50 @@ Topology parse_topology_text(const std::string& text, const std::string& path) {
       read_module(r, *nn, m.centre_distance, m.centre_distance_where, m.centre_distance_column_offset, "centre_distance");
     t.meshes.push_back(std::move(m));
   }
+}
+
+}  // namespace
+
+Topology parse_topology_text(const std::string& text, const std::string& path) {
+  TomlReader r{path};
+  const toml::table root = parse_toml_document(
+      text, path, max_model_file_bytes,
+      fmt::format("the file is larger than {} bytes; a model or scene file is a few kilobytes", max_model_file_bytes));
+  r.only_keys(root, {"name", "title", "keep", "body", "mesh", "shaft", "brake", "clutch", "gears", "parameters"},
+              "the model file");
+
+  Topology t;
+  t.file = path;
+  t.digest = text_digest(text);
+  if (const toml::node* n = root.get("name")) t.name = r.identifier(*n, "the model name");
+  else t.name = std::filesystem::path(path).stem().string();
+  if (auto s = r.optional_string(root, "title", "title")) {
+    // The title is quoted in one-line comments of generated code, which a line break would end.
+    if (std::any_of(s->begin(), s->end(), [](char c) { return c == '\n' || c == '\r'; }))
+      r.fail(*root.get("title"), "the title is one line; remove the line break");
+    t.title = *s;
+  }
+
+  const toml::array& bodies = array_of_tables(r, root, "body", "[[body]] name = \"c\"");
+  if (bodies.size() > max_bodies)
+    r.fail(bodies, fmt::format("{} bodies; pogear derives gears of at most {} (the symbolic derivation grows steeply "
+                               "with the size); model a smaller part of the gear", bodies.size(), max_bodies));
+  for (const toml::node& n : bodies) t.bodies.push_back(read_body(r, *n.as_table()));
+  check_unique_names(t, false);
+  check_carriers(t);
+
+  // The example names the model's own bodies (a body of one wheel is named by the body).
+  if (!root.get("mesh") && !root.get("shaft") && t.bodies.size() < 2)
+    throw InputError(SourceLocation{r.file, 0, 0},
+                     "no [[mesh]] entries, and one body: a gear is two or more bodies whose wheels mesh; add a second "
+                     "[[body]] and a [[mesh]] between them");
+  // A driveline of shafts and inertias needs no mesh.
+  if (root.get("mesh") || !root.get("shaft")) read_meshes(r, root, t);
+  if (const toml::node* shafts = root.get("shaft")) read_shafts(r, *shafts, t);
   check_unique_names(t, true);
   check_lumped_meshes(t);
   read_friction_elements(r, root, t);
+  check_shaft_names(t);
   if (const toml::node* g = root.get("gears")) t.gears = read_gears(r, *g, t);
 
   if (const toml::node* p = root.get("parameters")) read_parameters(r, r.table(*p, "[parameters]"), t);

@@ -28,6 +28,7 @@ struct Printed {
   std::vector<std::string> geometry_mesh;
   std::vector<std::string> angled;  // "ps and pl of carrier c: axes 41.99 deg apart (mesh pspl)"
   std::vector<std::string> lumped;  // "p stands for 3 planets (meshes ps, pr)"
+  std::vector<std::string> shafts;  // "s joins a and b (torque T_s)"
   bool teeth = false;               // Q1, L1, A1 in tooth counts
   std::vector<std::vector<std::string>> R, Q1, L1, A1, B1;
   std::vector<std::pair<std::string, std::string>> closed_form;
@@ -110,6 +111,10 @@ Printed print_all(const Derivation& d, Notation n) {
       if (&body(d.topology, m.first.body) == &b || &body(d.topology, m.second.body) == &b) meshes.push_back(text(m.name));
     p.lumped.push_back(fmt::format("{} stands for {} planets (meshes {})", text(b.name), b.count, joined(meshes)));
   }
+  for (std::size_t i = 0; i < d.topology.meshes.size(); ++i)
+    if (const Mesh& m = d.topology.meshes[i]; m.shaft)
+      p.shafts.push_back(fmt::format("{} joins {} and {} (torque {})", text(m.name), text(body(d.topology, m.first.body).name),
+                                     text(body(d.topology, m.second.body).name), text(d.elastic.forces[i])));
   p.R = print_matrix(d.elastic.R, n);
   const RigidForms rigid = rigid_forms(d);
   p.teeth = rigid.in_teeth;
@@ -235,6 +240,10 @@ std::string math_body(const Derivation& d, const Diagnostics& diagnostics, const
     s += w.paragraph("Lumped planets, each body standing for identical planets that share the load equally: " +
                      joined(p.lumped, "; ") + ". The model multiplies their inertia and friction, and their meshes' "
                      "stiffness and damping, by the count; the mesh forces below are one planet's.");
+  if (!p.shafts.empty())
+    s += w.paragraph("Shafts, torsional springs and dampers whose rows of R are their twist rates: " +
+                     joined(p.shafts, "; ") + ". Their entries of $\\mathbf{F}$ are torques (N m), of $\\mathbf{K}$ and "
+                     "$\\mathbf{B}_K$ in N m/rad and N m s/rad.");
   s += w.heading("Diagnostics");
   s += w.paragraph("Of the elastic model with every effect, at the model's values:");
   {
@@ -341,6 +350,12 @@ std::string report_text(const Derivation& d, const Diagnostics& diagnostics) {
     for (const auto& line : p.lumped) s += "  " + line + "\n";
     s += "\n";
   }
+  if (!p.shafts.empty()) {
+    s += "shafts (torsional springs and dampers; their rows of R are their twist rates, their entries of F\n"
+         "torques [N m], of K and B_K N m/rad and N m s/rad):\n";
+    for (const auto& line : p.shafts) s += "  " + line + "\n";
+    s += "\n";
+  }
   s += "diagnostics (elastic model, every effect, at the model's values):\n" + diagnostics_text(diagnostics, "  ") + "\n";
   if (!p.engaged.empty()) {
     s += "engaged: " + joined(p.engaged, ", ") + ", stuck: their rows E_S (E_S omega is each one's slip) join R, and\n"
@@ -424,6 +439,13 @@ std::string report_json(const Derivation& d, const Diagnostics& diagnostics) {
   for (const Body& b : d.topology.bodies)
     if (b.count > 1) lumped.push_back(fmt::format("{{\"body\": {}, \"count\": {}}}", json_string(b.name), b.count));
   j += "  \"lumped_planets\": [" + joined(lumped, ", ") + "],\n";
+  std::vector<std::string> shafts;  // in the order of their rows of R, after the meshes
+  for (const Mesh& m : d.topology.meshes)
+    if (m.shaft)
+      shafts.push_back(fmt::format("{{\"shaft\": {}, \"bodies\": [{}, {}]}}", json_string(m.name),
+                                   json_string(body(d.topology, m.first.body).name),
+                                   json_string(body(d.topology, m.second.body).name)));
+  j += "  \"shafts\": [" + joined(shafts, ", ") + "],\n";
   std::vector<std::string> fixed;
   for (const Body& b : d.topology.grounded) fixed.push_back(b.name);
   j += "  \"fixed\": " + json_strings(fixed) + ",\n";

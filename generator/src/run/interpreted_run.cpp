@@ -84,8 +84,8 @@ std::vector<rt::TorqueLimitData> torque_limits(const SpecializedScene& model, co
 int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run,
                         const std::string& suffix) {
   InterpretedSystem is{numeric_system(model, sys), port_names(model.derivation.symbols, output_variables(sys)),
-                       output_units(sys)};
-  is.state_units = state_units(sys);
+                       output_units(model.derivation.topology, sys)};
+  is.state_units = state_units(model.derivation.topology, sys);
   if (!sys.friction_elements.empty() || !sys.limited_controllers.empty())
     return rt::run_hybrid_system(is, {}, input_signals(sys), friction_data(model), torque_limits(model, sys), is.ns.x0,
                                  run, suffix);
@@ -102,7 +102,7 @@ int run_interpreted(const SpecializedScene& model, const rt::SceneRun& run) {
 
 Trajectory interpret_trajectory(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run) {
   const InterpretedSystem is{numeric_system(model, sys), port_names(model.derivation.symbols, output_variables(sys)),
-                             output_units(sys)};
+                             output_units(model.derivation.topology, sys)};
   const std::vector<rt::Signal> signals = input_signals(sys);
   Eigen::VectorXd u(static_cast<Eigen::Index>(signals.size())), y(sys.outputs.size());
   auto f = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {

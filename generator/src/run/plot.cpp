@@ -68,13 +68,16 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
   const auto elastic = thinned_csv_rows((fs::path(dir) / (name + ".csv")).string(), model.scene.horizon);
   std::vector<std::vector<double>> rigid;
   if (model.rigid) rigid = thinned_csv_rows((fs::path(dir) / (name + ".rigid.csv")).string(), model.scene.horizon);
-  for (const std::string kind : {"velocities", "forces", "controllers"}) {
-    const VariableKind shown = kind == "velocities" ? VariableKind::velocity
-                               : kind == "forces"   ? VariableKind::force
-                                                    : VariableKind::controller_torque;
+  // Like with like: speeds, mesh forces [N], shaft torques [N m], controller torques [N m].
+  auto figure_of = [&](Variable y) -> std::string {
+    if (y.kind == VariableKind::velocity) return "velocities";
+    if (y.kind == VariableKind::controller_torque) return "controllers";
+    return model.derivation.topology.meshes[static_cast<std::size_t>(y.index)].shaft ? "shafts" : "forces";
+  };
+  for (const std::string kind : {"velocities", "forces", "shafts", "controllers"}) {
     std::vector<int> columns;  // 1-based gnuplot columns; column 1 is t
     for (std::size_t i = 0; i < model.main.outputs.size(); ++i)
-      if (model.main.outputs[i].variable.kind == shown) columns.push_back(static_cast<int>(i) + 2);
+      if (figure_of(model.main.outputs[i].variable) == kind) columns.push_back(static_cast<int>(i) + 2);
     if (columns.empty()) continue;
     // Every word of the script is pogear's own or a validated name: the scene's name and the
     // outputs' names are identifiers (checked when the files are read), and the data are numbers.
@@ -85,7 +88,10 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
     if (model.rigid) script += gnuplot_datablock("rigid", rigid);
     script += "set grid\nset key outside right top\n";
     script += fmt::format("set title '{}: {}{}' noenhanced\n", name,
-                          kind == "velocities" ? "angular velocities" : kind == "forces" ? "mesh forces" : "controller torques",
+                          kind == "velocities" ? "angular velocities"
+                          : kind == "forces"   ? "mesh forces"
+                          : kind == "shafts"   ? "shaft torques"
+                                               : "controller torques",
                           model.rigid ? " (rigid model dashed, in the same colour)" : "");
     script += "set xlabel 't [s]'\n";
     script += fmt::format("set ylabel '{}'\n", kind == "velocities" ? (model.scene.speeds_in_rpm ? "n [rpm]" : "{/Symbol w} [rad/s]")

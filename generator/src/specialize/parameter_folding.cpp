@@ -37,8 +37,8 @@ GiNaC::exmap parameter_folding(const Scene& sc, const Derivation& d, bool keep_t
   }
   if (!sc.effects.bearing_friction)
     for (const auto& b : d.topology.bodies) fold[parameter_symbol(s, b.friction_parameter)] = 0;
-  if (!sc.effects.mesh_damping)
-    for (const auto& m : d.topology.meshes) fold[parameter_symbol(s, m.damping_parameter)] = 0;
+  for (const auto& m : d.topology.meshes)
+    if (!(m.shaft ? sc.effects.shaft_damping : sc.effects.mesh_damping)) fold[parameter_symbol(s, m.damping_parameter)] = 0;
   return fold;
 }
 

@@ -58,9 +58,20 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
     out.L = doubles(L);
     out.M = doubles(exact_solve(L, exact(e.A)));
     out.N = doubles(exact_solve(L, input_columns(exact(e.B))));
-    for (std::size_t i = 0; i < ny; ++i)
-      if (sys.outputs[i].variable.kind != VariableKind::controller_torque)
-        out.C(i, state_index(sys.outputs[i].variable)) = 1;
+    const GiNaC::matrix BKR = exact_product(exact(e.B_K), exact(e.R));
+    for (std::size_t i = 0; i < ny; ++i) {
+      const Variable y = sys.outputs[i].variable;
+      if (y.kind == VariableKind::controller_torque) continue;
+      if (y.kind == VariableKind::spring_force) {
+        out.C(i, state_index({VariableKind::force, y.index})) = 1;
+        continue;
+      }
+      out.C(i, state_index(y)) = 1;
+      if (y.kind == VariableKind::force)  // the damper's share: F + b_K R omega
+        for (std::size_t b = 0; b < n; ++b)
+          out.C(i, state_index({VariableKind::velocity, static_cast<int>(b)})) +=
+              to_double(as_number(BKR(static_cast<unsigned>(y.index), static_cast<unsigned>(b))));
+    }
   } else {
     // L1, A1 and Q1 from Q1's entries, not by substituting into the closed forms (the same numbers).
     const RigidValues v = exact_rigid_values(d.rigid, e, values);
@@ -98,7 +109,7 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
       const Variable y = sys.outputs[i].variable;
       if (y.kind == VariableKind::velocity) {
         out.C.row(i) = Q1n.row(y.index);
-      } else if (y.kind == VariableKind::force) {
+      } else if (y.kind == VariableKind::force || y.kind == VariableKind::spring_force) {  // the spring carries F
         const Eigen::Index f = y.index;
         out.C.row(i) = C_F.row(f);
         out.E.row(i) = E_F.row(f);
@@ -199,7 +210,7 @@ void controller_outputs(const SpecializedSystem& sys, const std::vector<Variable
 void output_scales(const Topology& t, const SpecializedSystem& sys, NumericSystem& out) {
   for (Eigen::Index i = 0; i < out.C.rows(); ++i) {
     const OutputPort& y = sys.outputs[static_cast<std::size_t>(i)];
-    if (y.variable.kind == VariableKind::force) {
+    if (y.variable.kind == VariableKind::force || y.variable.kind == VariableKind::spring_force) {
       const double count = mesh_count(t, t.meshes[static_cast<std::size_t>(y.variable.index)]);
       out.C.row(i) /= count;
       out.D.row(i) /= count;

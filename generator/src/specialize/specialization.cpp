@@ -164,6 +164,18 @@ ex output_value(const Derivation& d, const GiNaC::exmap& fold, const OpenInputs&
     const auto law = loop_outputs.find(variable_symbol(s, out));
     return law != loop_outputs.end() ? law->second : ex(variable_symbol(s, out));
   }
+  if (out.kind == VariableKind::spring_force) {
+    if (elastic) return variable_symbol(s, {VariableKind::force, out.index});
+    out.kind = VariableKind::force;  // as K grows, R omega and the damper's share vanish: the spring carries F
+  }
+  if (elastic && out.kind == VariableKind::force) {
+    // What the mesh or shaft passes on: its spring's force and its damper's, F + b_K R omega, which
+    // the rigid model's F is the limit of.
+    ex rate = 0;
+    for (std::size_t k = 0; k < d.topology.bodies.size(); ++k)
+      rate += d.elastic.R(out.index, k) * variable_symbol(s, {VariableKind::velocity, static_cast<int>(k)});
+    return folded(variable_symbol(s, out) + d.elastic.B_K(out.index, out.index) * rate, fold);
+  }
   if (elastic || contains(states, out)) return variable_symbol(s, out);
   if (out.kind == VariableKind::velocity) {
     ex w = 0;
@@ -190,7 +202,7 @@ SystemOutputs system_outputs(const Scene& sc, const Derivation& d, const GiNaC::
     out.reads_derivatives = out.reads_derivatives || (!elastic && !contains(states, y) &&
                                                       y.kind != VariableKind::controller_torque &&
                                                       y.kind != VariableKind::velocity);
-    if (y.kind == VariableKind::force && mesh_count(t, t.meshes[y.index]) > 1)
+    if ((y.kind == VariableKind::force || y.kind == VariableKind::spring_force) && mesh_count(t, t.meshes[y.index]) > 1)
       value = folded(value / mesh_count(t, t.meshes[y.index]), fold);
     if (in_rpm) value = folded(value * exact_number(rpm_per_rad_per_s), fold);
     out.ports.push_back({y, value, in_rpm});
@@ -321,15 +333,15 @@ std::vector<std::string> port_names(const SymbolTable& s, const std::vector<Vari
   return names;
 }
 
-std::vector<std::string> state_units(const SpecializedSystem& sys) {
+std::vector<std::string> state_units(const Topology& t, const SpecializedSystem& sys) {
   std::vector<std::string> units;
-  for (const StatePort& x : sys.states) units.emplace_back(unit_of(x.variable.kind));
+  for (const StatePort& x : sys.states) units.emplace_back(unit_of(t, x.variable));
   return units;
 }
 
-std::vector<std::string> output_units(const SpecializedSystem& sys) {
+std::vector<std::string> output_units(const Topology& t, const SpecializedSystem& sys) {
   std::vector<std::string> units;
-  for (const OutputPort& y : sys.outputs) units.emplace_back(y.in_rpm ? "rpm" : unit_of(y.variable.kind));
+  for (const OutputPort& y : sys.outputs) units.emplace_back(y.in_rpm ? "rpm" : unit_of(t, y.variable));
   return units;
 }
 
@@ -366,7 +378,7 @@ SpecializedScene specialize(const Scene& scene) {
   // With every parameter a number the rigid system needs no closed forms of L1 and A1.
   model.derivation = derive_topology(scene.model, keep, scene.keep_where, !scene.tunable.empty());
   add_controller_symbols(model.derivation.symbols, controller_names(scene));
-  const bool rigid_forces = scene.effects.mesh_forces && (!scene.effects.mesh_compliance || scene.compare_rigid);
+  const bool rigid_forces = scene.effects.mesh_forces && (!scene.effects.elastic() || scene.compare_rigid);
   if (model.derivation.rigid.redundant_meshes && rigid_forces && !scene.tunable.empty())
     throw InputError(SourceLocation{scene.file, 0, 0},
                      "this model has redundant meshes, whose rigid load split depends on every stiffness and "
@@ -374,7 +386,7 @@ SpecializedScene specialize(const Scene& scene) {
                      "drop 'tunable' or 'mesh_forces'");
   model.values = scene_values(scene, model.derivation);
   if (!scene.tunable.empty()) check_tunable_geometry(scene, model.derivation, model.values.equations);
-  model.main = specialize_system(scene, model.derivation, model.values, scene.effects.mesh_compliance);
+  model.main = specialize_system(scene, model.derivation, model.values, scene.effects.elastic());
   if (scene.compare_rigid) model.rigid = specialize_system(scene, model.derivation, model.values, false);
   const Topology& t = model.derivation.topology;
   for (const EngagementSpec& e : scene.engagement) {

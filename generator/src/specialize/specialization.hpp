@@ -140,8 +140,8 @@ std::vector<double> initial_values(const SpecializedSystem& sys);
 std::vector<GiNaC::ex> output_values(const SpecializedSystem& sys);
 // Names and units as the generated code and the CSV files write them.
 std::vector<std::string> port_names(const SymbolTable& s, const std::vector<Variable>& ports);
-std::vector<std::string> state_units(const SpecializedSystem& sys);
-std::vector<std::string> output_units(const SpecializedSystem& sys);
+std::vector<std::string> state_units(const Topology& t, const SpecializedSystem& sys);
+std::vector<std::string> output_units(const Topology& t, const SpecializedSystem& sys);
 // The elastic or the rigid system of a scene, at its folded values: the gear's equations, its
 // loads and controllers closed in, initial state, outputs, slips of the engaged elements.
 SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, const SceneValues& values, bool elastic);

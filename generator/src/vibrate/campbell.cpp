@@ -96,6 +96,7 @@ CampbellDiagram campbell_diagram(const Derivation& d, const GiNaC::exmap& values
       c.natural_hz.push_back(mode.frequency_hz);
   }
   for (const Mesh& m : t.meshes) {
+    if (m.shaft) continue;  // no teeth, no mesh frequency
     const int frame = mesh_frame(t, m);
     MeshLine line;
     for (const WheelRef w : {m.first, m.second}) {

@@ -129,8 +129,8 @@ double refine_peak(const HessenbergSystem& s, int out, int in, double f0, double
 }
 
 // "rad/s" -> "(rad/s)", "N m" -> "(N m)", "N" -> "N": a unit of H reads (rad/s)/(N m).
-std::string unit_text(Variable v) {
-  const std::string u(unit_of(v.kind));
+std::string unit_text(const Topology& topology, Variable v) {
+  const std::string u(unit_of(topology, v));
   return u.find_first_of("/ ") == std::string::npos ? u : "(" + u + ")";
 }
 
@@ -209,7 +209,7 @@ std::vector<TransferFunction> frequency_response(const Scene& scene, const std::
                                                  const std::vector<int>& engaged) {
   Scene s = response_scene(scene, inputs, outputs, engaged);
   for (const Variable y : outputs) s.effects.mesh_forces = s.effects.mesh_forces || y.kind == VariableKind::force;
-  s.compare_rigid = s.effects.mesh_compliance;
+  s.compare_rigid = s.effects.elastic();
   s.tunable.clear();
   s.start = Start::given;      // the response is of the system, from any state
   s.speeds_in_rpm = false;     // transfer functions in SI
@@ -232,10 +232,10 @@ std::vector<TransferFunction> frequency_response(const Scene& scene, const std::
       t.input = inputs[i], t.output = outputs[o];
       t.input_name = variable_name(model.derivation.symbols, t.input);
       t.output_name = variable_name(model.derivation.symbols, t.output);
-      t.unit = unit_text(t.output) + "/" + unit_text(t.input);
+      t.unit = unit_text(model.derivation.topology, t.output) + "/" + unit_text(model.derivation.topology, t.input);
       t.frequency_hz = f;
     }
-  const bool undamped = !s.effects.mesh_damping && !s.effects.bearing_friction;
+  const bool undamped = !s.effects.mesh_damping && !s.effects.shaft_damping && !s.effects.bearing_friction;
   for (const double fk : f) {
     const double w = 2 * std::numbers::pi * fk;
     const TransferValues h = transfer_matrix(main, w);

@@ -61,18 +61,22 @@ ModesInput modes_input(const std::string& path, const std::optional<std::string>
     return {std::move(d), std::move(values), "mesh damping and bearing friction, as the model defines them", std::move(e), {}};
   }
   const Scene scene = parse_scene(path);
-  if (!scene.effects.mesh_compliance)
-    throw InputError(where, "the scene simulates the rigid model (no mesh_compliance in its effects), which has no "
-                            "elastic modes; add mesh_compliance to its effects, or give the model file");
+  if (!scene.effects.elastic())
+    throw InputError(where, fmt::format("the scene simulates the rigid model (no {0} in its effects), which has no "
+                                        "elastic modes; add {0} to its effects, or give the model file",
+                                        toothed_mesh_count(scene.model) > 0 ? "mesh_compliance" : "shaft_compliance"));
   std::optional<std::vector<std::string>> keep;
   if (!scene.keep.empty()) keep = scene.keep;
   Derivation d = derive_topology(scene.model, keep, scene.keep_where, false);
   std::vector<std::string> damping;
   if (scene.effects.mesh_damping) damping.push_back("mesh damping");
+  if (scene.effects.shaft_damping) damping.push_back("shaft damping");
   if (scene.effects.bearing_friction) damping.push_back("bearing friction");
   const std::string which = damping.empty() ? std::string("none (the scene's effects have no damping)")
-                            : damping.size() == 1 ? damping[0] + ", as the scene calls for"
-                                                  : damping[0] + " and " + damping[1] + ", as the scene calls for";
+                            : damping.size() == 1
+                                ? damping[0] + ", as the scene calls for"
+                                : joined(std::vector<std::string>(damping.begin(), damping.end() - 1), ", ") + " and " +
+                                      damping.back() + ", as the scene calls for";
   GiNaC::exmap values = scene_values(scene, d).numbers;
   std::vector<int> e = stuck(d.topology);
   return {std::move(d), std::move(values), which, std::move(e), scene_elements_left_open(scene, engaged.has_value())};
