@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
       app.add_subcommand("response", "Frequency response of a scene: CSV, Bode figure, resonance peaks");
   response->add_option("SCENE", response_request.scene_file, "Scene file (TOML)")->required();
   response->add_option("--input", response_command.inputs, "Input torques, comma-separated, e.g. tau_c")->required();
-  response->add_option("--output", response_command.outputs, "Outputs, comma-separated: omega_<body> or F_<mesh>")
+  response->add_option("--output", response_command.outputs, "Outputs, comma-separated: omega_<body>, F_<mesh> or T_<shaft>")
       ->required();
   response->add_option("--from", response_request.from, "Lowest frequency, e.g. 1*Hz (default)");
   response->add_option("--to", response_request.to, "Highest frequency, e.g. 10*kHz (default)");

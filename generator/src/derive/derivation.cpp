@@ -21,6 +21,8 @@ ElasticModel engaged_constraints(const Derivation& d, const std::vector<int>& en
   const int gear_rank = numeric_rank(Rn);
   const int n = static_cast<int>(t.bodies.size());
   const std::string names = engaged_names(t, engaged, ", ");
+  // Rigid shafts join their bodies as meshes do: a clutch across one adds nothing in the rigid model.
+  const std::string rows = has_shafts(t) ? "the meshes and rigid shafts" : "the meshes";
   // Element by element, so that the message names the first one that adds nothing.
   for (std::size_t k = 1; k <= engaged.size(); ++k) {
     const std::vector<int> first(engaged.begin(), engaged.begin() + k);
@@ -28,7 +30,7 @@ ElasticModel engaged_constraints(const Derivation& d, const std::vector<int>& en
       throw InputError(where, fmt::format("engaging {} adds no constraint that {} do not already impose, so its torque "
                                           "is not determined; engage fewer elements (pogear ratios lists the sets)",
                                           t.friction_elements[engaged[k - 1]].name,
-                                          k == 1 ? std::string("the meshes") : engaged_names(t, std::vector<int>(first.begin(), first.end() - 1), ", ") + " and the meshes"));
+                                          k == 1 ? rows : engaged_names(t, std::vector<int>(first.begin(), first.end() - 1), ", ") + " and " + rows));
   }
   if (gear_rank + static_cast<int>(engaged.size()) == n)
     throw InputError(where, fmt::format("engaging {} locks the gear: no body can turn, so there is no rigid model; "

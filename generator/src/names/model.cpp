@@ -62,6 +62,18 @@ int mesh_count(const Topology& t, const Mesh& m) {
   return std::max(body(t, m.first.body).count, body(t, m.second.body).count);
 }
 
+void add_turning_body(Topology& t, Body b) {
+  const int turning = static_cast<int>(t.bodies.size());
+  for (Mesh& m : t.meshes)
+    for (WheelRef* w : {&m.first, &m.second})
+      if (w->body >= turning) ++w->body;
+  for (FrictionElement& e : t.friction_elements) {
+    if (e.first >= turning) ++e.first;
+    if (e.second >= turning) ++e.second;
+  }
+  t.bodies.push_back(std::move(b));
+}
+
 std::size_t toothed_mesh_count(const Topology& t) {
   return static_cast<std::size_t>(std::count_if(t.meshes.begin(), t.meshes.end(), [](const Mesh& m) { return !m.shaft; }));
 }

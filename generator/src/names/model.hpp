@@ -67,6 +67,9 @@ struct Mesh {
   // A shaft: its row of R is a_first u_first - a_second u_second (arrows as a clutch's slip), its
   // stiffness N m/rad, its damping N m s/rad; shafts come after the meshes, in file order.
   bool shaft = false;
+  // A shaft's outputs T_, Tspring_ are its torque times this: a vehicle's half-shafts, which the model
+  // carries reflected through the final drive, report the torque at the wheels (scene [vehicle]).
+  double output_scale = 1;
   std::string stiffness_parameter;  // K_<name> unless set
   std::string damping_parameter;    // b_<name> unless set
   SourceLocation where;
@@ -147,6 +150,8 @@ std::string fixed_variable_refusal(const Topology& t, std::string_view variable)
 // How many identical planets a mesh stands for: its lumped planet's count, 1 for other meshes. The
 // model's F_<mesh> is their sum; the outputs and reports give one planet's share.
 int mesh_count(const Topology& t, const Mesh& m);
+// Adds a turning body (after the others), keeping the fixed bodies' indices (bodies.size() + k) right.
+void add_turning_body(Topology& t, Body b);
 // The toothed meshes, the leading part of Topology::meshes (the shafts follow them).
 std::size_t toothed_mesh_count(const Topology& t);
 bool has_shafts(const Topology& t);

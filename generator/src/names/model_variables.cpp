@@ -28,6 +28,8 @@ KindText text_of(VariableKind kind) {
     case VariableKind::controller_integral: return {"theta_", "rad"};
     case VariableKind::controller_error: return {"e_", "rad/s"};
     case VariableKind::set_point: return {"ref_", "rad/s"};
+    case VariableKind::vehicle_speed: return {"vehicle_speed", "km/h"};
+    case VariableKind::vehicle_acceleration: return {"vehicle_acceleration", "m/s^2"};
   }
   return {"", ""};
 }
@@ -46,6 +48,10 @@ bool of_body(VariableKind kind) {
          kind == VariableKind::load_torque;
 }
 
+bool of_vehicle(VariableKind kind) {
+  return kind == VariableKind::vehicle_speed || kind == VariableKind::vehicle_acceleration;
+}
+
 bool of_controller(VariableKind kind) {
   return kind == VariableKind::controller_torque || kind == VariableKind::controller_integral ||
          kind == VariableKind::controller_error || kind == VariableKind::set_point;
@@ -53,7 +59,7 @@ bool of_controller(VariableKind kind) {
 
 std::size_t variable_count(const Topology& t, VariableKind kind) {
   if (kind == VariableKind::friction_torque) return t.friction_elements.size();
-  if (of_controller(kind)) return 0;  // a scene's, named by controller_variable_name
+  if (of_controller(kind) || of_vehicle(kind)) return 0;  // a scene's
   return of_body(kind) ? t.bodies.size() : t.meshes.size();
 }
 
@@ -72,13 +78,14 @@ KindText shaft_text(VariableKind kind) {
 }
 
 bool of_shaft(const Topology& t, Variable v) {
-  return !of_body(v.kind) && !of_controller(v.kind) && v.kind != VariableKind::friction_torque &&
+  return !of_body(v.kind) && !of_controller(v.kind) && !of_vehicle(v.kind) && v.kind != VariableKind::friction_torque &&
          t.meshes.at(static_cast<std::size_t>(v.index)).shaft;
 }
 
 }  // namespace
 
 std::string variable_name(const Topology& t, Variable v) {
+  if (of_vehicle(v.kind)) return std::string(text_of(v.kind).prefix);
   if (of_controller(v.kind))
     throw std::logic_error("a controller's variable is the scene's: its name comes from the symbol table");
   const auto i = static_cast<std::size_t>(v.index);
@@ -105,7 +112,7 @@ Variable derivative_of(Variable state) {
 }
 
 std::string_view unit_of(const Topology& t, Variable v) {
-  if (of_controller(v.kind)) return text_of(v.kind).unit;
+  if (of_controller(v.kind) || of_vehicle(v.kind)) return text_of(v.kind).unit;
   return (of_shaft(t, v) ? shaft_text(v.kind) : text_of(v.kind)).unit;
 }
 

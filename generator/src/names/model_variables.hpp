@@ -26,6 +26,8 @@ enum class VariableKind {
   controller_integral,  // theta_<controller> [rad]: the integral of its speed error, a state
   controller_error,   // e_<controller> = d theta/dt [rad/s]: set-point less measured speed
   set_point,          // ref_<controller> [rad/s]: its set-point, an input
+  vehicle_speed,         // vehicle_speed [km/h]: a scene's [vehicle], r_w omega_wheels, an output
+  vehicle_acceleration,  // vehicle_acceleration [m/s^2]: its derivative, an output
 };
 
 // A variable of body or mesh `index`, as the kind says.
@@ -39,6 +41,7 @@ struct Variable {
 // controller_* and set_point of a controller; the others of a mesh.
 bool of_body(VariableKind kind);
 bool of_controller(VariableKind kind);
+bool of_vehicle(VariableKind kind);  // a scene's [vehicle]: named here, index 0
 // How many variables of this kind the model has (its bodies, meshes or friction elements; none of
 // a controller's kinds: controllers are a scene's, not the model's).
 std::size_t variable_count(const Topology& t, VariableKind kind);

@@ -52,6 +52,11 @@ void add_controller_symbols(SymbolTable& s, const std::vector<std::string>& cont
       s.variables.emplace(Variable{kind, static_cast<int>(c)}, GiNaC::realsymbol(controller_variable_name(kind, controllers[c])));
 }
 
+void add_vehicle_symbols(SymbolTable& s) {
+  for (const VariableKind kind : {VariableKind::vehicle_speed, VariableKind::vehicle_acceleration})
+    s.variables.emplace(Variable{kind, 0}, GiNaC::realsymbol(variable_name(Topology{}, {kind, 0})));
+}
+
 std::string variable_name(const SymbolTable& s, Variable v) { return variable_symbol(s, v).get_name(); }
 
 const GiNaC::realsymbol& parameter_symbol(const SymbolTable& s, const std::string& name) {

@@ -21,6 +21,7 @@
 #include "names/model_variables.hpp"
 #include "read/gear_table.hpp"
 #include "read/loads_and_controllers.hpp"
+#include "read/vehicle_table.hpp"
 #include "read/scene_reader.hpp"
 #include "read/toml_reader.hpp"
 #include "read/tooth_counts.hpp"
@@ -182,7 +183,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       fmt::format("the scene file is larger than {} bytes; a model or scene file is a few kilobytes",
                   max_model_file_bytes));
   r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
-                     "parameters", "simulation", "engagement", "speed_unit", "loads", "controllers"},
+                     "parameters", "simulation", "engagement", "speed_unit", "loads", "controllers", "vehicle"},
               "the scene file");
   Scene s;
   s.file = path;
@@ -227,12 +228,16 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   // Before anything that evaluates a quantity: [initial] and [inputs] may name parameters.
   if (const toml::node* n = root.get("parameters")) apply_overrides(r, *n, s.model);
 
+  // Before the effects, which ask for the compliance of its half-shafts.
+  if (const toml::node* n = root.get("vehicle")) read_vehicle(r, *n, s);
   if (const toml::node* n = root.get("effects")) s.effects = read_effects(r, *n, topology);
   // Before the tunables, whose names must not be the controllers' variables.
   if (const toml::node* n = root.get("loads")) {
     s.loads = read_loads(r, *n);
     s.loads_where = r.loc(*n);
   }
+  if (s.vehicle) add_road_load(s);
+
   if (const toml::node* n = root.get("controllers")) {
     s.controllers = read_controllers(r, *n, scene_dir, s.model);
     s.controllers_where = r.loc(*n);
@@ -343,8 +348,12 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         throw InputError(toml_location(path, key.source()), why);
       if (!v)
         throw InputError(toml_location(path, key.source()),
-                         fmt::format("'{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene; name a "
-                                     "body's speed, a mesh's force or a controller's start torque", name));
+                         has_shafts(topology)
+                             ? fmt::format("'{}' is none of omega_<body>, F_<mesh>, T_<shaft> and Tc_<controller> of the "
+                                           "scene; name a body's speed, a mesh's force, a shaft's torque or a "
+                                           "controller's start torque", name)
+                             : fmt::format("'{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the scene; "
+                                           "name a body's speed, a mesh's force or a controller's start torque", name));
       if (v->kind == VariableKind::controller_torque) {
         // The controller starts at this torque through its integral's initial value.
         const ControllerSpec& c = s.controllers[static_cast<std::size_t>(v->index)];
@@ -390,14 +399,15 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                  "them");
     for (const auto& o : listed) {
       const auto v = find_scene_variable(s, o, {VariableKind::velocity, VariableKind::force, VariableKind::spring_force,
-                                                VariableKind::controller_torque});
+                                                VariableKind::controller_torque, VariableKind::vehicle_speed,
+                                                VariableKind::vehicle_acceleration});
       if (const std::string why = fixed_variable_refusal(topology, o); !why.empty()) r.fail(*n, why);
       if (!v)
         r.fail(*n, fmt::format("output '{}' is none of omega_<body>, F_<mesh>, Fspring_<mesh>, {}Tc_<controller>", o,
                                has_shafts(topology) ? "T_<shaft>, Tspring_<shaft>, " : ""));
       if (std::find(s.outputs.begin(), s.outputs.end(), *v) != s.outputs.end())
         r.fail(*n, fmt::format("output '{}' is listed twice", o));
-      const bool shaft = v->kind != VariableKind::velocity && v->kind != VariableKind::controller_torque &&
+      const bool shaft = (v->kind == VariableKind::force || v->kind == VariableKind::spring_force) &&
                          topology.meshes[static_cast<std::size_t>(v->index)].shaft;
       if ((v->kind == VariableKind::force || v->kind == VariableKind::spring_force) && !s.effects.mesh_forces)
         r.fail(*n, fmt::format("output '{}' is a {}, but the scene does not ask for mesh_forces; add it to effects", o,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,19 @@ struct LoadSpec {
   int body = -1;
   double constant = 0, linear = 0, quadratic = 0;
   SourceLocation where;
+};
+
+// A scene's [vehicle]: the car and its wheels on half-shafts from `body` through a final drive, as a
+// body `vehicle` of the model turning at `body`'s speed scale (read/vehicle_table.hpp).
+struct VehicleSpec {
+  int body = -1;          // the body that drives the final drive
+  int vehicle_body = -1;  // the body the vehicle adds
+  double mass = 0, wheel_radius = 0, final_drive = 1, wheel_inertia = 0;
+  double rolling_resistance = 0, grade = 0;  // grade: the road's angle [rad]
+  double drag = 0;                           // rho c_d A / 2 [kg/m]
+  SourceLocation where;
+  // vehicle_speed = r omega_vehicle / i [m/s per rad/s]
+  double speed_per_omega() const { return wheel_radius / final_drive; }
 };
 
 // A PI speed controller (scene-format.md, "Controllers"): the torque kp e + ki theta on `body`, with
@@ -94,6 +108,7 @@ struct Scene {
   // listed, or whose command is zero at every time, is open throughout and leaves no term.
   std::vector<EngagementSpec> engagement;
   std::vector<LoadSpec> loads;  // in body order, at most one per body
+  std::optional<VehicleSpec> vehicle;
   // In the order of Topology::controllers, which names them for their variables.
   std::vector<ControllerSpec> controllers;
   bool solver_given = false;  // a quadratic load makes dopri5 the default

@@ -72,9 +72,11 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
   auto figure_of = [&](Variable y) -> std::string {
     if (y.kind == VariableKind::velocity) return "velocities";
     if (y.kind == VariableKind::controller_torque) return "controllers";
+    if (y.kind == VariableKind::vehicle_speed) return "vehicle";
+    if (y.kind == VariableKind::vehicle_acceleration) return "vehicle_acceleration";
     return model.derivation.topology.meshes[static_cast<std::size_t>(y.index)].shaft ? "shafts" : "forces";
   };
-  for (const std::string kind : {"velocities", "forces", "shafts", "controllers"}) {
+  for (const std::string kind : {"velocities", "forces", "shafts", "controllers", "vehicle"}) {
     std::vector<int> columns;  // 1-based gnuplot columns; column 1 is t
     for (std::size_t i = 0; i < model.main.outputs.size(); ++i)
       if (figure_of(model.main.outputs[i].variable) == kind) columns.push_back(static_cast<int>(i) + 2);
@@ -91,11 +93,13 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
                           kind == "velocities" ? "angular velocities"
                           : kind == "forces"   ? "mesh forces"
                           : kind == "shafts"   ? "shaft torques"
+                          : kind == "vehicle"  ? "vehicle speed"
                                                : "controller torques",
                           model.rigid ? " (rigid model dashed, in the same colour)" : "");
     script += "set xlabel 't [s]'\n";
     script += fmt::format("set ylabel '{}'\n", kind == "velocities" ? (model.scene.speeds_in_rpm ? "n [rpm]" : "{/Symbol w} [rad/s]")
                                                 : kind == "forces"   ? "F [N]"
+                                                : kind == "vehicle"  ? "v [km/h]"
                                                                      : "T [N m]");
     script += "plot ";
     // One colour per quantity; its rigid curve dashed in that colour, one legend entry saying so.

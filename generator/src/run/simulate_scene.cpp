@@ -68,7 +68,8 @@ void list_stale_outputs(const std::string& name, const std::string& dir, fs::fil
                         std::ostream& out) {
   started -= std::chrono::seconds(1);
   for (const char* suffix : {".csv", ".rigid.csv", ".events.csv", ".rigid.events.csv", ".velocities.svg",
-                             ".forces.svg", ".shafts.svg", ".controllers.svg", ".shift.svg"}) {
+                             ".forces.svg", ".shafts.svg", ".controllers.svg", ".vehicle.svg",
+                             ".shift.svg"}) {
     const fs::path path = fs::path(dir) / (name + suffix);
     std::error_code ec;
     if (!fs::is_regular_file(fs::symlink_status(path, ec))) continue;

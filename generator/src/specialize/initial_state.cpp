@@ -114,12 +114,19 @@ std::string initial_deflection_note(const SpecializedScene& model) {
     // that stops a relative speed v on it is v sqrt(K m) (undamped, the other meshes left out).
     // A lumped planet's mesh carries its planets' sum; the note gives one planet's share.
     const double mass = 1 / R.row(i).cwiseAbs2().dot(J.cwiseInverse());
-    const double count = mesh_count(d.topology, d.topology.meshes[static_cast<std::size_t>(i)]);
-    s += fmt::format("initial speeds deflect mesh {} at {:.4g} m/s (they break the rigid kinematics): a force of the "
-                     "order of {:.3g} N, v sqrt(K m) on the mesh's effective mass; name the speeds of a rigid motion, "
-                     "or start from the rigid model's state (compare_rigid = true, or start = \"rigid\")\n",
-                     d.topology.meshes[static_cast<std::size_t>(i)].name, rate(i),
-                     std::abs(rate(i)) * std::sqrt(K(i) * mass) / count);
+    const Mesh& m = d.topology.meshes[static_cast<std::size_t>(i)];
+    const double count = mesh_count(d.topology, m);
+    const double force = std::abs(rate(i)) * std::sqrt(K(i) * mass) / count;
+    if (m.shaft)  // a twist rate and a torque, on the shaft's effective inertia
+      s += fmt::format("initial speeds twist shaft {} at {:.4g} rad/s (they break the rigid kinematics): a torque of "
+                       "the order of {:.3g} N m, w sqrt(K J) on the shaft's effective inertia; name the speeds of a "
+                       "rigid motion, or start from the rigid model's state (compare_rigid = true, or start = "
+                       "\"rigid\")\n", m.name, rate(i), force * m.output_scale);
+    else
+      s += fmt::format("initial speeds deflect mesh {} at {:.4g} m/s (they break the rigid kinematics): a force of the "
+                       "order of {:.3g} N, v sqrt(K m) on the mesh's effective mass; name the speeds of a rigid motion, "
+                       "or start from the rigid model's state (compare_rigid = true, or start = \"rigid\")\n",
+                       m.name, rate(i), force);
   }
   return s;
 }

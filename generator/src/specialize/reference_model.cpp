@@ -62,6 +62,13 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
     for (std::size_t i = 0; i < ny; ++i) {
       const Variable y = sys.outputs[i].variable;
       if (y.kind == VariableKind::controller_torque) continue;
+      if (of_vehicle(y.kind)) {  // km/h of the vehicle body's speed, m/s^2 of its acceleration
+        const Eigen::Index w = state_index({VariableKind::velocity, model.scene.vehicle->vehicle_body});
+        const double per_omega = model.scene.vehicle->speed_per_omega();
+        if (y.kind == VariableKind::vehicle_speed) out.C(i, w) = 3.6 * per_omega;
+        else out.E(i, w) = per_omega;
+        continue;
+      }
       if (y.kind == VariableKind::spring_force) {
         out.C(i, state_index({VariableKind::force, y.index})) = 1;
         continue;
@@ -109,6 +116,11 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
       const Variable y = sys.outputs[i].variable;
       if (y.kind == VariableKind::velocity) {
         out.C.row(i) = Q1n.row(y.index);
+      } else if (of_vehicle(y.kind)) {
+        const double per_omega = model.scene.vehicle->speed_per_omega();
+        const auto row = Q1n.row(model.scene.vehicle->vehicle_body);
+        if (y.kind == VariableKind::vehicle_speed) out.C.row(i) = 3.6 * per_omega * row;
+        else out.E.row(i) = per_omega * row;
       } else if (y.kind == VariableKind::force || y.kind == VariableKind::spring_force) {  // the spring carries F
         const Eigen::Index f = y.index;
         out.C.row(i) = C_F.row(f);
@@ -211,11 +223,13 @@ void output_scales(const Topology& t, const SpecializedSystem& sys, NumericSyste
   for (Eigen::Index i = 0; i < out.C.rows(); ++i) {
     const OutputPort& y = sys.outputs[static_cast<std::size_t>(i)];
     if (y.variable.kind == VariableKind::force || y.variable.kind == VariableKind::spring_force) {
-      const double count = mesh_count(t, t.meshes[static_cast<std::size_t>(y.variable.index)]);
-      out.C.row(i) /= count;
-      out.D.row(i) /= count;
-      out.E.row(i) /= count;
-      for (QuadraticLoad& q : out.quadratic) q.output_column(i) /= count;
+      const Mesh& m = t.meshes[static_cast<std::size_t>(y.variable.index)];
+      // One planet's share of a lumped mesh (divided, as the specialized outputs are), a shaft's scale.
+      const double scale = m.shaft ? m.output_scale : 1.0, count = m.shaft ? 1.0 : mesh_count(t, m);
+      out.C.row(i) = out.C.row(i) * scale / count;
+      out.D.row(i) = out.D.row(i) * scale / count;
+      out.E.row(i) = out.E.row(i) * scale / count;
+      for (QuadraticLoad& q : out.quadratic) q.output_column(i) = q.output_column(i) * scale / count;
     } else if (y.in_rpm) {
       out.C.row(i) *= rpm_per_rad_per_s;
       out.D.row(i) *= rpm_per_rad_per_s;

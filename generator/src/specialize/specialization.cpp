@@ -34,6 +34,8 @@ std::vector<Variable> requested_outputs(const Scene& sc, const Topology& t) {
   if (sc.effects.mesh_forces)
     for (std::size_t i = 0; i < t.meshes.size(); ++i) out.push_back({VariableKind::force, static_cast<int>(i)});
   for (std::size_t c = 0; c < sc.controllers.size(); ++c) out.push_back({VariableKind::controller_torque, static_cast<int>(c)});
+  if (sc.vehicle)
+    for (const VariableKind kind : {VariableKind::vehicle_speed, VariableKind::vehicle_acceleration}) out.push_back({kind, 0});
   return out;
 }
 
@@ -120,7 +122,9 @@ std::vector<double> initial_state(const Scene& sc, const Derivation& d, const Gi
     const Variable v = states[i];
     if (i >= gear_states) x0.push_back(0.0);  // a controller's integral
     else if (const auto it = sc.initial.find(v); it != sc.initial.end())
-      x0.push_back(v.kind == VariableKind::force ? it->second * mesh_count(t, t.meshes[v.index]) : it->second);
+      x0.push_back(v.kind != VariableKind::force       ? it->second
+                   : t.meshes[v.index].shaft           ? it->second / t.meshes[v.index].output_scale
+                                                       : it->second * mesh_count(t, t.meshes[v.index]));
     else if (!elastic) x0.push_back(rigid_x0[i]);
     else if (v.kind == VariableKind::velocity && omega.size()) x0.push_back(omega(v.index));
     else x0.push_back(0.0);
@@ -158,11 +162,28 @@ struct SystemOutputs {
 // One output's value: a state, a controller's law (with limits its input), omega = Q1 x1 of a rigid
 // system, or eq. (8)'s force, which reads the torque on each body from the inputs.
 ex output_value(const Derivation& d, const GiNaC::exmap& fold, const OpenInputs& in, const GiNaC::exmap& loop_outputs,
-                const std::vector<Variable>& states, std::size_t gear_states, bool elastic, Variable out) {
+                const std::vector<Variable>& states, std::size_t gear_states, bool elastic,
+                const std::optional<VehicleSpec>& vehicle, Variable out) {
   const SymbolTable& s = d.symbols;
   if (out.kind == VariableKind::controller_torque) {
     const auto law = loop_outputs.find(variable_symbol(s, out));
     return law != loop_outputs.end() ? law->second : ex(variable_symbol(s, out));
+  }
+  if (of_vehicle(out.kind)) {
+    // m/s per rad/s of the vehicle body, r / i; the speed in km/h (3.6 = 18/5 exactly).
+    const ex per_omega = exact_number(vehicle->speed_per_omega());
+    const Variable omega{VariableKind::velocity, vehicle->vehicle_body};
+    if (out.kind == VariableKind::vehicle_speed)
+      return folded(output_value(d, fold, in, loop_outputs, states, gear_states, elastic, vehicle, omega) * per_omega *
+                        GiNaC::numeric(18, 5),
+                    fold);
+    ex acceleration = 0;
+    if (elastic) acceleration = variable_symbol(s, derivative_of(omega));
+    else
+      for (std::size_t j = 0; j < gear_states; ++j)
+        acceleration += d.rigid.Q1(static_cast<unsigned>(omega.index), static_cast<unsigned>(j)) *
+                        variable_symbol(s, derivative_of(states[j]));
+    return folded(acceleration * per_omega, fold);
   }
   if (out.kind == VariableKind::spring_force) {
     if (elastic) return variable_symbol(s, {VariableKind::force, out.index});
@@ -197,13 +218,16 @@ SystemOutputs system_outputs(const Scene& sc, const Derivation& d, const GiNaC::
   const Topology& t = d.topology;
   SystemOutputs out;
   for (const Variable y : requested_outputs(sc, t)) {
-    ex value = output_value(d, fold, in, loop_outputs, states, gear_states, elastic, y);
+    ex value = output_value(d, fold, in, loop_outputs, states, gear_states, elastic, sc.vehicle, y);
     const bool in_rpm = y.kind == VariableKind::velocity && sc.speeds_in_rpm;
-    out.reads_derivatives = out.reads_derivatives || (!elastic && !contains(states, y) &&
-                                                      y.kind != VariableKind::controller_torque &&
-                                                      y.kind != VariableKind::velocity);
-    if ((y.kind == VariableKind::force || y.kind == VariableKind::spring_force) && mesh_count(t, t.meshes[y.index]) > 1)
-      value = folded(value / mesh_count(t, t.meshes[y.index]), fold);
+    out.reads_derivatives = out.reads_derivatives || y.kind == VariableKind::vehicle_acceleration ||
+                            (!elastic && !contains(states, y) && y.kind != VariableKind::controller_torque &&
+                             y.kind != VariableKind::velocity && y.kind != VariableKind::vehicle_speed);
+    if (y.kind == VariableKind::force || y.kind == VariableKind::spring_force) {
+      const Mesh& m = t.meshes[static_cast<std::size_t>(y.index)];
+      if (m.shaft && m.output_scale != 1) value = folded(value * exact_number(m.output_scale), fold);
+      if (!m.shaft && mesh_count(t, m) > 1) value = folded(value / mesh_count(t, m), fold);
+    }
     if (in_rpm) value = folded(value * exact_number(rpm_per_rad_per_s), fold);
     out.ports.push_back({y, value, in_rpm});
   }
@@ -378,6 +402,7 @@ SpecializedScene specialize(const Scene& scene) {
   // With every parameter a number the rigid system needs no closed forms of L1 and A1.
   model.derivation = derive_topology(scene.model, keep, scene.keep_where, !scene.tunable.empty());
   add_controller_symbols(model.derivation.symbols, controller_names(scene));
+  if (scene.vehicle) add_vehicle_symbols(model.derivation.symbols);
   const bool rigid_forces = scene.effects.mesh_forces && (!scene.effects.elastic() || scene.compare_rigid);
   if (model.derivation.rigid.redundant_meshes && rigid_forces && !scene.tunable.empty())
     throw InputError(SourceLocation{scene.file, 0, 0},

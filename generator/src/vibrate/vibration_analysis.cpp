@@ -58,7 +58,10 @@ ModesInput modes_input(const std::string& path, const std::optional<std::string>
     Derivation d = derive_model(path, std::nullopt, where);
     GiNaC::exmap values = d.values;
     std::vector<int> e = stuck(d.topology);
-    return {std::move(d), std::move(values), "mesh damping and bearing friction, as the model defines them", std::move(e), {}};
+    const std::string damping = !has_shafts(d.topology)           ? "mesh damping"
+                                : toothed_mesh_count(d.topology) == 0 ? "shaft damping"
+                                                                      : "mesh and shaft damping";
+    return {std::move(d), std::move(values), damping + " and bearing friction, as the model defines them", std::move(e), {}};
   }
   const Scene scene = parse_scene(path);
   if (!scene.effects.elastic())
@@ -230,6 +233,11 @@ SceneResponse response_of(const ResponseRequest& request) {
   }
   for (const std::string& name : request.outputs) {
     const auto v = find_scene_variable(scene, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+    if (!v && has_shafts(scene.model))
+      throw InputError(where, fmt::format("--output '{}' is none of omega_<body>, F_<mesh>, T_<shaft> and "
+                                          "Tc_<controller> of the scene; give the velocity of a body, the force of a "
+                                          "mesh, the torque of a shaft or a controller's torque, e.g. omega_{}",
+                                          name, scene.model.bodies.front().name));
     if (!v)
       throw InputError(where, fmt::format("--output '{}' is neither omega_<body>, F_<mesh> nor Tc_<controller> of the "
                                           "scene; give the velocity of a body, the force of a mesh or a controller's "

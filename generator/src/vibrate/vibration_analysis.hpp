@@ -38,7 +38,7 @@ ModesWithCampbell campbell_of_file(const std::string& path, const std::optional<
 
 struct ResponseRequest {
   std::string scene_file;
-  std::vector<std::string> inputs, outputs;  // tau_<body>; omega_<body> or F_<mesh>
+  std::vector<std::string> inputs, outputs;  // tau_<body>; omega_<body>, F_<mesh> or T_<shaft>
   std::string from = "1*Hz", to = "10*kHz";   // quantities with units
   int points = 1000;
   std::optional<std::string> engaged;         // brakes and clutches stuck, comma-separated

@@ -1,0 +1,40 @@
+// A scene's [vehicle] that cannot be: a key missing, a body it cannot drive from, drag half given,
+// a second road load.
+#include <gtest/gtest.h>
+
+#include "error_support.hpp"
+
+namespace pogear::test {
+namespace {
+
+// scene.toml with a car on the ring r of gear.toml (its half-shafts compliant like the meshes).
+const std::string vehicle_table =
+    "[vehicle]\nbody = \"r\"\nmass = \"1500*kg\"\nwheel_radius = \"0.3*m\"\nfinal_drive = 3.2\n"
+    "half_shaft_stiffness = \"12000*N*m/rad\"\n";
+const Edits with_vehicle{{R"("mesh_compliance", "mesh_damping", )", R"("mesh_compliance", "shaft_compliance", "mesh_damping", )"},
+                         {"[simulation]", vehicle_table + "\n[simulation]"}};
+
+class VehicleErrors : public ErrorTest {};
+
+TEST_F(VehicleErrors, WithoutHalfShafts) {
+  expect_scene_error(with(with_vehicle, {{"half_shaft_stiffness = \"12000*N*m/rad\"\n", ""}}),
+      R"~(scene.toml:14:1: error: [vehicle] needs half_shaft_stiffness, e.g. half_shaft_stiffness = "12000*N*m/rad")~");
+}
+
+TEST_F(VehicleErrors, OnAPlanet) {
+  expect_scene_error(with(with_vehicle, {{"body = \"r\"", "body = \"p\""}}),
+      R"~(scene.toml:15:8: error: [vehicle] body 'p' is not on the central axis; the half-shafts turn with a body on it)~");
+}
+
+TEST_F(VehicleErrors, DragWithoutFrontalArea) {
+  expect_scene_error(with(with_vehicle, {{"final_drive = 3.2\n", "final_drive = 3.2\ndrag_coefficient = 0.3\n"}}),
+      R"~(scene.toml:14:1: error: aerodynamic drag needs both drag_coefficient and frontal_area; give both, or neither)~");
+}
+
+TEST_F(VehicleErrors, LoadedTwice) {
+  expect_scene_error(with(with_vehicle, {{"[simulation]", "[loads]\nvehicle = { constant = \"10*N*m\" }\n\n[simulation]"}}),
+      R"~(scene.toml:22:11: error: [loads] names the vehicle, whose road load [vehicle] gives; leave it out of [loads])~");
+}
+
+}  // namespace
+}  // namespace pogear::test
