@@ -75,8 +75,10 @@ void check_shaft_names(const Topology& t) {
     };
     for (const Body* b : every_body(t))
       if (b->name == m.name) refuse("body", b->where, fmt::format("the body's bearing friction and the shaft's damping would both be b_{}", m.name));
-    for (const Mesh& other : t.meshes)
-      if (&other != &m && other.name == m.name) refuse(other.shaft ? "shaft" : "mesh", other.where, "names tell them apart");
+    for (const Mesh& other : t.meshes) {  // the later of two is refused, naming the earlier
+      if (&other == &m) break;
+      if (other.name == m.name) refuse(other.shaft ? "shaft" : "mesh", other.where, "names tell them apart");
+    }
     for (const FrictionElement& e : t.friction_elements)
       if (e.name == m.name)
         refuse(e.is_brake() ? "brake" : "clutch", e.where, fmt::format("both torques would be T_{}", m.name));

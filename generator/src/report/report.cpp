@@ -442,9 +442,10 @@ std::string report_json(const Derivation& d, const Diagnostics& diagnostics) {
   std::vector<std::string> shafts;  // in the order of their rows of R, after the meshes
   for (const Mesh& m : d.topology.meshes)
     if (m.shaft)
-      shafts.push_back(fmt::format("{{\"shaft\": {}, \"bodies\": [{}, {}]}}", json_string(m.name),
-                                   json_string(body(d.topology, m.first.body).name),
-                                   json_string(body(d.topology, m.second.body).name)));
+      shafts.push_back(fmt::format("{{\"shaft\": {}, \"bodies\": [{}, {}], \"stiffness\": {}, \"damping\": {}}}",
+                                   json_string(m.name), json_string(body(d.topology, m.first.body).name),
+                                   json_string(body(d.topology, m.second.body).name),
+                                   json_string(m.stiffness_parameter), json_string(m.damping_parameter)));
   j += "  \"shafts\": [" + joined(shafts, ", ") + "],\n";
   std::vector<std::string> fixed;
   for (const Body& b : d.topology.grounded) fixed.push_back(b.name);

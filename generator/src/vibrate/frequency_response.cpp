@@ -208,7 +208,8 @@ std::vector<TransferFunction> frequency_response(const Scene& scene, const std::
                                                  const std::vector<Variable>& outputs, const FrequencyGrid& grid,
                                                  const std::vector<int>& engaged) {
   Scene s = response_scene(scene, inputs, outputs, engaged);
-  for (const Variable y : outputs) s.effects.mesh_forces = s.effects.mesh_forces || y.kind == VariableKind::force;
+  for (const Variable y : outputs)
+    s.effects.mesh_forces = s.effects.mesh_forces || y.kind == VariableKind::force || y.kind == VariableKind::spring_force;
   s.compare_rigid = s.effects.elastic();
   s.tunable.clear();
   s.start = Start::given;      // the response is of the system, from any state

@@ -232,7 +232,8 @@ SceneResponse response_of(const ResponseRequest& request) {
     if (std::find(inputs.begin(), inputs.end(), *v) == inputs.end()) inputs.push_back(*v);
   }
   for (const std::string& name : request.outputs) {
-    const auto v = find_scene_variable(scene, name, {VariableKind::velocity, VariableKind::force, VariableKind::controller_torque});
+    const auto v = find_scene_variable(scene, name, {VariableKind::velocity, VariableKind::force, VariableKind::spring_force,
+                                                     VariableKind::controller_torque});
     if (!v && has_shafts(scene.model))
       throw InputError(where, fmt::format("--output '{}' is none of omega_<body>, F_<mesh>, T_<shaft> and "
                                           "Tc_<controller> of the scene; give the velocity of a body, the force of a "
