@@ -29,7 +29,7 @@ void add_parameter(const SceneReader& r, const toml::node& where, Topology& t, c
     r.fail(where, fmt::format("the model has a parameter '{}', which [vehicle] defines; rename the model's", name));
   Parameter p;
   p.name = name;
-  p.text = fmt::format("{}{}", fmt::format("{:.17g}", value), unit.empty() ? "" : "*" + unit);
+  p.text = fmt::format("{:.17g}{}", value, unit.empty() ? "" : "*" + unit);
   p.value = Quantity{value, dim, !unit.empty()};
   p.where = r.loc(where);
   t.parameters.push_back(std::move(p));

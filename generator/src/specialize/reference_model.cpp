@@ -223,13 +223,13 @@ void output_scales(const Topology& t, const SpecializedSystem& sys, NumericSyste
   for (Eigen::Index i = 0; i < out.C.rows(); ++i) {
     const OutputPort& y = sys.outputs[static_cast<std::size_t>(i)];
     if (y.variable.kind == VariableKind::force || y.variable.kind == VariableKind::spring_force) {
-      const Mesh& m = t.meshes[static_cast<std::size_t>(y.variable.index)];
-      // One planet's share of a lumped mesh (divided, as the specialized outputs are), a shaft's scale.
-      const double scale = m.shaft ? m.output_scale : 1.0, count = m.shaft ? 1.0 : mesh_count(t, m);
-      out.C.row(i) = out.C.row(i) * scale / count;
-      out.D.row(i) = out.D.row(i) * scale / count;
-      out.E.row(i) = out.E.row(i) * scale / count;
-      for (QuadraticLoad& q : out.quadratic) q.output_column(i) = q.output_column(i) * scale / count;
+      // The exact factor as numerator over denominator: 1 / count divides, as the specialized outputs do.
+      const GiNaC::numeric f = output_per_model_force(t, t.meshes[static_cast<std::size_t>(y.variable.index)]);
+      const double numerator = f.numer().to_double(), denominator = f.denom().to_double();
+      out.C.row(i) = out.C.row(i) * numerator / denominator;
+      out.D.row(i) = out.D.row(i) * numerator / denominator;
+      out.E.row(i) = out.E.row(i) * numerator / denominator;
+      for (QuadraticLoad& q : out.quadratic) q.output_column(i) = q.output_column(i) * numerator / denominator;
     } else if (y.in_rpm) {
       out.C.row(i) *= rpm_per_rad_per_s;
       out.D.row(i) *= rpm_per_rad_per_s;

@@ -25,6 +25,12 @@ namespace {
 
 using GiNaC::ex;
 
+// The model's F of a mesh or shaft whose output reads `output` (the inverse of output_per_model_force).
+double model_force(const Topology& t, Variable force, double output) {
+  const GiNaC::numeric f = output_per_model_force(t, t.meshes[static_cast<std::size_t>(force.index)]);
+  return output * f.denom().to_double() / f.numer().to_double();
+}
+
 bool contains(const std::vector<Variable>& v, Variable x) { return std::find(v.begin(), v.end(), x) != v.end(); }
 
 std::vector<Variable> requested_outputs(const Scene& sc, const Topology& t) {
@@ -122,9 +128,7 @@ std::vector<double> initial_state(const Scene& sc, const Derivation& d, const Gi
     const Variable v = states[i];
     if (i >= gear_states) x0.push_back(0.0);  // a controller's integral
     else if (const auto it = sc.initial.find(v); it != sc.initial.end())
-      x0.push_back(v.kind != VariableKind::force       ? it->second
-                   : t.meshes[v.index].shaft           ? it->second / t.meshes[v.index].output_scale
-                                                       : it->second * mesh_count(t, t.meshes[v.index]));
+      x0.push_back(v.kind == VariableKind::force ? model_force(t, v, it->second) : it->second);
     else if (!elastic) x0.push_back(rigid_x0[i]);
     else if (v.kind == VariableKind::velocity && omega.size()) x0.push_back(omega(v.index));
     else x0.push_back(0.0);
@@ -223,11 +227,9 @@ SystemOutputs system_outputs(const Scene& sc, const Derivation& d, const GiNaC::
     out.reads_derivatives = out.reads_derivatives || y.kind == VariableKind::vehicle_acceleration ||
                             (!elastic && !contains(states, y) && y.kind != VariableKind::controller_torque &&
                              y.kind != VariableKind::velocity && y.kind != VariableKind::vehicle_speed);
-    if (y.kind == VariableKind::force || y.kind == VariableKind::spring_force) {
-      const Mesh& m = t.meshes[static_cast<std::size_t>(y.index)];
-      if (m.shaft && m.output_scale != 1) value = folded(value * exact_number(m.output_scale), fold);
-      if (!m.shaft && mesh_count(t, m) > 1) value = folded(value / mesh_count(t, m), fold);
-    }
+    if (y.kind == VariableKind::force || y.kind == VariableKind::spring_force)
+      if (const GiNaC::numeric f = output_per_model_force(t, t.meshes[static_cast<std::size_t>(y.index)]); f != 1)
+        value = folded(value * f, fold);
     if (in_rpm) value = folded(value * exact_number(rpm_per_rad_per_s), fold);
     out.ports.push_back({y, value, in_rpm});
   }
@@ -392,6 +394,10 @@ rt::SystemTraits solver_traits(const SpecializedScene& model) {
   return {.nonlinear = model.main.nonlinear,
           .engages_friction = !model.friction.empty(),
           .limits_torque = !model.main.limited_controllers.empty()};
+}
+
+GiNaC::numeric output_per_model_force(const Topology& t, const Mesh& m) {
+  return m.shaft ? exact_number(m.output_scale) : GiNaC::numeric(1, mesh_count(t, m));
 }
 
 SpecializedScene specialize(const Scene& scene) {

@@ -130,6 +130,10 @@ SpecializedScene specialize(const Scene& scene);
 // What the scene's systems hold that some solvers cannot run, for rt::solver_refusal.
 rt::SystemTraits solver_traits(const SpecializedScene& model);
 
+// What an output of a mesh's or shaft's force is the model's F times, exactly: one planet's share of a
+// lumped planet's mesh (1 / count), a shaft's output_scale (a vehicle's half-shafts at the wheels).
+GiNaC::numeric output_per_model_force(const Topology& t, const Mesh& m);
+
 // What a system's ports are, in their order: their variables, the signals of the inputs that have
 // one (a prefix of the inputs), the initial state, the outputs' values.
 std::vector<Variable> state_variables(const SpecializedSystem& sys);
