@@ -1,4 +1,4 @@
-// dopri5 or TR-BDF2 within a mode: adaptive steps on dx/dt = A x + B v(t), ending on breakpoints,
+// dopri5 or TR-BDF2 within a mode: adaptive steps on dx/dt = A x + B v(t, x), ending on breakpoints,
 // events located on their dense output and each element's dissipated energy by quadrature on it.
 // A stepper of the driver loop (hybrid_driver.hpp).
 #pragma once
@@ -16,7 +16,8 @@
 
 namespace pogear::rt::hybrid {
 
-// The right-hand side of the current mode: dx/dt = A x + B v(t), and its Jacobian A.
+// The right-hand side of the current mode: dx/dt = A x + B v(t, x), v of x through the quadratic
+// torques only, and its Jacobian A + B dv/dx.
 struct ModeRhs {
   const HybridSystem* sys = nullptr;
   const HybridData* d = nullptr;
@@ -25,14 +26,19 @@ struct ModeRhs {
   long evaluations = 0;
   void operator()(double t, const Eigen::VectorXd& x, Eigen::VectorXd& dx) {
     ++evaluations;
-    known_inputs(*sys, *d, t, false, v);
+    known_inputs(*sys, *d, t, false, x, v);
     dx.noalias() = mode->A * x;
     dx.noalias() += mode->B * v;
   }
 };
 struct ModeJacobian {
+  const HybridSystem* sys = nullptr;
+  const HybridData* d = nullptr;
   const ModeMatrices* mode = nullptr;
-  void operator()(double, const Eigen::VectorXd&, Eigen::MatrixXd& J) const { J = mode->A; }
+  void operator()(double, const Eigen::VectorXd& x, Eigen::MatrixXd& J) const {
+    J = mode->A;
+    add_quadratic_jacobian(*sys, *d, mode->B, x, J);
+  }
 };
 
 template <class Stepper>
@@ -47,6 +53,8 @@ class AdaptiveStepper {
     rhs_.sys = &sys;
     rhs_.d = &d;
     rhs_.v.resize(d.nw);
+    jacobian_.sys = &sys;
+    jacobian_.d = &d;
     x1_.resize(d.nx);
     dense_x_.resize(d.nx);
     dense_v_.resize(d.nw);
@@ -66,8 +74,9 @@ class AdaptiveStepper {
     const auto& m = mode_of(sys_, d_.cache, d_.mask);
     rhs_.mode = jacobian_.mode = &m;
     if (!s_ || stepper_mask_ != d_.mask) {
+      // A linear mode's Jacobian is A throughout: one Newton iteration solves each stage exactly.
       if constexpr (requires { Stepper(rhs_, jacobian_, true, d_.x, 1.0, 1.0); })
-        s_.emplace(rhs_, jacobian_, true, d_.x, opt_.rtol, opt_.atol);
+        s_.emplace(rhs_, jacobian_, sys_.quadratic.empty(), d_.x, opt_.rtol, opt_.atol);
       else
         s_.emplace(rhs_, d_.x, opt_.rtol, opt_.atol);
       stepper_mask_ = d_.mask;
@@ -109,7 +118,7 @@ class AdaptiveStepper {
       x1_ = d_.x;
       s_->accept(t, x1_, hs_);
       end.x = x1_;
-      known_inputs(sys_, d_, t1_, brk, end.v);
+      known_inputs(sys_, d_, t1_, brk, end.x, end.v);
       e = StepEnd{t1_, t1_ - t, brk, false};
       return true;
     }
@@ -122,7 +131,7 @@ class AdaptiveStepper {
   void point(double t, double theta, EventPoint& p) {
     s_->dense(t + theta, p.x);
     if (theta == t1_ - t) p.x = x1_;
-    known_inputs(sys_, d_, t + theta, false, p.v);
+    known_inputs(sys_, d_, t + theta, false, p.x, p.v);
   }
   void sample_at(double t, double ts, Eigen::VectorXd& x, Eigen::VectorXd& energy) {
     add_dissipation(t, ts, energy);
@@ -153,7 +162,7 @@ class AdaptiveStepper {
     for (int i = 0; i < 3; ++i) {
       const double ti = mid + (i - 1) * node * half;
       s_->dense(ti, dense_x_);
-      known_inputs(sys_, d_, ti, false, dense_v_);
+      known_inputs(sys_, d_, ti, false, dense_x_, dense_v_);
       for (int k = 0; k < d_.nf; ++k)
         if (d_.state[static_cast<std::size_t>(k)] != ElementState::stuck)
           energy(k) += weight[i] * half * dense_v_(d_.nu + k) * d_.S.row(k).dot(dense_x_);

@@ -44,7 +44,9 @@ struct EventPoint {
 // Elements 0..nf-1 are the brakes and clutches, nf..ne-1 the controllers' torque limits.
 struct HybridData {
   int ne = 0, nf = 0;
-  Eigen::Index nx = 0, nu = 0, nw = 0;  // states, known inputs u, all inputs w = [u; T]
+  // States; the scene's signals u; the known inputs [u; q], q the quadratic torques (of the state);
+  // all inputs w = [u; q; T].
+  Eigen::Index nx = 0, ns = 0, nu = 0, nw = 0;
   double horizon = 0;
   Eigen::MatrixXd S;  // the slips of all elements (a controller's row zero: it has no slip)
   Eigen::VectorXd slip_norm;  // ||S_k||_1, the zero-slip rule's scale (slip_is_zero)
@@ -90,7 +92,8 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   d.nf = static_cast<int>(sys.S.rows());
   d.ne = d.nf + static_cast<int>(sys.limits.size());
   d.nx = sys.M.rows();
-  d.nu = static_cast<Eigen::Index>(sys.inputs.size());
+  d.ns = static_cast<Eigen::Index>(sys.inputs.size());
+  d.nu = d.ns + static_cast<Eigen::Index>(sys.quadratic.size());
   d.nw = d.nu + d.ne;
   d.horizon = horizon;
   d.cache.taylor_uses.reserve(kStepLengthsKept + 1);
@@ -126,14 +129,17 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
     return "the system's matrices M, N and S do not agree on the number of states";
   if (sys.S.rows() != static_cast<Eigen::Index>(sys.elements.size()))
     return "the system has not one slip row per brake or clutch";
-  if (sys.N.cols() != static_cast<Eigen::Index>(sys.inputs.size()) + ne)
-    return "the system has not one input column per input, brake or clutch, and torque limit";
+  if (sys.N.cols() != static_cast<Eigen::Index>(sys.inputs.size() + sys.quadratic.size()) + ne)
+    return "the system has not one input column per input, quadratic torque, brake or clutch, and torque limit";
+  for (const QuadraticTorqueData& q : sys.quadratic)
+    if (q.speed.size() != nx) return "a quadratic torque's speed is not a row over the system's states";
   if (ne > 32) return "more than 32 brakes, clutches and torque limits (a mode is a 32-bit set)";
   for (const Eigen::Index j : sys.speed_states)
     if (j < 0 || j >= nx) return "a speed state of the system is not one of its states";
   if (d.nx != nx || d.ne != ne || d.nf != sys.S.rows() || d.nw != sys.N.cols() || d.S.rows() != ne ||
       d.S.cols() != nx || d.x.size() != nx || d.energy.size() != ne || d.state.size() != static_cast<std::size_t>(ne) ||
-      d.dir.size() != d.state.size() || d.g0.size() != ne || d.v.size() != d.nw || d.dx.size() != nx)
+      d.dir.size() != d.state.size() || d.g0.size() != ne || d.v.size() != d.nw || d.dx.size() != nx ||
+      d.nu != d.ns + static_cast<Eigen::Index>(sys.quadratic.size()))
     return "the hybrid workspace was sized for another system";
   return nullptr;
 }
@@ -189,12 +195,22 @@ inline bool slip_is_zero(const HybridData& d, int k, double slip, double speed) 
   return std::abs(slip) <= kZeroSlipUlps * std::numeric_limits<double>::epsilon() * d.slip_norm(k) * speed;
 }
 
-// v = w at time t: the inputs, slipping torques c p(t) dir, held controller torques, stuck torques
-// left at zero. `before` asks for the left limit (a step that ends on a breakpoint).
-inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t, bool before, Eigen::VectorXd& v) {
+// A quadratic torque -c s |s| at the state x.
+template <class X>
+double quadratic_torque(const QuadraticTorqueData& q, const X& x) {
+  const double s = q.speed.dot(x);
+  return -q.coefficient * s * std::abs(s);
+}
+
+// v = w at time t and state x: the inputs, the quadratic torques, slipping torques c p(t) dir, held
+// controller torques, stuck torques left at zero. `before` asks for the left limit (a step that ends
+// on a breakpoint).
+inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t, bool before, const Eigen::VectorXd& x,
+                         Eigen::VectorXd& v) {
   const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
   v.resize(d.nw);
-  for (Eigen::Index i = 0; i < d.nu; ++i) v(i) = value(sys.inputs[static_cast<std::size_t>(i)], at);
+  for (Eigen::Index i = 0; i < d.ns; ++i) v(i) = value(sys.inputs[static_cast<std::size_t>(i)], at);
+  for (Eigen::Index i = d.ns; i < d.nu; ++i) v(i) = quadratic_torque(sys.quadratic[static_cast<std::size_t>(i - d.ns)], x);
   for (int k = 0; k < d.ne; ++k) {
     const auto K = static_cast<std::size_t>(k);
     // + 0.0: an open element's torque is 0, not -0, in the CSV.
@@ -205,16 +221,38 @@ inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t,
 }
 
 // dv/dt at time t (its left limit when `before`): the inputs' slopes, the slipping torques' c p'(t)
-// dir; stuck torques and held controller torques 0.
+// dir; stuck torques and held controller torques 0; the quadratic torques' by quadratic_torque_slopes,
+// which needs dx/dt.
 inline void known_input_slopes(const HybridSystem& sys, const HybridData& d, double t, bool before,
                                Eigen::VectorXd& dv) {
   const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
-  for (Eigen::Index i = 0; i < d.nu; ++i) dv(i) = slope(sys.inputs[static_cast<std::size_t>(i)], at);
+  for (Eigen::Index i = 0; i < d.ns; ++i) dv(i) = slope(sys.inputs[static_cast<std::size_t>(i)], at);
   for (int k = 0; k < d.ne; ++k) {
     const auto K = static_cast<std::size_t>(k);
     dv(d.nu + k) = d.state[K] == ElementState::stuck || is_limit(d, k)
                        ? 0.0
                        : torque_scale(sys, d, k) * slope(sys.elements[K].command, at) * d.dir[K];
+  }
+}
+
+// The quadratic torques' rates at state x moving at dx/dt: d(-c s |s|)/dt = -2 c |s| ds/dt.
+inline void quadratic_torque_slopes(const HybridSystem& sys, const HybridData& d, const Eigen::VectorXd& x,
+                                    const Eigen::VectorXd& dx, Eigen::VectorXd& dv) {
+  for (Eigen::Index i = d.ns; i < d.nu; ++i) {
+    const QuadraticTorqueData& q = sys.quadratic[static_cast<std::size_t>(i - d.ns)];
+    dv(i) = -2 * q.coefficient * std::abs(q.speed.dot(x)) * q.speed.dot(dx);
+  }
+}
+
+// The Jacobian of the quadratic torques' contribution to dx/dt, B_q dq/dx, added to J: a mode's
+// B times -2 c |s| speed per quadratic torque.
+inline void add_quadratic_jacobian(const HybridSystem& sys, const HybridData& d, const Eigen::MatrixXd& B,
+                                   const Eigen::VectorXd& x, Eigen::MatrixXd& J) {
+  for (Eigen::Index i = d.ns; i < d.nu; ++i) {
+    const QuadraticTorqueData& q = sys.quadratic[static_cast<std::size_t>(i - d.ns)];
+    const double slope = -2 * q.coefficient * std::abs(q.speed.dot(x));
+    for (Eigen::Index c = 0; c < J.cols(); ++c)  // the outer product by hand: no temporary
+      if (q.speed(c) != 0) J.col(c) += (slope * q.speed(c)) * B.col(i);
   }
 }
 

@@ -16,7 +16,7 @@ namespace pogear::rt::hybrid {
 inline bool observe_sample(const HybridSystem& sys, HybridData& d, double t, const Eigen::VectorXd& x,
                            const Eigen::VectorXd& energy, const SampleObserver& obs) {
   const auto& m = mode_of(sys, d.cache, d.mask);
-  known_inputs(sys, d, t, false, d.sample_w);
+  known_inputs(sys, d, t, false, x, d.sample_w);
   if (!m.stuck.empty()) {
     d.T.head(m.Kx.rows()).setZero();
     detail::small_matvec_add(m.Kx, d.nx, x.data(), d.T.data());
@@ -90,7 +90,7 @@ RunStatus run_modes(const HybridSystem& sys, HybridData& d, Stepper& s, const de
     if (restart || Stepper::restarts_each_step) {
       watch(sys, d, t, t_stop, on_event);
       s.start(t, t_stop, stop_is_break);
-      known_inputs(sys, d, t, false, d.v0);
+      known_inputs(sys, d, t, false, d.x, d.v0);
       event_values(sys, d, m, d.x, d.v0, t, false, d.g0);
       restart = false;
     }

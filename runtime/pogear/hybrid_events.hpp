@@ -47,6 +47,7 @@ inline void event_rates(const HybridSystem& sys, HybridData& d, const ModeMatric
                         const Eigen::VectorXd& v, const Eigen::VectorXd& p, Eigen::VectorXd& r) {
   d.dx.noalias() = m.A * x;
   d.dx.noalias() += m.B * v;
+  quadratic_torque_slopes(sys, d, x, d.dx, d.dv);
   r.setZero(d.ne);
   if (!m.stuck.empty()) {
     d.T.noalias() = m.Kx * x;

@@ -1,7 +1,8 @@
 // The exact method within a mode: steps by the mode's cached discretization or its Taylor flow, a
 // whole sample period at once where the proof of event_proof.hpp shows no event can fall in it,
 // events located on the exact trajectory and each element's dissipated energy from the slip
-// integrals. A stepper of the driver loop (hybrid_driver.hpp).
+// integrals. A stepper of the driver loop (hybrid_driver.hpp). Its modes are linear (the engine
+// refuses it a system with quadratic torques), so the known inputs never read the state it passes.
 #pragma once
 
 #include <cmath>
@@ -57,7 +58,7 @@ class ExactStepper {
       const bool whole = h_ == t_stop_ - t;
       const double t1 = whole ? t_stop_ : t + h_;
       const bool before = whole && stop_is_break_;
-      known_inputs(sys_, d_, t1, before, end.v);
+      known_inputs(sys_, d_, t1, before, d_.x, end.v);
       advance(discretization(sys_, d_, d_.mask, h_), v0, end.v, end.z);
       ++d_.steps;
       end.x = end.z.head(d_.nx);
@@ -70,7 +71,7 @@ class ExactStepper {
     }
     const double t1 = t + h_;
     const bool before = stop_is_break_ && t1 == t_stop_;
-    known_inputs(sys_, d_, t1, before, end.v);
+    known_inputs(sys_, d_, t1, before, d_.x, end.v);
     // A length met fewer than 64 times (sub-steps after an event, each event's own remainder) by the
     // Taylor series of flow() when it converges: a few dozen matrix-vector products instead of an
     // exponential.
@@ -94,7 +95,7 @@ class ExactStepper {
 
   // The point at t + theta within the step from t, from the mode's exact flow: exact up to rounding.
   void point(double t, double theta, EventPoint& p) {
-    known_inputs(sys_, d_, t + theta, false, p.v);
+    known_inputs(sys_, d_, t + theta, false, d_.x, p.v);
     flow(mode_of(sys_, d_.cache, d_.mask), theta, v0_, p.v, p.z);
     p.x = p.z.head(d_.nx);
   }

@@ -38,15 +38,26 @@ struct TorqueLimitData {
   Eigen::RowVectorXd law_x, law_w;  // over the states and over w (its entries on the known inputs only)
 };
 
-// The system with its friction elements and torque limits: dx/dt = M x + N w, w = [u; T], the
-// scene's nu inputs u, one torque T_k per friction element, acting as -T_k on the element's first
-// body and +T_k on its second, then one per torque-limited controller; the friction elements'
-// slips s = S x. A stuck friction element is the constraint S_k x = 0 with T_k its multiplier.
+// A torque that is a function of the state: a quadratic load -c s |s| on the speed s = speed x (a
+// fan, a vehicle's air drag). It enters dx/dt through its column of N as an input does, so that a
+// mode's projection and its stuck torques take it as they take the scene's torques.
+struct QuadraticTorqueData {
+  Eigen::RowVectorXd speed;
+  double coefficient = 0;
+};
+
+// The system with its friction elements and torque limits: dx/dt = M x + N w, w = [u; q; T], the
+// scene's inputs u (signals of time), the quadratic torques q (of the state), one torque T_k per
+// friction element, acting as -T_k on the element's first body and +T_k on its second, then one per
+// torque-limited controller; the friction elements' slips s = S x. A stuck friction element is the
+// constraint S_k x = 0 with T_k its multiplier. With quadratic torques the modes are nonlinear:
+// dopri5 and TR-BDF2 step them, exact stepping is refused.
 struct HybridSystem {
   Eigen::MatrixXd M, N, S;
   std::vector<FrictionElementData> elements;
   std::vector<TorqueLimitData> limits;
   std::vector<Signal> inputs;  // u
+  std::vector<QuadraticTorqueData> quadratic;  // q
   // The states that are speeds (rad/s): the scale of the zero-slip rule (hybrid_data.hpp). Empty:
   // the states some slip reads.
   std::vector<Eigen::Index> speed_states;

@@ -71,12 +71,12 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
     }
     for (int k = 0; k < d.ne; ++k)
       d.state[static_cast<std::size_t>(k)] = (mask >> k) & 1u ? ElementState::stuck : ElementState::slipping;
-    known_inputs(sys, d, t, false, d.v);
     const Eigen::VectorXd* x = &d.x;
     if (!m.stuck.empty()) {
       d.projected.noalias() = m.projector * d.x;
       x = &d.projected;
     }
+    known_inputs(sys, d, t, false, *x, d.v);
     d.T.noalias() = m.Kx * *x;
     d.T.noalias() += m.Kv * d.v;
     int worst = -1;

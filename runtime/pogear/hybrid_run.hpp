@@ -53,7 +53,8 @@ inline bool write_events(const SceneRun& run, const std::string& suffix, const s
 // brake and clutch T_<element> [N m], slip_<element> [rad/s, or rpm with run.speeds_in_rpm],
 // E_<element> [J], and the mode) and
 // OUT/<name><suffix>.events.csv, with the exact method, dopri5 or implicit (rk4 is refused). The
-// controllers' laws come from the system's torque_limit_laws. Returns 0, or 3 when the run failed.
+// controllers' laws come from the system's torque_limit_laws, the quadratic loads of a nonlinear system
+// from its quadratic_loads (exact stepping then refused). Returns 0, or 3 when the run failed.
 template <class System>
 int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
                       const std::vector<FrictionElementData>& elements, std::vector<TorqueLimitData> limits,
@@ -67,7 +68,17 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   sys.matrices(p, M, N);
   HybridSystem hs;
   hs.M = M;
-  hs.N = N;
+  // w = [u; q; T]: the quadratic loads' columns between the signals' and the elements'.
+  Eigen::MatrixXd Nq(nx, 0);
+  if constexpr (requires(Eigen::MatrixXd& A, Eigen::VectorXd& c) { sys.quadratic_loads(p, A, A, c); }) {
+    Eigen::MatrixXd speeds;
+    Eigen::VectorXd coefficients;
+    sys.quadratic_loads(p, Nq, speeds, coefficients);
+    for (Eigen::Index i = 0; i < coefficients.size(); ++i) hs.quadratic.push_back({speeds.row(i), coefficients(i)});
+  }
+  const Eigen::Index nq = Nq.cols();
+  hs.N.resize(nx, nu + nq + ne + nl);
+  hs.N << N.leftCols(nu), Nq, N.rightCols(ne + nl);
   sys.slip_matrix(p, hs.S);
   if constexpr (requires(Eigen::MatrixXd& X) { sys.torque_limit_laws(p, X, X); }) {
     Eigen::MatrixXd X, W;
@@ -94,7 +105,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   units.emplace_back("bits of the stuck elements");
   SystemRunLog log(run, suffix, names, units);
   // The one admissibility rule (solver.hpp), as pogear simulate words it.
-  const SystemTraits traits{.engages_friction = ne > 0, .limits_torque = nl > 0};
+  const SystemTraits traits{.nonlinear = nq > 0, .engages_friction = ne > 0, .limits_torque = nl > 0};
   if (const auto refusal = solver_refusal(run.solver, traits)) {
     const std::vector<Solver> solvers = admissible_solvers(traits);
     std::fprintf(stderr, "%s%s: error: %s; use --solver %s\n", run.name.c_str(), suffix.c_str(),
@@ -103,12 +114,14 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   }
 
   // The divergence check of run_system: friction only dissipates, and a friction torque never
-  // exceeds its static capacity, so it enters the bound as an input of that size.
+  // exceeds its static capacity, so it enters the bound as an input of that size; a quadratic load
+  // only dissipates (its power -c |s|^3 on its own body's speed s), so it enters as an input of none.
   std::optional<EnergyBound<Eigen::MatrixXd, Eigen::MatrixXd>> energy_bound;
   if constexpr (requires(typename System::StateMatrix& L) { sys.energy_matrix(p, L); }) {
     typename System::StateMatrix L(nx, nx);
     sys.energy_matrix(p, L);
     std::vector<Signal> bounds = signals;
+    bounds.insert(bounds.end(), static_cast<std::size_t>(nq), Constant{0.0});
     for (const auto& e : elements) bounds.push_back(Constant{e.static_ratio * e.capacity});
     if (L.size() > 0)  // an empty L: no bound (a speed controller feeds in power)
       energy_bound.emplace(Eigen::MatrixXd(L), hs.N, bounds, Eigen::VectorXd(x0), run.horizon);
@@ -132,10 +145,10 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
         return false;
       }
       const typename System::State x = s.x;
-      w = s.w;
+      w << s.w.head(nu), s.w.tail(ne + nl);  // the system's inputs: its outputs compute q themselves
       sys.outputs(p, x, w, y);
       row.head(ny) = y;
-      row.segment(ny, ne) = s.w.segment(nu, ne);
+      row.segment(ny, ne) = s.w.segment(nu + nq, ne);
       row.segment(ny + ne, ne) = slip_scale * s.slip.head(ne);
       row.segment(ny + 2 * ne, ne) = s.energy.head(ne);
       row(ny + 3 * ne) = static_cast<double>(s.mode);

@@ -71,12 +71,10 @@ inline std::string describe(const SolverRefusal& r) {
   return text;
 }
 
-// The one decision of which solvers may run a system; nullopt when `s` can. A nonlinear system with
-// events is run by no solver (the hybrid engine's modes are linear); else events refuse rk4 first.
+// The one decision of which solvers may run a system; nullopt when `s` can. Events refuse rk4 first;
+// a nonlinear system (with events or without) is run by dopri5 and implicit.
 inline constexpr std::optional<SolverRefusal> solver_refusal(Solver s, const SystemTraits& system) {
   constexpr std::string_view nonlinear = "a quadratic load makes the scene nonlinear";
-  if (system.nonlinear && (system.engages_friction || system.limits_torque))
-    return SolverRefusal{nonlinear, "and brakes, clutches and torque limits are simulated on linear scenes only"};
   if (system.engages_friction && s == Solver::rk4)
     return SolverRefusal{"the scene engages brakes or clutches",
                          "which rk4 does not simulate (its fixed steps cannot locate their events)"};

@@ -16,6 +16,8 @@ struct GeneratedSystem {
   std::vector<std::string> states, outputs;
   std::function<Eigen::VectorXd(const Eigen::VectorXd& x, const Eigen::VectorXd& u)> rhs, output_values;
   std::function<void(Eigen::MatrixXd& M, Eigen::MatrixXd& N)> matrices;
+  // A nonlinear system's quadratic loads (columns, speeds, coefficients), as the hybrid runs take them.
+  std::function<void(Eigen::MatrixXd& columns, Eigen::MatrixXd& speeds, Eigen::VectorXd& c)> quadratic_loads;
 };
 
 struct GeneratedScene {
@@ -49,6 +51,10 @@ GeneratedSystem generated_system(const typename System::Params& params = {}) {
     M = Ms;
     N = Ns;
   };
+  if constexpr (requires(Eigen::MatrixXd& A, Eigen::VectorXd& c) { System::quadratic_loads(params, A, A, c); })
+    g.quadratic_loads = [params](Eigen::MatrixXd& columns, Eigen::MatrixXd& speeds, Eigen::VectorXd& c) {
+      System::quadratic_loads(params, columns, speeds, c);
+    };
   return g;
 }
 

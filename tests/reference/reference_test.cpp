@@ -172,6 +172,29 @@ TEST_P(GeneratedSystems, MatricesMatchTheReference) {
   }
 }
 
+// The quadratic loads as the hybrid runs take them (columns of dx/dt, speeds, coefficients), entry by
+// entry as the matrices, in every nonlinear system and only there.
+TEST_P(GeneratedSystems, QuadraticLoadsMatchTheReference) {
+  for (const Systems& s : systems_) {
+    const NumericSystem& r = s.reference;
+    ASSERT_EQ(static_cast<bool>(s.generated.quadratic_loads), !r.quadratic.empty()) << s.specialized.kind;
+    if (r.quadratic.empty()) continue;
+    Eigen::MatrixXd columns, speeds;
+    Eigen::VectorXd c;
+    s.generated.quadratic_loads(columns, speeds, c);
+    ASSERT_EQ(c.size(), static_cast<Eigen::Index>(r.quadratic.size()));
+    ASSERT_EQ(columns.rows(), r.M.rows());
+    ASSERT_EQ(speeds.cols(), r.M.rows());
+    for (std::size_t i = 0; i < r.quadratic.size(); ++i) {
+      const QuadraticLoad& q = r.quadratic[i];
+      const auto I = static_cast<Eigen::Index>(i);
+      EXPECT_LT(largest_scaled_gap(columns.col(I), q.state_column, q.state_column.cwiseAbs()), kTolerance) << i;
+      EXPECT_LT(largest_scaled_gap(speeds.row(I).transpose(), q.speed_row, q.speed_row.cwiseAbs()), kTolerance) << i;
+      EXPECT_EQ(c(I), q.coefficient) << i;
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, GeneratedSystems, ::testing::ValuesIn(scenes()),
                          [](const ::testing::TestParamInfo<SceneUnderTest>& info) { return info.param.id; });
 

@@ -64,7 +64,7 @@ TEST(ResolveMode, ClutchAtZeroSlipHoldsWithinItsStaticCapacity) {
   EXPECT_EQ(r.events[0].to, ElementState::stuck);
   EXPECT_EQ(d.x, Eigen::Vector2d(2, 2));  // already on the constraint: the projection leaves it
   const auto& m = hybrid::mode_of(sys, d.cache, d.mask);
-  hybrid::known_inputs(sys, d, 0.0, false, d.v);
+  hybrid::known_inputs(sys, d, 0.0, false, d.x, d.v);
   const double T = (m.Kx * d.x + m.Kv * d.v)(0);
   EXPECT_NEAR(T, 6, 1e-14);  // a few roundings of the 2x2 solve
 }
@@ -77,7 +77,7 @@ TEST(ResolveMode, ClutchBeyondItsStaticCapacitySlipsInItsTorquesDirection) {
   EXPECT_EQ(d.mask, 0u);
   EXPECT_EQ(d.state[0], ElementState::slipping);
   EXPECT_EQ(d.dir[0], 1);  // T > 0: body 1 runs ahead
-  hybrid::known_inputs(sys, d, 0.0, false, d.v);
+  hybrid::known_inputs(sys, d, 0.0, false, d.x, d.v);
   EXPECT_EQ(d.v(2), 5);  // the kinetic torque c p, in the slip's direction
 }
 
@@ -122,7 +122,7 @@ TEST(ResolveMode, BrakeOnABodyAtRestByRoundingStartsStuck) {
   EXPECT_EQ(d.mask, 1u);
   EXPECT_EQ(d.x(1), 0.0);  // projected onto the constraint
   const auto& m = hybrid::mode_of(sys, d.cache, d.mask);
-  hybrid::known_inputs(sys, d, 0.0, false, d.v);
+  hybrid::known_inputs(sys, d, 0.0, false, d.x, d.v);
   EXPECT_NEAR((m.Kx * d.x + m.Kv * d.v)(0), 4, 1e-14);  // the input torque, to rounding
 }
 
@@ -154,7 +154,7 @@ TEST(ResolveMode, OneWayBrakeHoldsBackwardAndFreewheelsForward) {
     hybrid::HybridData d = hybrid::make_hybrid_data(sys, 1.0);
     const Resolved r = resolve(sys, d, Eigen::VectorXd::Zero(1));
     ASSERT_TRUE(r.ok) << r.error;
-    hybrid::known_inputs(sys, d, 0.0, false, d.v);
+    hybrid::known_inputs(sys, d, 0.0, false, d.x, d.v);
     if (tau < 0) {
       EXPECT_EQ(d.state[0], ElementState::stuck);
     } else {

@@ -235,11 +235,23 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
     s += code("  }}\n\n");
   }
   s += rhs_function(c) + outputs_function(c) + matrices_function(c);
-  if (sys.nonlinear)  // nothing to collect into C and D
+  if (sys.nonlinear) {  // nothing to collect into C and D
     s += code("  // Nonlinear (a quadratic load): exact stepping, which needs dx/dt = M x + N u, is refused.\n"
               "  static constexpr bool nonlinear = true;\n\n");
-  else
+    const auto nq = index_code(sys.quadratic_coefficients.size());
+    s += code("  // The quadratic loads' torques TQ = -c s |s|, s = speeds x, and the columns through which they enter\n"
+              "  // dx/dt: the hybrid runs (pogear/hybrid.hpp) take them as inputs that are functions of the state.\n");
+    s += code("  static void quadratic_loads([[maybe_unused]] const Params& p, Eigen::MatrixXd& columns, "
+              "Eigen::MatrixXd& speeds,\n                              Eigen::VectorXd& coefficients) {{\n");
+    s += aliases(c, symbols_in(entries({&sys.quadratic_columns, &sys.quadratic_speeds})), code("x"));
+    s += code("    columns.setZero(nx, {});\n    speeds.setZero({}, nx);\n    coefficients.resize({});\n", nq, nq, nq);
+    s += matrix_entries(c, sys.quadratic_columns, code("columns")) + matrix_entries(c, sys.quadratic_speeds, code("speeds"));
+    for (std::size_t i = 0; i < sys.quadratic_coefficients.size(); ++i)
+      s += code("    coefficients[{}] = {};\n", index_code(i), c.expression(sys.quadratic_coefficients[i]));
+    s += code("  }}\n\n");
+  } else {
     s += output_matrices_function(c);
+  }
 
   if (!sys.limited_controllers.empty()) {
     s += code("  // Controllers with torque limits: the last {} inputs are their torques, whose laws T = X x + W u\n"

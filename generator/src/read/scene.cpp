@@ -97,17 +97,13 @@ void check_loads_and_controllers(const Scene& s) {
 }
 
 // The scene's solver, or dopri5 for a nonlinear scene that names none, refused (rt::solver_refusal)
-// at the line that asks for it: the solver's, or the loads' when no solver runs the scene.
+// at the line that asks for it. Some solver runs every scene: dopri5 runs them all.
 void check_solver(Scene& s, bool engaged) {
   const rt::SystemTraits traits{.nonlinear = nonlinear(s),
                                 .engages_friction = engaged,
                                 .limits_torque = std::any_of(s.controllers.begin(), s.controllers.end(),
                                                              [](const ControllerSpec& c) { return c.limited(); })};
   const std::vector<Solver> admissible = rt::admissible_solvers(traits);
-  if (admissible.empty())
-    throw InputError(s.loads_where, rt::describe(*rt::solver_refusal(s.solver, traits)) +
-                                        "; drop the quadratic part of the load, or the [engagement] and the "
-                                        "controllers' limits");
   if (traits.nonlinear && !s.solver_given) s.solver = Solver::dopri5;
   if (const auto refusal = rt::solver_refusal(s.solver, traits))
     throw InputError(s.solver_where, fmt::format("{}; use solver = {}{}", rt::describe(*refusal),

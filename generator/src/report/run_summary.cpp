@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <numbers>
 #include <variant>
 
@@ -15,6 +16,7 @@
 #include "common/matrix_balancing.hpp"
 #include "common/printer.hpp"
 #include "specialize/reference_model.hpp"
+#include "pogear/stability_limit.hpp"
 
 namespace pogear {
 
@@ -39,12 +41,61 @@ std::string loads_and_controllers_note(const SpecializedScene& model) {
                                                "tracks the limit (time constant {} s)", c.torque_min, c.torque_max,
                                                c.tracking_time)
                                  : std::string(" (linear)"));
-  if (model.main.nonlinear)
+  if (model.main.nonlinear) {
     s += fmt::format("nonlinear (quadratic loads): integrated by {}{}; exact stepping needs a linear scene\n",
                      rt::solver_name(sc.solver),
                      sc.solver == rt::Solver::rk4 ? fmt::format(", fixed step {} s", sc.step)
                                                   : fmt::format(", adaptive steps at tolerance {}", sc.tolerance));
+    s += nonlinearity_cost_note(model);
+  }
   return s;
+}
+
+namespace {
+
+// The longest step at which dopri5 is stable on the mode lambda: |R(lambda h)| <= 1, R(z) = 1 + z +
+// z^2/2 + z^3/6 + z^4/24 + z^5/120 + z^6/600 (its 5th-order solution's stability function), found by
+// doubling h to the first unstable step and bisecting back.
+double dopri5_stable_step(std::complex<double> lambda) {
+  auto stable = [&](double h) {
+    const std::complex<double> z = lambda * h;
+    return std::abs(1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6 + z * (1.0 / 24 + z * (1.0 / 120 + z / 600.0)))))) <= 1;
+  };
+  if (!(std::abs(lambda) > 0)) return std::numeric_limits<double>::infinity();
+  double lo = 0, hi = 0.1 / std::abs(lambda);
+  while (stable(hi) && hi * std::abs(lambda) < 10) lo = hi, hi *= 2;
+  if (stable(hi)) return hi;
+  for (int i = 0; i < 60; ++i) (stable(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+  return lo;
+}
+
+}  // namespace
+
+std::string nonlinearity_cost_note(const SpecializedScene& model) {
+  const Scene& sc = model.scene;
+  if (sc.solver == rt::Solver::rk4 || !(sc.sample > 0)) return {};
+  const Eigen::MatrixXd M = state_matrix(model, model.main);
+  if (M.rows() == 0) return {};
+  const Eigen::MatrixXd B = balanced(M);
+  const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(B, false).eigenvalues();
+  // Two bounds on the adaptive methods' steps: dopri5's stability, and while a brake or clutch has an
+  // event function, an eighth of the fastest oscillation's period (hybrid_adaptive.hpp).
+  double stable = std::numeric_limits<double>::infinity();
+  std::complex<double> stiffest;
+  if (sc.solver == rt::Solver::dopri5)
+    for (Eigen::Index i = 0; i < lambda.size(); ++i)
+      if (const double h = dopri5_stable_step(lambda(i)); h < stable) stable = h, stiffest = lambda(i);
+  const double watched = model.friction.empty() ? std::numeric_limits<double>::infinity() : rt::event_check_step(B);
+  const double h = std::min(stable, watched);
+  if (!(h * 4 < sc.sample)) return {};
+  const std::string bound =
+      stable <= watched
+          ? fmt::format("dopri5's stability on the stiffest mode, |lambda| = {:.3g} 1/s", std::abs(stiffest))
+          : fmt::format("an eighth of the fastest oscillation's period ({:.4g} Hz) while a brake or clutch may change "
+                        "state", std::numbers::pi / (4 * watched) / (2 * std::numbers::pi));
+  return fmt::format("  what it costs: steps of at most {:.2g} s ({}), about {:.3g} over the horizon, where exact "
+                     "stepping of a linear scene takes about one per sample period ({:.3g})\n",
+                     h, bound, std::ceil(sc.horizon / h), std::ceil(sc.horizon / sc.sample));
 }
 
 // What exact stepping makes of the scene's sine inputs: it holds each linear over the scene's step,

@@ -18,4 +18,9 @@ std::string sine_inputs_note(const SpecializedScene& model);
 // What rk4's fixed step costs on the system's modes: its error per step ("" for another solver).
 std::string rk4_step_note(const SpecializedScene& model, const SpecializedSystem& system);
 
+// What a nonlinear scene's adaptive run costs against exact stepping: the longest step that dopri5's
+// stability on the linear part's stiffest mode, or the event check of its fastest oscillation, allows
+// ("" for rk4, or where neither bound is below a sample period).
+std::string nonlinearity_cost_note(const SpecializedScene& model);
+
 }  // namespace pogear

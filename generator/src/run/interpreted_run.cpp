@@ -58,6 +58,18 @@ struct InterpretedSystem {
   }
   void energy_matrix(const Params&, StateMatrix& L) const { L = ns.L; }  // empty: no bound (controllers)
   bool nonlinear = !ns.quadratic.empty();
+  void quadratic_loads(const Params&, Eigen::MatrixXd& columns, Eigen::MatrixXd& speeds, Eigen::VectorXd& c) const {
+    const auto nq = static_cast<Eigen::Index>(ns.quadratic.size());
+    columns.resize(ns.M.rows(), nq);
+    speeds.resize(nq, ns.M.rows());
+    c.resize(nq);
+    for (Eigen::Index i = 0; i < nq; ++i) {
+      const QuadraticLoad& q = ns.quadratic[static_cast<std::size_t>(i)];
+      columns.col(i) = q.state_column;
+      speeds.row(i) = q.speed_row.transpose();
+      c(i) = q.coefficient;
+    }
+  }
   void slip_matrix(const Params&, Eigen::MatrixXd& S) const { S = ns.S; }
   void torque_limit_laws(const Params&, Eigen::MatrixXd& X, Eigen::MatrixXd& W) const {
     X = ns.limit_x;

@@ -61,6 +61,8 @@ void close_load(const LoadSpec& l, const Derivation& d, const SpeedOf& speed, Sp
     const GiNaC::realsymbol q(name);
     const ex omega = speed(l.body);
     out.quadratic.push_back({name, (-exact_number(l.quadratic) * omega * GiNaC::abs(omega)).expand(), q});
+    out.quadratic_speeds.push_back(omega);
+    out.quadratic_coefficients.push_back(exact_number(l.quadratic));
     law += q;
     sys.nonlinear = true;
   }

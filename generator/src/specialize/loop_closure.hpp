@@ -20,6 +20,7 @@ void loop_inputs_of(const Scene& sc, SpecializedSystem& sys);
 struct ClosedLoops {
   GiNaC::exmap torques;  // TL_ and Tc_ -> their laws, for the outputs
   std::vector<Assignment> quadratic;  // TQ_<body> = -c omega |omega|, temporaries after the linear form
+  std::vector<GiNaC::ex> quadratic_speeds, quadratic_coefficients;  // omega and c of each, in its order
   std::vector<GiNaC::ex> limited;  // the laws of the controllers with torque limits
 };
 

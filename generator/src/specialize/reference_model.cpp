@@ -301,9 +301,18 @@ Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSys
 rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedSystem& system, const NumericSystem& ns) {
   rt::HybridSystem hs;
   hs.M = ns.M;
-  hs.N = ns.N;
   hs.S = ns.S;
   hs.inputs = input_signals(system);
+  // w = [u; q; T]: the quadratic loads' columns between the signals' and the elements'.
+  const auto nu = static_cast<Eigen::Index>(hs.inputs.size()), nq = static_cast<Eigen::Index>(ns.quadratic.size());
+  hs.N.resize(ns.N.rows(), ns.N.cols() + nq);
+  hs.N.leftCols(nu) = ns.N.leftCols(nu);
+  hs.N.rightCols(ns.N.cols() - nu) = ns.N.rightCols(ns.N.cols() - nu);
+  for (Eigen::Index i = 0; i < nq; ++i) {
+    const QuadraticLoad& q = ns.quadratic[static_cast<std::size_t>(i)];
+    hs.N.col(nu + i) = q.state_column;
+    hs.quadratic.push_back({q.speed_row.transpose(), q.coefficient});
+  }
   for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
   for (std::size_t l = 0; l < system.limited_controllers.size(); ++l) {
     const ControllerSpec& c = model.scene.controllers[static_cast<std::size_t>(system.limited_controllers[l])];

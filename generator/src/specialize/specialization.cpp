@@ -264,6 +264,21 @@ GiNaC::exmap loop_output_laws(const ClosedLoops& loops) {
   return laws;
 }
 
+// The quadratic loads' columns of dx/dt and speeds over the states, read off as linear_form reads M
+// and N: before their temporaries join the rhs's, so that each TQ_ stays a symbol of the rows.
+void quadratic_load_form(const SymbolTable& s, const ClosedLoops& loops, SpecializedSystem& sys) {
+  if (loops.quadratic.empty()) return;
+  GiNaC::exmap temps;
+  for (const auto& a : sys.rhs_temporaries) temps[a.symbol] = a.value.subs(temps, GiNaC::subs_options::no_pattern);
+  std::vector<ex> rows, torques, states;
+  for (const ex& row : sys.rhs) rows.push_back(row.subs(temps, GiNaC::subs_options::no_pattern));
+  for (const Assignment& q : loops.quadratic) torques.push_back(q.symbol);
+  for (const StatePort& x : sys.states) states.push_back(variable_symbol(s, x.variable));
+  sys.quadratic_columns = linear_coefficients(rows, torques);
+  sys.quadratic_speeds = linear_coefficients(loops.quadratic_speeds, states);
+  sys.quadratic_coefficients = loops.quadratic_coefficients;
+}
+
 void set_initial_values(const std::vector<double>& x0, SpecializedSystem& sys) {
   for (std::size_t i = 0; i < x0.size(); ++i) sys.states.at(i).initial = x0[i];
 }
@@ -303,6 +318,7 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, const 
   start_controllers_at_given_torques(sc, d, values.numbers, states, gear_states, elastic, x0);
   set_initial_values(x0, sys);
   if (!sys.implicit) linear_form(d.symbols, sys);
+  quadratic_load_form(d.symbols, loops, sys);
   limit_laws(d.symbols, loops, sys);
   // After the linear form, which reads a temporary it does not know as a constant, and leaves it out.
   sys.rhs_temporaries.insert(sys.rhs_temporaries.end(), loops.quadratic.begin(), loops.quadratic.end());

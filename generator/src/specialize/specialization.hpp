@@ -100,8 +100,12 @@ struct SpecializedSystem {
   // with controllers, which feed power in that no bound of the inputs limits.
   GiNaC::matrix L;
   // A quadratic load makes the equations nonlinear: rhs then holds its torques -c omega |omega|
-  // (temporaries TQ_<body>), which M and N leave out, and exact stepping is refused.
+  // (temporaries TQ_<body>), which M and N leave out, and exact stepping is refused. The hybrid runs
+  // take each as an input of the state: TQ = -c s |s| with s = quadratic_speeds x (a row each), its
+  // column of dx/dt in quadratic_columns, c in quadratic_coefficients.
   bool nonlinear = false;
+  GiNaC::matrix quadratic_columns, quadratic_speeds;
+  std::vector<GiNaC::ex> quadratic_coefficients;
 };
 
 // A brake or clutch of a scene at the scene's values: capacity [N m], static ratio, and command.
