@@ -133,6 +133,9 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
     return "the system has not one input column per input, quadratic torque, brake or clutch, and torque limit";
   for (const QuadraticTorqueData& q : sys.quadratic)
     if (q.speed.size() != nx) return "a quadratic torque's speed is not a row over the system's states";
+  for (const TorqueLimitData& l : sys.limits)
+    if (l.law_x.size() != nx || l.law_w.size() != sys.N.cols())
+      return "a controller's law is not a row over the system's states and inputs";
   if (ne > 32) return "more than 32 brakes, clutches and torque limits (a mode is a 32-bit set)";
   for (const Eigen::Index j : sys.speed_states)
     if (j < 0 || j >= nx) return "a speed state of the system is not one of its states";

@@ -85,7 +85,11 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
     sys.torque_limit_laws(p, X, W);
     for (Eigen::Index l = 0; l < nl; ++l) {
       limits[static_cast<std::size_t>(l)].law_x = X.row(l);
-      limits[static_cast<std::size_t>(l)].law_w = W.row(l);
+      // Over w = [u; q; T]: a law reads no quadratic torque.
+      Eigen::RowVectorXd& law_w = limits[static_cast<std::size_t>(l)].law_w;
+      law_w.setZero(nu + nq + ne + nl);
+      law_w.head(nu) = W.row(l).head(nu);
+      law_w.tail(ne + nl) = W.row(l).tail(ne + nl);
     }
   }
   for (Eigen::Index j = 0; j < nx; ++j)

@@ -1,5 +1,5 @@
 // A scene's [vehicle] that cannot be: a key missing, a body it cannot drive from, drag half given,
-// a second road load.
+// a second road load, a jerk the run cannot give.
 #include <gtest/gtest.h>
 
 #include "error_support.hpp"
@@ -34,6 +34,25 @@ TEST_F(VehicleErrors, DragWithoutFrontalArea) {
 TEST_F(VehicleErrors, LoadedTwice) {
   expect_scene_error(with(with_vehicle, {{"[simulation]", "[loads]\nvehicle = { constant = \"10*N*m\" }\n\n[simulation]"}}),
       R"~(scene.toml:22:11: error: [loads] names the vehicle, whose road load [vehicle] gives; leave it out of [loads])~");
+}
+
+TEST_F(VehicleErrors, JerkBesideTheRigidModel) {
+  expect_scene_error(with(with_vehicle, {{"keep = [\"c\", \"r\"]", "keep = [\"c\", \"r\"]\noutputs = [\"vehicle_jerk\"]"}}),
+      R"~(scene.toml:6:11: error: vehicle_jerk is an output of the elastic model only (the rigid model's acceleration jumps at every event and input step); drop compare_rigid, or vehicle_jerk)~");
+}
+
+TEST_F(VehicleErrors, JerkOfARigidModel) {
+  expect_scene_error(with(with_vehicle, {{"keep = [\"c\", \"r\"]", "keep = [\"c\", \"r\"]\noutputs = [\"vehicle_jerk\"]"},
+                                         {R"("mesh_compliance", "shaft_compliance", "mesh_damping", )", ""},
+                                         {"compare_rigid = true\n", ""}}),
+      R"~(scene.toml:6:11: error: vehicle_jerk is an output of the elastic model, where the half-shafts' twist smooths the car's acceleration; add shaft_compliance (and mesh_compliance) to effects, or drop vehicle_jerk)~");
+}
+
+TEST_F(VehicleErrors, JerkOfAnInputOnTheCar) {
+  expect_scene_error(with(with_vehicle, {{"keep = [\"c\", \"r\"]", "keep = [\"c\", \"r\"]\noutputs = [\"vehicle_jerk\"]"},
+                                         {"compare_rigid = true\n", ""},
+                                         {"tau_c = { constant = \"100*Nm\" }", "tau_c = { constant = \"100*Nm\" }\ntau_vehicle = { ramp = \"10*N*m/s\" }"}}),
+      R"~(scene.toml:6:11: error: vehicle_jerk would read the rate of tau_vehicle, which acts on the car's speed and is not constant; drop vehicle_jerk, or make the input constant)~");
 }
 
 }  // namespace

@@ -133,7 +133,7 @@ TEST_P(GeneratedSystems, RhsMatchesTheReferenceAtRandomStatesAndInputs) {
   }
 }
 
-// y = C x + D u + E dx/dt (+ the quadratic loads' terms), dx/dt from the reference.
+// y = C x + D u + E dx/dt (+ the quadratic loads' terms and their rates'), dx/dt from the reference.
 TEST_P(GeneratedSystems, OutputsMatchTheReferenceAtRandomStatesAndInputs) {
   for (const Systems& s : systems_) {
     const NumericSystem& r = s.reference;
@@ -144,8 +144,13 @@ TEST_P(GeneratedSystems, OutputsMatchTheReferenceAtRandomStatesAndInputs) {
       Eigen::VectorXd y = r.C * x + r.D * u + r.E * dx;
       Eigen::VectorXd scale = r.C.cwiseAbs() * x.cwiseAbs() + r.D.cwiseAbs() * u.cwiseAbs() + r.E.cwiseAbs() * dx_scale;
       for (std::size_t i = 0; i < r.quadratic.size(); ++i) {
-        y += q(static_cast<Eigen::Index>(i)) * r.quadratic[i].output_column;
-        scale += std::abs(q(static_cast<Eigen::Index>(i))) * r.quadratic[i].output_column.cwiseAbs();
+        const QuadraticLoad& l = r.quadratic[i];
+        y += q(static_cast<Eigen::Index>(i)) * l.output_column;
+        scale += std::abs(q(static_cast<Eigen::Index>(i))) * l.output_column.cwiseAbs();
+        // The torque's rate, -2 c |s| ds/dt (vehicle_jerk).
+        const double rate = 2 * l.coefficient * std::abs(l.speed_row.dot(x)) * l.speed_row.dot(dx);
+        y -= rate * l.rate_output_column;
+        scale += std::abs(rate) * l.rate_output_column.cwiseAbs();
       }
       EXPECT_LT(largest_scaled_gap(s.generated.output_values(x, u), y, scale), kTolerance)
           << s.specialized.kind << " at x = " << x.transpose() << ", u = " << u.transpose() << ":\n"

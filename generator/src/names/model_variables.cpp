@@ -30,6 +30,7 @@ KindText text_of(VariableKind kind) {
     case VariableKind::set_point: return {"ref_", "rad/s"};
     case VariableKind::vehicle_speed: return {"vehicle_speed", "km/h"};
     case VariableKind::vehicle_acceleration: return {"vehicle_acceleration", "m/s^2"};
+    case VariableKind::vehicle_jerk: return {"vehicle_jerk", "m/s^3"};
   }
   return {"", ""};
 }
@@ -49,7 +50,8 @@ bool of_body(VariableKind kind) {
 }
 
 bool of_vehicle(VariableKind kind) {
-  return kind == VariableKind::vehicle_speed || kind == VariableKind::vehicle_acceleration;
+  return kind == VariableKind::vehicle_speed || kind == VariableKind::vehicle_acceleration ||
+         kind == VariableKind::vehicle_jerk;
 }
 
 bool of_controller(VariableKind kind) {

@@ -28,6 +28,7 @@ enum class VariableKind {
   set_point,          // ref_<controller> [rad/s]: its set-point, an input
   vehicle_speed,         // vehicle_speed [km/h]: a scene's [vehicle], r_w omega_wheels, an output
   vehicle_acceleration,  // vehicle_acceleration [m/s^2]: its derivative, an output
+  vehicle_jerk,          // vehicle_jerk [m/s^3]: the acceleration's derivative, an output of the elastic model
 };
 
 // A variable of body or mesh `index`, as the kind says.

@@ -53,7 +53,7 @@ void add_controller_symbols(SymbolTable& s, const std::vector<std::string>& cont
 }
 
 void add_vehicle_symbols(SymbolTable& s) {
-  for (const VariableKind kind : {VariableKind::vehicle_speed, VariableKind::vehicle_acceleration})
+  for (const VariableKind kind : {VariableKind::vehicle_speed, VariableKind::vehicle_acceleration, VariableKind::vehicle_jerk})
     s.variables.emplace(Variable{kind, 0}, GiNaC::realsymbol(variable_name(Topology{}, {kind, 0})));
 }
 

@@ -24,7 +24,7 @@ SymbolTable make_symbol_table(const Topology& t);
 // A scene's speed controllers add their variables (theta_, e_, ref_, Tc_ of each, by index) to the
 // table of the model they are closed around.
 void add_controller_symbols(SymbolTable& s, const std::vector<std::string>& controllers);
-// A scene's [vehicle]: vehicle_speed and vehicle_acceleration.
+// A scene's [vehicle]: vehicle_speed, vehicle_acceleration and vehicle_jerk.
 void add_vehicle_symbols(SymbolTable& s);
 
 // The symbol of a parameter or a variable of the table; a name the table lacks is a bug of pogear

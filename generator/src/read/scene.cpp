@@ -96,6 +96,22 @@ void check_loads_and_controllers(const Scene& s) {
                                     "have; start from given speeds, or with start = \"rigid\"");
 }
 
+// vehicle_jerk is the elastic model's: there the half-shafts' twist makes the car's acceleration a
+// function of the state, whose rate the outputs read off dx/dt. The rigid model's acceleration jumps
+// with every event and input step.
+void check_vehicle_jerk(const Scene& s) {
+  const bool jerk = std::find(s.outputs.begin(), s.outputs.end(), Variable{VariableKind::vehicle_jerk, 0}) != s.outputs.end();
+  if (!jerk) return;
+  if (!s.effects.elastic())
+    throw InputError(s.outputs_where, "vehicle_jerk is an output of the elastic model, where the half-shafts' twist "
+                                      "smooths the car's acceleration; add shaft_compliance (and mesh_compliance) to "
+                                      "effects, or drop vehicle_jerk");
+  if (s.compare_rigid)
+    throw InputError(s.outputs_where, "vehicle_jerk is an output of the elastic model only (the rigid model's "
+                                      "acceleration jumps at every event and input step); drop compare_rigid, or "
+                                      "vehicle_jerk");
+}
+
 // The scene's solver, or dopri5 for a nonlinear scene that names none, refused (rt::solver_refusal)
 // at the line that asks for it. Some solver runs every scene: dopri5 runs them all.
 void check_solver(Scene& s, bool engaged) {
@@ -361,7 +377,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     for (const auto& o : listed) {
       const auto v = find_scene_variable(s, o, {VariableKind::velocity, VariableKind::force, VariableKind::spring_force,
                                                 VariableKind::controller_torque, VariableKind::vehicle_speed,
-                                                VariableKind::vehicle_acceleration});
+                                                VariableKind::vehicle_acceleration, VariableKind::vehicle_jerk});
       if (const std::string why = fixed_variable_refusal(topology, o); !why.empty()) r.fail(*n, why);
       if (!v)
         r.fail(*n, fmt::format("output '{}' is none of omega_<body>, F_<mesh>, Fspring_<mesh>, {}Tc_<controller>", o,
@@ -427,6 +443,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                                    [](const EngagementSpec& e) { return !identically_zero(e.command); });
   check_loads_and_controllers(s);
   check_solver(s, engaged);
+  check_vehicle_jerk(s);
   for (const EngagementSpec& e : s.engagement) {
     const FrictionElement& f = topology.friction_elements[static_cast<std::size_t>(e.element)];
     if (std::find(s.tunable.begin(), s.tunable.end(), f.capacity_parameter) != s.tunable.end())

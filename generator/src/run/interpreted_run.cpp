@@ -50,7 +50,10 @@ struct InterpretedSystem {
     y.noalias() = C * x;
     y.noalias() += E * dx;
     if (u.size()) y.noalias() += D * u;
-    for (const QuadraticLoad& q : ns.quadratic) y += load_torque(q, x) * q.output_column;
+    for (const QuadraticLoad& q : ns.quadratic) {
+      y += load_torque(q, x) * q.output_column;
+      y += -2 * q.coefficient * std::abs(q.speed_row.dot(x)) * q.speed_row.dot(dx) * q.rate_output_column;
+    }
   }
   void matrices(const Params&, StateMatrix& M, InputMatrix& N) const {
     M = ns.M;

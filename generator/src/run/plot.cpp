@@ -74,6 +74,7 @@ std::vector<std::string> plot_scene(const SpecializedScene& model, const std::st
     if (y.kind == VariableKind::controller_torque) return "controllers";
     if (y.kind == VariableKind::vehicle_speed) return "vehicle";
     if (y.kind == VariableKind::vehicle_acceleration) return "vehicle_acceleration";
+    if (y.kind == VariableKind::vehicle_jerk) return "vehicle_jerk";
     return model.derivation.topology.meshes[static_cast<std::size_t>(y.index)].shaft ? "shafts" : "forces";
   };
   for (const std::string kind : {"velocities", "forces", "shafts", "controllers", "vehicle"}) {

@@ -66,8 +66,8 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
         const Eigen::Index w = state_index({VariableKind::velocity, model.scene.vehicle->vehicle_body});
         const double per_omega = model.scene.vehicle->speed_per_omega();
         if (y.kind == VariableKind::vehicle_speed) out.C(i, w) = 3.6 * per_omega;
-        else out.E(i, w) = per_omega;
-        continue;
+        else if (y.kind == VariableKind::vehicle_acceleration) out.E(i, w) = per_omega;
+        continue;  // vehicle_jerk: vehicle_jerk_rows, from the closed loop's M
       }
       if (y.kind == VariableKind::spring_force) {
         out.C(i, state_index({VariableKind::force, y.index})) = 1;
@@ -120,7 +120,7 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
         const double per_omega = model.scene.vehicle->speed_per_omega();
         const auto row = Q1n.row(model.scene.vehicle->vehicle_body);
         if (y.kind == VariableKind::vehicle_speed) out.C.row(i) = 3.6 * per_omega * row;
-        else out.E.row(i) = per_omega * row;
+        else if (y.kind == VariableKind::vehicle_acceleration) out.E.row(i) = per_omega * row;
       } else if (y.kind == VariableKind::force || y.kind == VariableKind::spring_force) {  // the spring carries F
         const Eigen::Index f = y.index;
         out.C.row(i) = C_F.row(f);
@@ -217,6 +217,21 @@ void controller_outputs(const SpecializedSystem& sys, const std::vector<Variable
     }
 }
 
+// The elastic model's vehicle_jerk, (r/i) d/dt of the vehicle body's row of dx/dt: M's row on dx/dt
+// and each quadratic load's column on its torque's rate (the specialization refuses inputs there
+// that are not constant).
+void vehicle_jerk_rows(const SpecializedScene& model, const SpecializedSystem& sys, NumericSystem& out) {
+  for (Eigen::Index i = 0; i < out.C.rows(); ++i) {
+    if (sys.outputs[static_cast<std::size_t>(i)].variable.kind != VariableKind::vehicle_jerk) continue;
+    const Eigen::Index v = index_of(state_variables(sys), {VariableKind::velocity, model.scene.vehicle->vehicle_body});
+    const double per_omega = model.scene.vehicle->speed_per_omega();
+    out.C.row(i).setZero();
+    out.D.row(i).setZero();
+    out.E.row(i) = per_omega * out.M.row(v);
+    for (QuadraticLoad& q : out.quadratic) q.rate_output_column(i) = per_omega * q.state_column(v);
+  }
+}
+
 // A lumped planet's meshes: the model's force is its planets' sum, the output one planet's. Speeds
 // in rpm when the scene asks.
 void output_scales(const Topology& t, const SpecializedSystem& sys, NumericSystem& out) {
@@ -278,11 +293,13 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
   for (std::size_t l = 0; l < loads.size(); ++l) {
     if (loads[l]->quadratic == 0) continue;
     const Eigen::Index column = ncl + static_cast<Eigen::Index>(l);
-    QuadraticLoad q{Nw.col(column), Dw.col(column), Eigen::VectorXd::Zero(nx), loads[l]->quadratic};
+    QuadraticLoad q{Nw.col(column), Dw.col(column), Eigen::VectorXd::Zero(nx), loads[l]->quadratic,
+                    Eigen::VectorXd::Zero(out.C.rows())};
     q.speed_row.head(nb) = o.speeds.row(loads[l]->body).transpose();
     out.quadratic.push_back(std::move(q));
   }
   controller_outputs(sys, system_inputs, law, out);
+  vehicle_jerk_rows(model, sys, out);
   if (sc.controllers.empty()) out.L = o.L;
   out.S = Eigen::MatrixXd::Zero(o.S.rows(), nx);
   out.S.leftCols(nb) = o.S;
@@ -316,8 +333,12 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedS
   for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
   for (std::size_t l = 0; l < system.limited_controllers.size(); ++l) {
     const ControllerSpec& c = model.scene.controllers[static_cast<std::size_t>(system.limited_controllers[l])];
-    hs.limits.push_back({c.name, c.torque_min, c.torque_max, ns.limit_x.row(static_cast<Eigen::Index>(l)),
-                         ns.limit_u.row(static_cast<Eigen::Index>(l))});
+    // Over w = [u; q; T]: a law reads no quadratic torque.
+    const Eigen::RowVectorXd u = ns.limit_u.row(static_cast<Eigen::Index>(l));
+    Eigen::RowVectorXd law_w = Eigen::RowVectorXd::Zero(hs.N.cols());
+    law_w.head(nu) = u.head(nu);
+    law_w.tail(u.size() - nu) = u.tail(u.size() - nu);
+    hs.limits.push_back({c.name, c.torque_min, c.torque_max, ns.limit_x.row(static_cast<Eigen::Index>(l)), law_w});
   }
   return hs;
 }

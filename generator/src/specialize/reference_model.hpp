@@ -20,6 +20,8 @@ struct SpecializedSystem;  // specialization.hpp
 struct QuadraticLoad {
   Eigen::VectorXd state_column, output_column, speed_row;
   double coefficient = 0;
+  // The outputs' term in the torque's rate d(-c s |s|)/dt = -2 c |s| speed_row dx/dt (vehicle_jerk).
+  Eigen::VectorXd rate_output_column;
 };
 
 struct NumericSystem {

@@ -4,6 +4,7 @@
 #include "specialize/start_state.hpp"
 
 #include <algorithm>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -177,6 +178,7 @@ ex output_value(const Derivation& d, const GiNaC::exmap& fold, const OpenInputs&
     // m/s per rad/s of the vehicle body, r / i; the speed in km/h (3.6 = 18/5 exactly).
     const ex per_omega = exact_number(vehicle->speed_per_omega());
     const Variable omega{VariableKind::velocity, vehicle->vehicle_body};
+    if (out.kind == VariableKind::vehicle_jerk) return 0;  // vehicle_jerk_value, once M is known
     if (out.kind == VariableKind::vehicle_speed)
       return folded(output_value(d, fold, in, loop_outputs, states, gear_states, elastic, vehicle, omega) * per_omega *
                         GiNaC::numeric(18, 5),
@@ -225,6 +227,7 @@ SystemOutputs system_outputs(const Scene& sc, const Derivation& d, const GiNaC::
     ex value = output_value(d, fold, in, loop_outputs, states, gear_states, elastic, sc.vehicle, y);
     const bool in_rpm = y.kind == VariableKind::velocity && sc.speeds_in_rpm;
     out.reads_derivatives = out.reads_derivatives || y.kind == VariableKind::vehicle_acceleration ||
+                            y.kind == VariableKind::vehicle_jerk ||
                             (!elastic && !contains(states, y) && y.kind != VariableKind::controller_torque &&
                              y.kind != VariableKind::velocity && y.kind != VariableKind::vehicle_speed);
     if (y.kind == VariableKind::force || y.kind == VariableKind::spring_force)
@@ -279,6 +282,38 @@ void quadratic_load_form(const SymbolTable& s, const ClosedLoops& loops, Special
   sys.quadratic_coefficients = loops.quadratic_coefficients;
 }
 
+// The elastic model's jerk, (r/i) d/dt of the vehicle body's dx/dt row: M's row times dx/dt, and each
+// quadratic load's column times its torque's rate -2 c |s| ds/dt. An input on that row would add its
+// own rate, which the outputs cannot read: refused unless constant (the road load's, a constant grade).
+ex vehicle_jerk_value(const Scene& sc, const Derivation& d, const SpecializedSystem& sys) {
+  const SymbolTable& s = d.symbols;
+  const Variable omega{VariableKind::velocity, sc.vehicle->vehicle_body};
+  const std::vector<Variable> states = state_variables(sys);
+  const auto v = static_cast<unsigned>(std::find(states.begin(), states.end(), omega) - states.begin());
+  for (std::size_t i = 0; i < sys.inputs.size(); ++i)
+    if (!sys.N(v, static_cast<unsigned>(i)).is_zero() &&
+        !(sys.inputs[i].signal && std::holds_alternative<rt::Constant>(*sys.inputs[i].signal)))
+      throw InputError(sc.outputs_where,
+                       fmt::format("vehicle_jerk would read the rate of {}, which acts on the car's speed and is not "
+                                   "constant; drop vehicle_jerk, or make the input constant",
+                                   variable_name(s, sys.inputs[i].variable)));
+  auto rate = [&](auto coefficient) {  // sum_j coefficient(j) dx_j/dt
+    ex sum = 0;
+    for (std::size_t j = 0; j < states.size(); ++j)
+      if (const ex c = coefficient(static_cast<unsigned>(j)); !c.is_zero()) sum += c * variable_symbol(s, derivative_of(states[j]));
+    return sum;
+  };
+  ex jerk = rate([&](unsigned j) { return sys.M(v, j); });
+  for (unsigned q = 0; q < sys.quadratic_coefficients.size(); ++q) {
+    if (sys.quadratic_columns(v, q).is_zero()) continue;
+    ex speed = 0;
+    for (unsigned j = 0; j < states.size(); ++j) speed += sys.quadratic_speeds(q, j) * variable_symbol(s, states[j]);
+    jerk += sys.quadratic_columns(v, q) * -2 * sys.quadratic_coefficients[q] * GiNaC::abs(speed) *
+            rate([&](unsigned j) { return sys.quadratic_speeds(q, j); });
+  }
+  return (jerk * exact_number(sc.vehicle->speed_per_omega())).expand();
+}
+
 void set_initial_values(const std::vector<double>& x0, SpecializedSystem& sys) {
   for (std::size_t i = 0; i < x0.size(); ++i) sys.states.at(i).initial = x0[i];
 }
@@ -324,6 +359,8 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, const 
   sys.rhs_temporaries.insert(sys.rhs_temporaries.end(), loops.quadratic.begin(), loops.quadratic.end());
   SystemOutputs outputs = system_outputs(sc, d, fold, open_inputs, loop_output_laws(loops), states, gear_states, elastic);
   sys.outputs = std::move(outputs.ports);
+  for (OutputPort& y : sys.outputs)
+    if (y.variable.kind == VariableKind::vehicle_jerk) y.value = vehicle_jerk_value(sc, d, sys);
   sys.output_derivatives = outputs.reads_derivatives;
   count_system_operations(sys);
   sys.L = sc.controllers.empty() ? energy_matrix(d, fold, elastic) : GiNaC::matrix(0, 0);
