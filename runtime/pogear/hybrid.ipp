@@ -60,7 +60,7 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   d.breaks = breakpoints(all, 0.0, d.horizon);
   d.sine_period = shortest_sine_period(all);
   d.hold_step = std::numeric_limits<double>::infinity();
-  if (c.method.solver == Solver::exact && std::isfinite(d.sine_period)) {
+  if (c.method.solver == Solver::exact && (std::isfinite(d.sine_period) || curved(all))) {
     if (!(c.method.options.h > 0)) return RunStatus{false, "invalid step size h = " + detail::num(c.method.options.h), 0.0};
     d.hold_step = c.method.options.h;
   }

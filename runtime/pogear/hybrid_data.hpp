@@ -54,7 +54,7 @@ struct HybridData {
   std::vector<double> breaks;  // of the inputs and commands
   // The shortest period of a sine among the inputs and commands (infinity without one), and the
   // longest step over which the exact method may hold the inputs linear: the scene's step when a
-  // sine is present (its error is what the summary states), else unbounded.
+  // sine or a grade's load is present (its error is what the summary states), else unbounded.
   double sine_period = std::numeric_limits<double>::infinity();
   double hold_step = std::numeric_limits<double>::infinity();
 

@@ -145,7 +145,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
     HybridEngine engine(hs, run.horizon, HybridMethod{run.solver, run.options});
     auto obs = [&](double t, const HybridSample& s) {
       if (energy_bound && !energy_bound->within(t, s.x, energy_bound_safety_factor)) {
-        log.diverged(t, energy_bound->ratio(t, s.x));
+        log.diverged(t, energy_bound->ratio(t, s.x), nq == 0);
         return false;
       }
       const typename System::State x = s.x;

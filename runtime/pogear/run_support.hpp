@@ -63,8 +63,9 @@ POGEAR_RT_API ModalForm modal_form(const Eigen::MatrixXd& A, const Eigen::Matrix
 
 // What to do about a run whose energy exceeded what the passive gear can hold, for the solver that
 // ran it: a step or tolerance for the integrators; for exact stepping, which is stable at any step,
-// the parameters, since only rounding of extreme values makes it grow.
-POGEAR_RT_API std::string divergence_advice(Solver solver);
+// the parameters, since only rounding of extreme values makes it grow. `linear`: exact stepping can
+// run the system (no quadratic load), so it may be offered.
+POGEAR_RT_API std::string divergence_advice(Solver solver, bool linear = true);
 
 // One system's run around its driver: the rk4 step check, the CSV file of each repetition, the
 // divergence message, the timing and the closing report or error, all under the label
@@ -84,8 +85,9 @@ class SystemRunLog {
   POGEAR_RT_API bool begin();
   bool writes_csv() const { return csv_ != nullptr; }
   POGEAR_RT_API void row(double t, const double* y, long n);
-  // The run diverged at t, with sqrt(E) `ratio` times the bound: the run's message from now on.
-  POGEAR_RT_API void diverged(double t, double ratio);
+  // The run diverged at t, with sqrt(E) `ratio` times the bound: the run's message from now on
+  // (`linear`: as divergence_advice's).
+  POGEAR_RT_API void diverged(double t, double ratio, bool linear = true);
   // After each repetition: commits the CSV file (marked incomplete if the run failed) and records
   // the time. False after printing an error.
   POGEAR_RT_API bool end(RunStatus& st);

@@ -20,6 +20,7 @@ namespace detail {
 // breakpoint.
 inline double input_bound(const Signal& s, double t0, double t1) {
   if (const auto* sine = std::get_if<Sine>(&s)) return std::abs(sine->offset) + std::abs(sine->amplitude);
+  if (const auto* g = std::get_if<GradeLoad>(&s)) return std::hypot(g->sine, g->cosine);
   double m = std::max(std::abs(value(s, t0)), std::abs(value(s, t1)));
   for (double b : breakpoints(s, t0, t1))
     m = std::max({m, std::abs(value(s, b)), std::abs(value(s, std::nextafter(b, t0)))});
@@ -154,22 +155,24 @@ POGEAR_RT_API void SystemRunLog::row(double t, const double* y, long n) {
   csv_->end_row();
 }
 
-POGEAR_RT_API std::string divergence_advice(Solver solver) {
+POGEAR_RT_API std::string divergence_advice(Solver solver, bool linear) {
   switch (solver) {
-    case Solver::rk4: return "use a smaller --step, or --solver exact or implicit";
-    case Solver::dopri5: return "use a tighter --tolerance, or --solver exact or implicit";
-    case Solver::implicit: return "use a tighter --tolerance, or --solver exact";
+    case Solver::rk4: return linear ? "use a smaller --step, or --solver exact or implicit" : "use --solver implicit";
+    case Solver::dopri5:
+      return linear ? "use a tighter --tolerance, or --solver exact or implicit"
+                    : "use a tighter --tolerance, or --solver implicit";
+    case Solver::implicit: return linear ? "use a tighter --tolerance, or --solver exact" : "use a tighter --tolerance";
     case Solver::exact: break;
   }
   return "exact stepping is stable at any step, so the growth is rounding: check the parameters for values far "
          "from the gear's (--param, [parameters]) and the stiffness ratio `pogear derive` reports";
 }
 
-POGEAR_RT_API void SystemRunLog::diverged(double t, double ratio) {
+POGEAR_RT_API void SystemRunLog::diverged(double t, double ratio, bool linear) {
   char times[32];
   std::snprintf(times, sizeof times, "%.3g", ratio * ratio);
   diverged_ = "the solution diverged at t = " + detail::num(t) + ": its energy is " + times +
-              " times what the initial state and the inputs can supply; " + divergence_advice(run_.solver);
+              " times what the initial state and the inputs can supply; " + divergence_advice(run_.solver, linear);
 }
 
 POGEAR_RT_API bool SystemRunLog::end(RunStatus& st) {

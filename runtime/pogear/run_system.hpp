@@ -33,10 +33,11 @@ struct Solvers {
 using AllSolvers = Solvers<Solver::exact, Solver::rk4, Solver::dopri5, Solver::implicit>;
 
 // The exact method is exact for inputs linear between breakpoints, so it steps a whole sample
-// period; a sine is held linear over the scene's `step` instead.
+// period; a sine or a grade's load is held linear over the scene's `step` instead.
 inline double exact_step(const SceneRun& run, const std::vector<Signal>& signals) {
-  const bool piecewise_linear = std::none_of(signals.begin(), signals.end(),
-                                             [](const Signal& s) { return std::holds_alternative<Sine>(s); });
+  const bool piecewise_linear = std::none_of(signals.begin(), signals.end(), [](const Signal& s) {
+    return std::holds_alternative<Sine>(s) || std::holds_alternative<GradeLoad>(s);
+  });
   return piecewise_linear ? run.sample : std::min(run.sample, run.options.h);
 }
 
@@ -180,12 +181,14 @@ int run_system(const System& sys, const typename System::Params& p, const std::v
       energy_bound.emplace(std::move(L), N, signals, x0, run.horizon);
   }
 
+  bool linear = true;
+  if constexpr (requires { bool(sys.nonlinear); }) linear = !bool(sys.nonlinear);
   RunStatus st;
   for (int rep = 0; rep < run.repeat; ++rep) {
     if (!log.begin()) return 3;
     auto obs = [&](double t, const State& x) {
       if (energy_bound && !energy_bound->within(t, x, energy_bound_safety_factor)) {
-        log.diverged(t, energy_bound->ratio(t, x));
+        log.diverged(t, energy_bound->ratio(t, x), linear);
         return false;
       }
       input_values(signals, t, u);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -50,10 +51,29 @@ struct Table {
   }
 };
 
-using Signal = std::variant<Constant, Step, Ramp, Sine, Table>;
+// A road's load through its grade, sine sin(a(t)) + cosine cos(a(t)), the angle a [rad] a table of
+// time (a car's weight along the road and its rolling resistance on it). Smooth between the
+// angle's breakpoints, but not linear: exact stepping holds it linear over the scene's step.
+struct GradeLoad {
+  Table angle;
+  double sine = 0, cosine = 0;
+  double value(double t) const {
+    const double a = angle.value(t);
+    return sine * std::sin(a) + cosine * std::cos(a);
+  }
+};
+
+using Signal = std::variant<Constant, Step, Ramp, Sine, Table, GradeLoad>;
 
 inline double value(const Signal& s, double t) {
   return std::visit([t](const auto& sig) { return sig.value(t); }, s);
+}
+
+// A table's slope at t (its right derivative at a row), 0 outside it.
+inline double table_slope(const Table& tab, double t) {
+  if (tab.t.empty() || !(t >= tab.t.front()) || t >= tab.t.back()) return 0.0;
+  const auto i = static_cast<std::size_t>(std::upper_bound(tab.t.begin(), tab.t.end(), t) - tab.t.begin());
+  return (tab.v[i] - tab.v[i - 1]) / (tab.t[i] - tab.t[i - 1]);
 }
 
 // The signal's slope at t (its right derivative where it kinks).
@@ -63,16 +83,28 @@ inline double slope(const Signal& s, double t) {
     const double w = 2 * std::numbers::pi * sine->frequency_hz;
     return sine->amplitude * w * std::cos(w * t + sine->phase_rad);
   }
-  if (const auto* tab = std::get_if<Table>(&s)) {
-    if (tab->t.empty() || !(t >= tab->t.front()) || t >= tab->t.back()) return 0.0;
-    const auto i = static_cast<std::size_t>(std::upper_bound(tab->t.begin(), tab->t.end(), t) - tab->t.begin());
-    return (tab->v[i] - tab->v[i - 1]) / (tab->t[i] - tab->t[i - 1]);
+  if (const auto* tab = std::get_if<Table>(&s)) return table_slope(*tab, t);
+  if (const auto* g = std::get_if<GradeLoad>(&s)) {
+    const double a = g->angle.value(t);
+    return (g->sine * std::cos(a) - g->cosine * std::sin(a)) * table_slope(g->angle, t);
   }
   return 0.0;  // Constant, Step
 }
 
-// The shortest period of the signals' sines (of those that move), or infinity: the one input whose
-// value is not linear between breakpoints.
+// Whether some signal is not linear between its breakpoints (a sine that moves, a grade's load):
+// exact stepping then holds the inputs linear over the scene's step.
+inline bool curved(const std::vector<Signal>& signals) {
+  return std::any_of(signals.begin(), signals.end(), [](const Signal& s) {
+    const auto* sine = std::get_if<Sine>(&s);
+    const auto* grade = std::get_if<GradeLoad>(&s);
+    return (sine && sine->amplitude != 0 && sine->frequency_hz != 0) ||
+           (grade && std::adjacent_find(grade->angle.v.begin(), grade->angle.v.end(), std::not_equal_to<>()) !=
+                         grade->angle.v.end());
+  });
+}
+
+// The shortest period of the signals' sines (of those that move), or infinity: a sine's value is
+// not linear between breakpoints, and crosses its mean twice a period.
 inline double shortest_sine_period(const std::vector<Signal>& signals) {
   double period = std::numeric_limits<double>::infinity();
   for (const Signal& s : signals)
@@ -91,6 +123,8 @@ inline std::vector<double> breakpoints(const Signal& s, double t0, double t1) {
   if (const auto* r = std::get_if<Ramp>(&s)) add(r->start_time);
   if (const auto* tab = std::get_if<Table>(&s))
     for (double t : tab->t) add(t);
+  if (const auto* g = std::get_if<GradeLoad>(&s))
+    for (double t : g->angle.t) add(t);
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }

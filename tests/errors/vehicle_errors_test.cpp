@@ -28,7 +28,7 @@ TEST_F(VehicleErrors, OnAPlanet) {
 
 TEST_F(VehicleErrors, DragWithoutFrontalArea) {
   expect_scene_error(with(with_vehicle, {{"final_drive = 3.2\n", "final_drive = 3.2\ndrag_coefficient = 0.3\n"}}),
-      R"~(scene.toml:14:1: error: aerodynamic drag needs both drag_coefficient and frontal_area; give both, or neither)~");
+      R"~(scene.toml:19:20: error: aerodynamic drag needs both drag_coefficient and frontal_area; give both, or neither)~");
 }
 
 TEST_F(VehicleErrors, LoadedTwice) {
@@ -53,6 +53,16 @@ TEST_F(VehicleErrors, JerkOfAnInputOnTheCar) {
                                          {"compare_rigid = true\n", ""},
                                          {"tau_c = { constant = \"100*Nm\" }", "tau_c = { constant = \"100*Nm\" }\ntau_vehicle = { ramp = \"10*N*m/s\" }"}}),
       R"~(scene.toml:6:11: error: vehicle_jerk would read the rate of tau_vehicle, which acts on the car's speed and is not constant; drop vehicle_jerk, or make the input constant)~");
+}
+
+TEST_F(VehicleErrors, GradeThatIsNeitherAnAngleNorATable) {
+  expect_scene_error(with(with_vehicle, {{"final_drive = 3.2\n", "final_drive = 3.2\ngrade = { ramp = \"1*deg/s\" }\n"}}),
+      R"~(scene.toml:19:9: error: grade is an angle, e.g. "3*deg", or { table = "file.csv" } with two columns: time [s], grade [deg])~");
+}
+
+TEST_F(VehicleErrors, OutsideTheRange) {
+  expect_scene_error(with(with_vehicle, {{"wheel_radius = \"0.3*m\"", "wheel_radius = \"1e120*m\""}}),
+      R"~(scene.toml:14:1: error: [vehicle] makes J_vehicle = 1.46484e+242 (SI), outside the range pogear computes with, 1e-30 to 1e+30; check the vehicle's values and their units)~");
 }
 
 }  // namespace

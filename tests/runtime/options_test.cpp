@@ -131,6 +131,9 @@ TEST(Options, DivergenceAdviceFitsTheSolver) {
   EXPECT_NE(exact.find("parameters"), std::string::npos) << exact;
   for (rt::Solver s : rt::all_solvers) EXPECT_EQ(rt::divergence_advice(s).find(std::string(rt::solver_name(s)) + " or"),
                                                  std::string::npos);
+  // A nonlinear system: exact stepping is no remedy.
+  for (rt::Solver s : {rt::Solver::rk4, rt::Solver::dopri5, rt::Solver::implicit})
+    EXPECT_EQ(rt::divergence_advice(s, false).find("exact"), std::string::npos) << rt::solver_name(s);
 }
 
 // pogear runs a compiled simulator with command_line(run): every setting comes back as it was,

@@ -57,6 +57,9 @@ CppText signal_code(const rt::Signal& signal) {
     CppText operator()(const rt::Table& t) const {
       return code("pogear::rt::Table{{{{{}}}, {{{}}}}}", numbers(t.t), numbers(t.v));
     }
+    CppText operator()(const rt::GradeLoad& g) const {
+      return code("pogear::rt::GradeLoad{{{}, {}, {}}}", (*this)(g.angle), number_code(g.sine), number_code(g.cosine));
+    }
   };
   return std::visit(Code{}, signal);
 }

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "pogear/parameters.hpp"
+
 #include "read/model_parameters.hpp"
 #include "names/model_variables.hpp"
 
@@ -33,6 +35,11 @@ double non_negative(const SceneReader& r, const toml::node& n, const Dimension& 
   const double v = r.coefficient(n, dim, what, example_unit);
   if (v < 0) r.fail(n, fmt::format("{} is negative; a load takes power from the gear (a torque that drives it is an "
                                    "input in [inputs])", what));
+  // The range of the model's parameters (model_parameters.cpp): beyond it the equations over- or underflow.
+  constexpr double smallest = rt::kSmallestParameter, largest = rt::kLargestParameter;
+  if (v != 0 && !(v >= smallest && v <= largest))
+    r.fail(n, fmt::format("{} is {:g} (SI), outside the range pogear computes with, {:g} to {:g}; check the value and "
+                          "its unit", what, v, smallest, largest));
   return v;
 }
 

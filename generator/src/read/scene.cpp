@@ -122,9 +122,11 @@ void check_solver(Scene& s, bool engaged) {
   const std::vector<Solver> admissible = rt::admissible_solvers(traits);
   if (traits.nonlinear && !s.solver_given) s.solver = Solver::dopri5;
   if (const auto refusal = rt::solver_refusal(s.solver, traits))
-    throw InputError(s.solver_where, fmt::format("{}; use solver = {}{}", rt::describe(*refusal),
-                                                 rt::solver_alternatives(admissible, true),
-                                                 traits.nonlinear ? ", or a linear load" : ""));
+    throw InputError(s.solver_where,
+                     fmt::format("{}; use solver = {}{}", rt::describe(*refusal), rt::solver_alternatives(admissible, true),
+                                 refusal->cause == rt::solver_refusal(Solver::exact, {.nonlinear = true})->cause
+                                     ? ", or a linear load"
+                                     : ""));
 }
 
 }  // namespace
@@ -144,6 +146,7 @@ bool identically_zero(const rt::Signal& signal) {
     bool operator()(const rt::Table& t) const {
       return std::all_of(t.v.begin(), t.v.end(), [](double v) { return v == 0; });
     }
+    bool operator()(const rt::GradeLoad& g) const { return g.sine == 0 && g.cosine == 0; }
   };
   return std::visit(Zero{}, signal);
 }
@@ -206,7 +209,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   if (const toml::node* n = root.get("parameters")) apply_overrides(r, *n, s.model);
 
   // Before the effects, which ask for the compliance of its half-shafts.
-  if (const toml::node* n = root.get("vehicle")) read_vehicle(r, *n, s);
+  if (const toml::node* n = root.get("vehicle")) read_vehicle(r, *n, scene_dir, s);
   if (const toml::node* n = root.get("effects")) s.effects = read_effects(r, *n, topology);
   // Before the tunables, whose names must not be the controllers' variables.
   if (const toml::node* n = root.get("loads")) {

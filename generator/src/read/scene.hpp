@@ -48,6 +48,9 @@ struct EngagementSpec {
 struct LoadSpec {
   int body = -1;
   double constant = 0, linear = 0, quadratic = 0;
+  // The input TL_<body> when the constant part varies in time (a grade's, a GradeLoad of -constant);
+  // `constant` is then its value at t = 0.
+  std::optional<rt::Signal> varying;
   SourceLocation where;
 };
 
@@ -57,7 +60,8 @@ struct VehicleSpec {
   int body = -1;          // the body that drives the final drive
   int vehicle_body = -1;  // the body the vehicle adds
   double mass = 0, wheel_radius = 0, final_drive = 1, wheel_inertia = 0;
-  double rolling_resistance = 0, grade = 0;  // grade: the road's angle [rad]
+  double rolling_resistance = 0, grade = 0;  // grade: the road's angle [rad], at t = 0 when it varies
+  std::optional<rt::Table> grade_table;      // the road's angle [rad] against time, when it varies
   double drag = 0;                           // rho c_d A / 2 [kg/m]
   SourceLocation where;
   // vehicle_speed = r omega_vehicle / i [m/s per rad/s]

@@ -1,6 +1,8 @@
 // The scene file's quantities and signals; every complaint located at the value it concerns.
 #include "read/scene_reader.hpp"
 
+#include <numbers>
+
 #include <cmath>
 
 #include <fmt/format.h>
@@ -124,13 +126,29 @@ rt::Signal read_table_signal(const SceneReader& r, const toml::node& at, const s
 // refused: the exact method is exact for piecewise linear commands, and events are located on them.
 rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path& scene_dir, SignalQuantity what) {
   const bool engagement = what == SignalQuantity::engagement;
-  const Dimension torque = engagement ? Dimension{}
+  const Dimension torque = engagement || what == SignalQuantity::angle ? Dimension{}
                            : what == SignalQuantity::speed ? angular_velocity_dimension()
                                                            : torque_dimension();
-  const char* name = engagement ? "an engagement command" : what == SignalQuantity::speed ? "a set-point" : "an input torque";
+  const char* name = engagement                      ? "an engagement command"
+                     : what == SignalQuantity::speed   ? "a set-point"
+                     : what == SignalQuantity::angle   ? "the grade"
+                                                       : "an input torque";
   if (!n.is_table()) return rt::Constant{r.quantity(n, torque, name)};
   const toml::table& t = *n.as_table();
   auto get = [&](std::string_view key) { return t.get(key); };
+  // A road's grade: an angle, or a table of it in degrees (the load's hold in exact stepping is
+  // stated for a piecewise linear angle).
+  if (what == SignalQuantity::angle) {
+    const toml::node* v = get("table");
+    if (!v || t.size() != 1)
+      r.fail(n, "grade is an angle, e.g. \"3*deg\", or { table = \"file.csv\" } with two columns: time [s], grade [deg]");
+    const std::string file = r.string(*v, "table");
+    const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : scene_dir / file;
+    rt::Signal table = read_table_signal(r, *v, path.lexically_normal().string(),
+                                         "the table needs two columns: time [s], grade [deg]");
+    for (double& a : std::get<rt::Table>(table).v) a *= std::numbers::pi / 180;
+    return table;
+  }
   if (const toml::node* v = get("constant")) {
     r.only_keys(t, {"constant"}, "a constant signal");
     return rt::Constant{r.quantity(*v, torque, "constant")};

@@ -40,7 +40,7 @@ struct SceneReader : TomlReader {
 
 // What a signal of the scene is: an input torque, a dimensionless engagement command (piecewise
 // linear), or a controller's speed set-point.
-enum class SignalQuantity { torque, engagement, speed };
+enum class SignalQuantity { torque, engagement, speed, angle };
 
 // A signal; a table's file is found relative to `scene_dir`.
 rt::Signal read_signal(const SceneReader& r, const toml::node& n, const std::filesystem::path& scene_dir,

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "pogear/parameters.hpp"
+
 #include "common/printer.hpp"
 #include "read/model_parameters.hpp"
 
@@ -27,6 +29,10 @@ void add_parameter(const SceneReader& r, const toml::node& where, Topology& t, c
                    const Dimension& dim, const std::string& unit) {
   if (find_parameter(t, name))
     r.fail(where, fmt::format("the model has a parameter '{}', which [vehicle] defines; rename the model's", name));
+  if (value != 0 && !(value >= rt::kSmallestParameter && value <= rt::kLargestParameter))
+    r.fail(where, fmt::format("[vehicle] makes {} = {:g} (SI), outside the range pogear computes with, {:g} to {:g}; "
+                              "check the vehicle's values and their units", name, value, rt::kSmallestParameter,
+                              rt::kLargestParameter));
   Parameter p;
   p.name = name;
   p.text = fmt::format("{:.17g}{}", value, unit.empty() ? "" : "*" + unit);
@@ -37,7 +43,7 @@ void add_parameter(const SceneReader& r, const toml::node& where, Topology& t, c
 
 }  // namespace
 
-void read_vehicle(const SceneReader& r, const toml::node& n, Scene& s) {
+void read_vehicle(const SceneReader& r, const toml::node& n, const std::filesystem::path& scene_dir, Scene& s) {
   if (!n.is_table()) r.fail(n, "[vehicle] must be a table");
   const toml::table& v = *n.as_table();
   r.only_keys(v, {"body", "mass", "wheel_radius", "final_drive", "wheel_inertia", "rolling_resistance", "grade",
@@ -78,15 +84,22 @@ void read_vehicle(const SceneReader& r, const toml::node& n, Scene& s) {
   spec.wheel_inertia = non_negative("wheel_inertia", inertia_dimension(), "wheel_inertia");
   spec.rolling_resistance = non_negative("rolling_resistance", Dimension{}, "rolling_resistance");
   if (const toml::node* k = v.get("grade")) {
-    spec.grade = r.quantity(*k, Dimension{}, "grade");
-    if (!(std::abs(spec.grade) < std::numbers::pi / 2))
-      r.fail(*k, fmt::format("grade is an angle of the road, e.g. \"3*deg\"; {} rad is not one", spec.grade));
+    const rt::Signal grade = read_signal(r, *k, scene_dir, SignalQuantity::angle);
+    spec.grade = rt::value(grade, 0.0);
+    std::vector<double> angles{spec.grade};
+    if (const auto* table = std::get_if<rt::Table>(&grade)) {
+      spec.grade_table = *table;
+      angles = table->v;
+    }
+    for (const double a : angles)
+      if (!(std::abs(a) < std::numbers::pi / 2))
+        r.fail(*k, fmt::format("grade is an angle of the road, e.g. \"3*deg\"; {} rad is not one", a));
   }
   const double density = v.get("air_density") ? non_negative("air_density", dimension(-3, 1, 0), "air_density") : 1.2;
   const double cd = non_negative("drag_coefficient", Dimension{}, "drag_coefficient");
   const double area = non_negative("frontal_area", dimension(2, 0, 0), "frontal_area");
-  if ((cd > 0) != (area > 0))
-    r.fail(n, "aerodynamic drag needs both drag_coefficient and frontal_area; give both, or neither");
+  if (const toml::node *c = v.get("drag_coefficient"), *a = v.get("frontal_area"); (c == nullptr) != (a == nullptr))
+    r.fail(c ? *c : *a, "aerodynamic drag needs both drag_coefficient and frontal_area; give both, or neither");
   spec.drag = density * cd * area / 2;
   const toml::node& k_hs = required("half_shaft_stiffness", "\"12000*N*m/rad\"");
   const double stiffness = positive(k_hs, r.quantity(k_hs, torque_dimension(), "half_shaft_stiffness"), "half_shaft_stiffness");
@@ -139,9 +152,18 @@ void add_road_load(Scene& s) {
   LoadSpec road;
   road.body = v.vehicle_body;
   road.constant = r_i * v.mass * standard_gravity * (v.rolling_resistance * std::cos(v.grade) + std::sin(v.grade));
+  if (v.grade_table)  // the input is the torque on the body, -constant(t)
+    road.varying = rt::GradeLoad{*v.grade_table, -r_i * v.mass * standard_gravity,
+                                 -r_i * v.mass * standard_gravity * v.rolling_resistance};
   road.quadratic = v.drag * r_i * r_i * r_i;
   road.where = v.where;
-  if (road.constant != 0 || road.quadratic != 0) s.loads.push_back(road);
+  // The scales of the two parts at the gear: the car's weight as a torque (m g r / i), the drag's coefficient.
+  for (const auto& [what, c] : {std::pair{"the weight's", r_i * v.mass * standard_gravity}, std::pair{"the drag's", road.quadratic}})
+    if (c != 0 && !(c >= rt::kSmallestParameter && c <= rt::kLargestParameter))
+      throw InputError(v.where, fmt::format("[vehicle] makes {} road load {:g} (SI) at the gear, outside the "
+                                            "range pogear computes with, {:g} to {:g}; check the vehicle's values and "
+                                            "their units", what, c, rt::kSmallestParameter, rt::kLargestParameter));
+  if (road.constant != 0 || road.quadratic != 0 || road.varying) s.loads.push_back(road);
 }
 
 }  // namespace pogear

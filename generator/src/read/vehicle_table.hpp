@@ -2,6 +2,8 @@
 // on a half-shaft from the gear's output, reflected through the final drive, with the road load.
 #pragma once
 
+#include <filesystem>
+
 #include <toml++/toml.h>
 
 #include "read/scene.hpp"
@@ -14,7 +16,7 @@ namespace pogear {
 inline constexpr const char* vehicle_body_name = "vehicle";
 inline constexpr const char* half_shaft_name = "half_shafts";
 
-void read_vehicle(const SceneReader& r, const toml::node& n, Scene& s);
+void read_vehicle(const SceneReader& r, const toml::node& n, const std::filesystem::path& scene_dir, Scene& s);
 
 // After [loads]: the vehicle's road load joins them (a load of the user's on the vehicle is refused).
 void add_road_load(Scene& s);

@@ -27,7 +27,8 @@ std::string loads_and_controllers_note(const SpecializedScene& model) {
   std::string s;
   for (const LoadSpec& l : sc.loads) {
     std::vector<std::string> parts;
-    if (l.constant != 0) parts.push_back("constant (an input)");
+    if (l.varying) parts.push_back("a grade's, varying in time (an input)");
+    else if (l.constant != 0) parts.push_back("constant (an input)");
     if (l.linear != 0) parts.push_back("linear in speed (a damping: linear)");
     if (l.quadratic != 0) parts.push_back("quadratic in speed (nonlinear)");
     s += fmt::format("load on {}: {}\n", t.bodies[static_cast<std::size_t>(l.body)].name,
@@ -78,21 +79,22 @@ std::string nonlinearity_cost_note(const SpecializedScene& model) {
   if (M.rows() == 0) return {};
   const Eigen::MatrixXd B = balanced(M);
   const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(B, false).eigenvalues();
-  // Two bounds on the adaptive methods' steps: dopri5's stability, and while a brake or clutch has an
-  // event function, an eighth of the fastest oscillation's period (hybrid_adaptive.hpp).
+  // Two bounds on the adaptive methods' steps: dopri5's stability, and while a brake, clutch or torque
+  // limit has an event function, an eighth of the fastest oscillation's period (hybrid_adaptive.hpp).
   double stable = std::numeric_limits<double>::infinity();
   std::complex<double> stiffest;
   if (sc.solver == rt::Solver::dopri5)
     for (Eigen::Index i = 0; i < lambda.size(); ++i)
       if (const double h = dopri5_stable_step(lambda(i)); h < stable) stable = h, stiffest = lambda(i);
-  const double watched = model.friction.empty() ? std::numeric_limits<double>::infinity() : rt::event_check_step(B);
+  const bool events = !model.friction.empty() || !model.main.limited_controllers.empty();
+  const double watched = events ? rt::event_check_step(B) : std::numeric_limits<double>::infinity();
   const double h = std::min(stable, watched);
   if (!(h * 4 < sc.sample)) return {};
   const std::string bound =
       stable <= watched
           ? fmt::format("dopri5's stability on the stiffest mode, |lambda| = {:.3g} 1/s", std::abs(stiffest))
-          : fmt::format("an eighth of the fastest oscillation's period ({:.4g} Hz) while a brake or clutch may change "
-                        "state", std::numbers::pi / (4 * watched) / (2 * std::numbers::pi));
+          : fmt::format("an eighth of the fastest oscillation's period ({:.4g} Hz) while a brake, clutch or torque "
+                        "limit may change state", std::numbers::pi / (4 * watched) / (2 * std::numbers::pi));
   return fmt::format("  what it costs: steps of at most {:.2g} s ({}), about {:.3g} over the horizon, where exact "
                      "stepping of a linear scene takes about one per sample period ({:.3g})\n",
                      h, bound, std::ceil(sc.horizon / h), std::ceil(sc.horizon / sc.sample));
@@ -117,6 +119,21 @@ std::string sine_inputs_note(const SpecializedScene& model) {
                      error > 1e-6 ? "warning: " : "",
                      variable_name(model.derivation.topology, Variable{VariableKind::torque, in.body}),
                      sine->frequency_hz, h, error, step_for_1e8);
+  }
+  // A grade's load s sin a + c cos a, a linear between the table's rows: its second derivative is at
+  // most its size times a'^2, so the hold errs by about (a' h)^2 / 12 of it.
+  for (const LoadSpec& l : sc.loads) {
+    const auto* grade = l.varying ? std::get_if<rt::GradeLoad>(&*l.varying) : nullptr;
+    if (!grade) continue;
+    double rate = 0;
+    for (std::size_t i = 1; i < grade->angle.t.size(); ++i)
+      if (grade->angle.t[i] > grade->angle.t[i - 1])
+        rate = std::max(rate, std::abs(grade->angle.v[i] - grade->angle.v[i - 1]) / (grade->angle.t[i] - grade->angle.t[i - 1]));
+    if (rate == 0) continue;
+    const double error = (rate * h) * (rate * h) / 12;
+    s += fmt::format("{}grade (a table, up to {:.3g} rad/s): exact stepping holds the road load linear over steps of "
+                     "{} s, an error of about {:.2g} of its size; for 1e-8 take step <= {:.2g} s, or use dopri5\n",
+                     error > 1e-6 ? "warning: " : "", rate, h, error, std::sqrt(12 * 1e-8) / rate);
   }
   return s;
 }

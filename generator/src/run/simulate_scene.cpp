@@ -105,7 +105,15 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   run.repeat = options.repeat;
   ensure_directory(options.out_dir);
   const fs::file_time_type started = fs::file_time_type::clock::now();
-  out << operation_summary(model) << std::flush;
+  // The summary of the run as it goes: with --solver's method, whose notes (a fixed step's error, an
+  // adaptive method's cost) are its own.
+  if (run.solver == model.scene.solver) {
+    out << operation_summary(model) << std::flush;
+  } else {
+    SpecializedScene as_run = model;
+    as_run.scene.solver = run.solver;
+    out << operation_summary(as_run) << std::flush;
+  }
   int status = 0;
   if (options.interpreted) {
     status = run_interpreted(model, run);

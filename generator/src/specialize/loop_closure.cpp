@@ -49,8 +49,8 @@ void close_load(const LoadSpec& l, const Derivation& d, const SpeedOf& speed, Sp
   const Topology& t = d.topology;
   const Variable constant{VariableKind::load_torque, l.body};
   ex law = -exact_number(l.linear) * speed(l.body);
-  if (l.constant != 0) {
-    sys.inputs.push_back({constant, rt::Signal{rt::Constant{-l.constant}}});
+  if (l.constant != 0 || l.varying) {
+    sys.inputs.push_back({constant, l.varying ? *l.varying : rt::Signal{rt::Constant{-l.constant}}});
     law += variable_symbol(s, constant);
   }
   if (l.quadratic != 0) {

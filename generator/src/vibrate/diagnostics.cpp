@@ -203,6 +203,14 @@ InputExcitation input_excitation(const SpecializedScene& model, const Specialize
         const double before = table->t[i] > 0 ? rt::slope(u, std::nextafter(table->t[i], -1.0)) : 0.0;
         corners.push_back(std::abs(rt::slope(u, table->t[i]) - before));
       }
+    } else if (const auto* grade = std::get_if<rt::GradeLoad>(&u)) {
+      // At most hypot(sine, cosine); its rate turns at the angle's corners by that times theirs.
+      size = std::hypot(grade->sine, grade->cosine);
+      const rt::Table& angle = grade->angle;
+      for (std::size_t i = 0; i < angle.t.size() && angle.t[i] <= sc.horizon; ++i) {
+        const double before = angle.t[i] > 0 ? rt::table_slope(angle, std::nextafter(angle.t[i], -1.0)) : 0.0;
+        corners.push_back(size * std::abs(rt::table_slope(angle, angle.t[i]) - before));
+      }
     }
     if (size > 0)
       for (double c : corners) e.corner_rate = std::max(e.corner_rate, c / size);
