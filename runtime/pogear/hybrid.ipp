@@ -53,10 +53,13 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   if (const char* why = data_mismatch(sys, d)) return RunStatus{false, why, 0.0};
   if (x0.size() != d.nx) return RunStatus{false, "the initial state does not fit the system", 0.0};
   // solver_refusal's rule, kept by the engine itself: the exact flow is of a linear mode.
-  if (c.method.solver == Solver::exact && !sys.quadratic.empty())
-    return RunStatus{false, "a quadratic load makes the modes nonlinear, which exact stepping does not integrate", 0.0};
+  if (c.method.solver == Solver::exact && !sys.state_torques.empty())
+    return RunStatus{false, "a quadratic load, a converter or an engine makes the modes nonlinear, which exact "
+                            "stepping does not integrate", 0.0};
   std::vector<Signal> all = sys.inputs;
   for (const auto& e : sys.elements) all.push_back(e.command);
+  for (const auto& q : sys.state_torques)  // an engine's throttle steps end steps as an input's do
+    if (q.kind == StateTorqueKind::engine) all.push_back(q.throttle);
   d.breaks = breakpoints(all, 0.0, d.horizon);
   d.sine_period = shortest_sine_period(all);
   d.hold_step = std::numeric_limits<double>::infinity();

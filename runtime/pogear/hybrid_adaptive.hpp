@@ -16,7 +16,7 @@
 
 namespace pogear::rt::hybrid {
 
-// The right-hand side of the current mode: dx/dt = A x + B v(t, x), v of x through the quadratic
+// The right-hand side of the current mode: dx/dt = A x + B v(t, x), v of x through the state
 // torques only, and its Jacobian A + B dv/dx.
 struct ModeRhs {
   const HybridSystem* sys = nullptr;
@@ -35,9 +35,9 @@ struct ModeJacobian {
   const HybridSystem* sys = nullptr;
   const HybridData* d = nullptr;
   const ModeMatrices* mode = nullptr;
-  void operator()(double, const Eigen::VectorXd& x, Eigen::MatrixXd& J) const {
+  void operator()(double t, const Eigen::VectorXd& x, Eigen::MatrixXd& J) const {
     J = mode->A;
-    add_quadratic_jacobian(*sys, *d, mode->B, x, J);
+    add_state_torque_jacobian(*sys, *d, mode->B, t, x, J);
   }
 };
 
@@ -76,7 +76,7 @@ class AdaptiveStepper {
     if (!s_ || stepper_mask_ != d_.mask) {
       // A linear mode's Jacobian is A throughout: one Newton iteration solves each stage exactly.
       if constexpr (requires { Stepper(rhs_, jacobian_, true, d_.x, 1.0, 1.0); })
-        s_.emplace(rhs_, jacobian_, sys_.quadratic.empty(), d_.x, opt_.rtol, opt_.atol);
+        s_.emplace(rhs_, jacobian_, sys_.state_torques.empty(), d_.x, opt_.rtol, opt_.atol);
       else
         s_.emplace(rhs_, d_.x, opt_.rtol, opt_.atol);
       stepper_mask_ = d_.mask;
@@ -154,7 +154,9 @@ class AdaptiveStepper {
  private:
   // The energy each slipping element dissipates over [ta, tb] of the last step: its power T_k s_k, a
   // polynomial of degree 5 at most on the dense output (degree 4 for dopri5, 3 for TR-BDF2, times a
-  // command linear between breakpoints), by 3-point Gauss-Legendre, exact for it.
+  // command linear between breakpoints), by 3-point Gauss-Legendre, exact for it. With it the work
+  // each state torque does on its body, q_i times that body's speed (exact for a quadratic load's
+  // power only where it keeps its sign; a converter's and an engine's to the order 6 of the rule).
   void add_dissipation(double ta, double tb, Eigen::VectorXd& energy) {
     if (!(tb > ta)) return;
     static constexpr double node = 0.7745966692414834, weight[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
@@ -166,6 +168,9 @@ class AdaptiveStepper {
       for (int k = 0; k < d_.nf; ++k)
         if (d_.state[static_cast<std::size_t>(k)] != ElementState::stuck)
           energy(k) += weight[i] * half * dense_v_(d_.nu + k) * d_.S.row(k).dot(dense_x_);
+      for (Eigen::Index q = d_.ns; q < d_.nu; ++q)
+        energy(d_.ne + q - d_.ns) +=
+            weight[i] * half * dense_v_(q) * acted_speed(sys_.state_torques[static_cast<std::size_t>(q - d_.ns)]).dot(dense_x_);
     }
   }
 

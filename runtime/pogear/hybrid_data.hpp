@@ -44,7 +44,7 @@ struct EventPoint {
 // Elements 0..nf-1 are the brakes and clutches, nf..ne-1 the controllers' torque limits.
 struct HybridData {
   int ne = 0, nf = 0;
-  // States; the scene's signals u; the known inputs [u; q], q the quadratic torques (of the state);
+  // States; the scene's signals u; the known inputs [u; q], q the state torques (of the state);
   // all inputs w = [u; q; T].
   Eigen::Index nx = 0, ns = 0, nu = 0, nw = 0;
   double horizon = 0;
@@ -93,7 +93,7 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   d.ne = d.nf + static_cast<int>(sys.limits.size());
   d.nx = sys.M.rows();
   d.ns = static_cast<Eigen::Index>(sys.inputs.size());
-  d.nu = d.ns + static_cast<Eigen::Index>(sys.quadratic.size());
+  d.nu = d.ns + static_cast<Eigen::Index>(sys.state_torques.size());
   d.nw = d.nu + d.ne;
   d.horizon = horizon;
   d.cache.taylor_uses.reserve(kStepLengthsKept + 1);
@@ -106,15 +106,15 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
       if (d.S.col(j).cwiseAbs().maxCoeff() > 0) d.speed_states.push_back(j);
   const auto ne = static_cast<std::size_t>(d.ne);
   d.x.resize(d.nx);
-  d.energy.setZero(d.ne);
+  d.energy.setZero(d.ne + d.nu - d.ns);  // the elements' heat, then the state torques' work
   d.state.assign(ne, ElementState::open);
   d.old_state.assign(ne, ElementState::open);
   d.dir.assign(ne, 0);
   d.watched.assign(ne, 0);
   d.events_in_sample.assign(ne, 0);
-  for (Eigen::VectorXd* e : {&d.g0, &d.g_a, &d.p0, &d.p1, &d.dp, &d.r0, &d.r1, &d.T, &d.dT, &d.sample_energy,
-                             &d.sample_slip, &d.slip})
+  for (Eigen::VectorXd* e : {&d.g0, &d.g_a, &d.p0, &d.p1, &d.dp, &d.r0, &d.r1, &d.T, &d.dT, &d.sample_slip, &d.slip})
     e->resize(d.ne);
+  d.sample_energy.resize(d.energy.size());
   for (Eigen::VectorXd* w : {&d.v0, &d.dv, &d.v, &d.sample_w}) w->resize(d.nw);
   for (Eigen::VectorXd* x : {&d.dx, &d.sample_x, &d.projected}) x->resize(d.nx);
   d.end = d.mid = d.side = make_event_point(d);
@@ -129,10 +129,22 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
     return "the system's matrices M, N and S do not agree on the number of states";
   if (sys.S.rows() != static_cast<Eigen::Index>(sys.elements.size()))
     return "the system has not one slip row per brake or clutch";
-  if (sys.N.cols() != static_cast<Eigen::Index>(sys.inputs.size() + sys.quadratic.size()) + ne)
-    return "the system has not one input column per input, quadratic torque, brake or clutch, and torque limit";
-  for (const QuadraticTorqueData& q : sys.quadratic)
-    if (q.speed.size() != nx) return "a quadratic torque's speed is not a row over the system's states";
+  if (sys.N.cols() != static_cast<Eigen::Index>(sys.inputs.size() + sys.state_torques.size()) + ne)
+    return "the system has not one input column per input, state torque, brake or clutch, and torque limit";
+  for (const StateTorqueData& q : sys.state_torques) {
+    if (q.speed.size() != nx) return "a state torque's speed is not a row over the system's states";
+    const bool converter = q.kind == StateTorqueKind::converter_pump || q.kind == StateTorqueKind::converter_turbine;
+    if (converter && (q.turbine.size() != nx || q.converter.capacity.x.size() < 1 ||
+                      q.converter.capacity.x.size() != q.converter.capacity.y.size() ||
+                      q.converter.torque_ratio.x.size() < 1 ||
+                      q.converter.torque_ratio.x.size() != q.converter.torque_ratio.y.size()))
+      return "a converter's turbine speed or tables do not fit the system";
+    if (q.kind == StateTorqueKind::engine &&
+        (q.engine.speeds.empty() || q.engine.throttles.empty() || q.engine.torque.size() != q.engine.throttles.size() ||
+         std::any_of(q.engine.torque.begin(), q.engine.torque.end(),
+                     [&](const std::vector<double>& row) { return row.size() != q.engine.speeds.size(); })))
+      return "an engine's map does not fit its speeds and throttles";
+  }
   for (const TorqueLimitData& l : sys.limits)
     if (l.law_x.size() != nx || l.law_w.size() != sys.N.cols())
       return "a controller's law is not a row over the system's states and inputs";
@@ -140,9 +152,9 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
   for (const Eigen::Index j : sys.speed_states)
     if (j < 0 || j >= nx) return "a speed state of the system is not one of its states";
   if (d.nx != nx || d.ne != ne || d.nf != sys.S.rows() || d.nw != sys.N.cols() || d.S.rows() != ne ||
-      d.S.cols() != nx || d.x.size() != nx || d.energy.size() != ne || d.state.size() != static_cast<std::size_t>(ne) ||
+      d.S.cols() != nx || d.x.size() != nx || d.energy.size() != ne + static_cast<Eigen::Index>(sys.state_torques.size()) || d.state.size() != static_cast<std::size_t>(ne) ||
       d.dir.size() != d.state.size() || d.g0.size() != ne || d.v.size() != d.nw || d.dx.size() != nx ||
-      d.nu != d.ns + static_cast<Eigen::Index>(sys.quadratic.size()))
+      d.nu != d.ns + static_cast<Eigen::Index>(sys.state_torques.size()))
     return "the hybrid workspace was sized for another system";
   return nullptr;
 }
@@ -198,14 +210,34 @@ inline bool slip_is_zero(const HybridData& d, int k, double slip, double speed) 
   return std::abs(slip) <= kZeroSlipUlps * std::numeric_limits<double>::epsilon() * d.slip_norm(k) * speed;
 }
 
-// A quadratic torque -c s |s| at the state x.
+// A state torque at the state x and time t (the throttle's), with its partial derivatives in the
+// speed speed x, in the turbine's speed turbine x (a converter's) and in time (an engine's throttle).
+struct StateTorqueValue {
+  double torque = 0, d_speed = 0, d_turbine = 0, d_time = 0;
+};
 template <class X>
-double quadratic_torque(const QuadraticTorqueData& q, const X& x) {
+StateTorqueValue state_torque(const StateTorqueData& q, const X& x, double t) {
   const double s = q.speed.dot(x);
-  return -q.coefficient * s * std::abs(s);
+  switch (q.kind) {
+    case StateTorqueKind::quadratic:
+      return {-q.coefficient * s * std::abs(s), -2 * q.coefficient * std::abs(s), 0, 0};
+    case StateTorqueKind::converter_pump: {
+      const ConverterTorques c = converter_torques(q.converter, s, q.turbine.dot(x));
+      return {c.pump, c.pump_dp, c.pump_dt, 0};
+    }
+    case StateTorqueKind::converter_turbine: {
+      const ConverterTorques c = converter_torques(q.converter, s, q.turbine.dot(x));
+      return {c.turbine, c.turbine_dp, c.turbine_dt, 0};
+    }
+    case StateTorqueKind::engine: {
+      const EngineTorque e = engine_torque(q.engine, s, value(q.throttle, t));
+      return {e.torque, e.d_speed, 0, e.d_throttle * slope(q.throttle, t)};
+    }
+  }
+  return {};
 }
 
-// v = w at time t and state x: the inputs, the quadratic torques, slipping torques c p(t) dir, held
+// v = w at time t and state x: the inputs, the state torques, slipping torques c p(t) dir, held
 // controller torques, stuck torques left at zero. `before` asks for the left limit (a step that ends
 // on a breakpoint).
 inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t, bool before, const Eigen::VectorXd& x,
@@ -213,7 +245,7 @@ inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t,
   const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
   v.resize(d.nw);
   for (Eigen::Index i = 0; i < d.ns; ++i) v(i) = value(sys.inputs[static_cast<std::size_t>(i)], at);
-  for (Eigen::Index i = d.ns; i < d.nu; ++i) v(i) = quadratic_torque(sys.quadratic[static_cast<std::size_t>(i - d.ns)], x);
+  for (Eigen::Index i = d.ns; i < d.nu; ++i) v(i) = state_torque(sys.state_torques[static_cast<std::size_t>(i - d.ns)], x, at).torque;
   for (int k = 0; k < d.ne; ++k) {
     const auto K = static_cast<std::size_t>(k);
     // + 0.0: an open element's torque is 0, not -0, in the CSV.
@@ -224,7 +256,7 @@ inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t,
 }
 
 // dv/dt at time t (its left limit when `before`): the inputs' slopes, the slipping torques' c p'(t)
-// dir; stuck torques and held controller torques 0; the quadratic torques' by quadratic_torque_slopes,
+// dir; stuck torques and held controller torques 0; the state torques' by state_torque_slopes,
 // which needs dx/dt.
 inline void known_input_slopes(const HybridSystem& sys, const HybridData& d, double t, bool before,
                                Eigen::VectorXd& dv) {
@@ -238,24 +270,35 @@ inline void known_input_slopes(const HybridSystem& sys, const HybridData& d, dou
   }
 }
 
-// The quadratic torques' rates at state x moving at dx/dt: d(-c s |s|)/dt = -2 c |s| ds/dt.
-inline void quadratic_torque_slopes(const HybridSystem& sys, const HybridData& d, const Eigen::VectorXd& x,
-                                    const Eigen::VectorXd& dx, Eigen::VectorXd& dv) {
+// The state torques' rates at state x moving at dx/dt, at time t (its left limit when `before`).
+inline void state_torque_slopes(const HybridSystem& sys, const HybridData& d, double t, bool before,
+                                const Eigen::VectorXd& x, const Eigen::VectorXd& dx, Eigen::VectorXd& dv) {
+  const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
   for (Eigen::Index i = d.ns; i < d.nu; ++i) {
-    const QuadraticTorqueData& q = sys.quadratic[static_cast<std::size_t>(i - d.ns)];
-    dv(i) = -2 * q.coefficient * std::abs(q.speed.dot(x)) * q.speed.dot(dx);
+    const StateTorqueData& q = sys.state_torques[static_cast<std::size_t>(i - d.ns)];
+    const StateTorqueValue v = state_torque(q, x, at);
+    dv(i) = v.d_speed * q.speed.dot(dx) + v.d_time;
+    if (v.d_turbine != 0) dv(i) += v.d_turbine * q.turbine.dot(dx);
   }
 }
 
-// The Jacobian of the quadratic torques' contribution to dx/dt, B_q dq/dx, added to J: a mode's
-// B times -2 c |s| speed per quadratic torque.
-inline void add_quadratic_jacobian(const HybridSystem& sys, const HybridData& d, const Eigen::MatrixXd& B,
-                                   const Eigen::VectorXd& x, Eigen::MatrixXd& J) {
+// The speed of the body a state torque acts on (its power is the torque times it): a converter's
+// turbine torque's is the turbine's, every other's its speed.
+inline const Eigen::RowVectorXd& acted_speed(const StateTorqueData& q) {
+  return q.kind == StateTorqueKind::converter_turbine ? q.turbine : q.speed;
+}
+
+// The Jacobian of the state torques' contribution to dx/dt, B_q dq/dx, added to J: a mode's B column
+// times the torque's gradient over the states.
+inline void add_state_torque_jacobian(const HybridSystem& sys, const HybridData& d, const Eigen::MatrixXd& B, double t,
+                                      const Eigen::VectorXd& x, Eigen::MatrixXd& J) {
   for (Eigen::Index i = d.ns; i < d.nu; ++i) {
-    const QuadraticTorqueData& q = sys.quadratic[static_cast<std::size_t>(i - d.ns)];
-    const double slope = -2 * q.coefficient * std::abs(q.speed.dot(x));
-    for (Eigen::Index c = 0; c < J.cols(); ++c)  // the outer product by hand: no temporary
-      if (q.speed(c) != 0) J.col(c) += (slope * q.speed(c)) * B.col(i);
+    const StateTorqueData& q = sys.state_torques[static_cast<std::size_t>(i - d.ns)];
+    const StateTorqueValue v = state_torque(q, x, t);
+    for (Eigen::Index c = 0; c < J.cols(); ++c) {  // the outer product by hand: no temporary
+      const double g = v.d_speed * q.speed(c) + (v.d_turbine != 0 ? v.d_turbine * q.turbine(c) : 0.0);
+      if (g != 0) J.col(c) += g * B.col(i);
+    }
   }
 }
 

@@ -43,11 +43,11 @@ inline void event_values(const HybridSystem& sys, HybridData& d, const ModeMatri
 
 // The event functions' time derivatives r at x and v, the known inputs' slope dv, the commands p and
 // their slopes dp.
-inline void event_rates(const HybridSystem& sys, HybridData& d, const ModeMatrices& m, const Eigen::VectorXd& x,
-                        const Eigen::VectorXd& v, const Eigen::VectorXd& p, Eigen::VectorXd& r) {
+inline void event_rates(const HybridSystem& sys, HybridData& d, const ModeMatrices& m, double t, bool before,
+                        const Eigen::VectorXd& x, const Eigen::VectorXd& v, const Eigen::VectorXd& p, Eigen::VectorXd& r) {
   d.dx.noalias() = m.A * x;
   d.dx.noalias() += m.B * v;
-  quadratic_torque_slopes(sys, d, x, d.dx, d.dv);
+  state_torque_slopes(sys, d, t, before, x, d.dx, d.dv);
   r.setZero(d.ne);
   if (!m.stuck.empty()) {
     d.T.noalias() = m.Kx * x;
@@ -105,9 +105,9 @@ inline bool may_dip(const HybridSystem& sys, HybridData& d, const ModeMatrices& 
   }
   d.dp = (d.p1 - d.p0) / h;
   known_input_slopes(sys, d, t, false, d.dv);
-  event_rates(sys, d, m, x0, v0, d.p0, d.r0);
+  event_rates(sys, d, m, t, false, x0, v0, d.p0, d.r0);
   known_input_slopes(sys, d, t1, before, d.dv);
-  event_rates(sys, d, m, x1, v1, d.p1, d.r1);
+  event_rates(sys, d, m, t1, before, x1, v1, d.p1, d.r1);
   for (int k = 0; k < d.ne; ++k)
     if (cubic_dips(g0(k), g1(k), d.r0(k), d.r1(k), h)) return true;
   return false;

@@ -7,9 +7,11 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pogear/balancing.hpp"
+#include "pogear/driveline.hpp"
 #include "pogear/run_support.hpp"
 #include "pogear/signals.hpp"
 
@@ -39,15 +41,53 @@ struct TorqueLimitData {
 };
 
 // A torque that is a function of the state: a quadratic load -c s |s| on the speed s = speed x (a
-// fan, a vehicle's air drag). It enters dx/dt through its column of N as an input does, so that a
-// mode's projection and its stuck torques take it as they take the scene's torques.
-struct QuadraticTorqueData {
+// fan, a vehicle's air drag), a torque converter's torque on its pump or on its turbine (speed x the
+// pump's speed, turbine x the turbine's), or an engine's map at speed x and its throttle signal. It
+// enters dx/dt through its column of N as an input does, so that a mode's projection and its stuck
+// torques take it as they take the scene's torques.
+enum class StateTorqueKind { quadratic, converter_pump, converter_turbine, engine };
+struct StateTorqueData {
   Eigen::RowVectorXd speed;
-  double coefficient = 0;
+  double coefficient = 0;  // a quadratic torque's c
+  StateTorqueKind kind = StateTorqueKind::quadratic;
+  Eigen::RowVectorXd turbine;  // a converter's
+  ConverterData converter;
+  EngineData engine;
+  Signal throttle = Constant{0.0};  // an engine's, in [0, 1]
 };
+// The engine's torque, the converter's on its pump and on its turbine, those the data has, in that
+// order: the order of a system's driveline inputs (Tengine, Tpump, Tturbine).
+inline std::vector<StateTorqueData> driveline_state_torques(const DrivelineData& data) {
+  std::vector<StateTorqueData> out;
+  if (data.engine) {
+    StateTorqueData q;
+    q.kind = StateTorqueKind::engine;
+    q.speed = data.engine_speed;
+    q.engine = *data.engine;
+    q.throttle = data.throttle;
+    out.push_back(std::move(q));
+  }
+  if (data.converter)
+    for (const StateTorqueKind kind : {StateTorqueKind::converter_pump, StateTorqueKind::converter_turbine}) {
+      StateTorqueData q;
+      q.kind = kind;
+      q.speed = data.pump_speed;
+      q.turbine = data.turbine_speed;
+      q.converter = *data.converter;
+      out.push_back(std::move(q));
+    }
+  return out;
+}
+
+inline StateTorqueData quadratic_torque_data(Eigen::RowVectorXd speed, double coefficient) {
+  StateTorqueData q;
+  q.speed = std::move(speed);
+  q.coefficient = coefficient;
+  return q;
+}
 
 // The system with its friction elements and torque limits: dx/dt = M x + N w, w = [u; q; T], the
-// scene's inputs u (signals of time), the quadratic torques q (of the state), one torque T_k per
+// scene's inputs u (signals of time), the state torques q (functions of the state and time), one torque T_k per
 // friction element, acting as -T_k on the element's first body and +T_k on its second, then one per
 // torque-limited controller; the friction elements' slips s = S x. A stuck friction element is the
 // constraint S_k x = 0 with T_k its multiplier. With quadratic torques the modes are nonlinear:
@@ -57,7 +97,7 @@ struct HybridSystem {
   std::vector<FrictionElementData> elements;
   std::vector<TorqueLimitData> limits;
   std::vector<Signal> inputs;  // u
-  std::vector<QuadraticTorqueData> quadratic;  // q
+  std::vector<StateTorqueData> state_torques;  // q
   // The states that are speeds (rad/s): the scale of the zero-slip rule (hybrid_data.hpp). Empty:
   // the states some slip reads.
   std::vector<Eigen::Index> speed_states;

@@ -20,7 +20,9 @@ struct HybridEvent {
 };
 
 // What the run knows at a sample: state, the full input w (stuck torques recovered), slips, the
-// energy each element has dissipated, and the mode (bit k set when element k is stuck).
+// energy each element has dissipated (brakes and clutches, then torque limits: none) followed by the
+// work each state torque has done on its body (HybridSystem::state_torques, in order), and the mode
+// (bit k set when element k is stuck).
 struct HybridSample {
   const Eigen::VectorXd& x;
   const Eigen::VectorXd& w;

@@ -54,7 +54,9 @@ inline bool write_events(const SceneRun& run, const std::string& suffix, const s
 // E_<element> [J], and the mode) and
 // OUT/<name><suffix>.events.csv, with the exact method, dopri5 or implicit (rk4 is refused). The
 // controllers' laws come from the system's torque_limit_laws, the quadratic loads of a nonlinear system
-// from its quadratic_loads (exact stepping then refused). Returns 0, or 3 when the run failed.
+// from its quadratic_loads, a converter's and an engine's torques from its driveline (exact
+// stepping then refused; the CSV then has E_converter [J], the converter's loss, and W_engine [J],
+// the engine's work, before the mode). Returns 0, or 3 when the run failed.
 template <class System>
 int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
                       const std::vector<FrictionElementData>& elements, std::vector<TorqueLimitData> limits,
@@ -63,22 +65,29 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   const auto nu = static_cast<Eigen::Index>(signals.size()), ne = static_cast<Eigen::Index>(elements.size()),
              nl = static_cast<Eigen::Index>(limits.size());
   const auto ny = static_cast<Eigen::Index>(std::size(sys.output_names));
+  // A converter's and an engine's torques are inputs of the system right after its signals (its outputs
+  // read them), which the run computes from the state.
+  std::vector<StateTorqueData> driveline;
+  if constexpr (requires { sys.driveline(p); }) driveline = driveline_state_torques(sys.driveline(p));
+  const auto nd = static_cast<Eigen::Index>(driveline.size());
   typename System::StateMatrix M(nx, nx);
-  typename System::InputMatrix N(nx, nu + ne + nl);
+  typename System::InputMatrix N(nx, nu + nd + ne + nl);
   sys.matrices(p, M, N);
   HybridSystem hs;
   hs.M = M;
-  // w = [u; q; T]: the quadratic loads' columns between the signals' and the elements'.
+  hs.state_torques = std::move(driveline);
+  // w = [u; q; T]: the state torques' columns between the signals' and the elements', the driveline's
+  // first, then the quadratic loads' (which the system's outputs compute themselves).
   Eigen::MatrixXd Nq(nx, 0);
   if constexpr (requires(Eigen::MatrixXd& A, Eigen::VectorXd& c) { sys.quadratic_loads(p, A, A, c); }) {
     Eigen::MatrixXd speeds;
     Eigen::VectorXd coefficients;
     sys.quadratic_loads(p, Nq, speeds, coefficients);
-    for (Eigen::Index i = 0; i < coefficients.size(); ++i) hs.quadratic.push_back({speeds.row(i), coefficients(i)});
+    for (Eigen::Index i = 0; i < coefficients.size(); ++i) hs.state_torques.push_back(quadratic_torque_data(speeds.row(i), coefficients(i)));
   }
-  const Eigen::Index nq = Nq.cols();
+  const Eigen::Index nq = nd + Nq.cols();
   hs.N.resize(nx, nu + nq + ne + nl);
-  hs.N << N.leftCols(nu), Nq, N.rightCols(ne + nl);
+  hs.N << N.leftCols(nu + nd), Nq, N.rightCols(ne + nl);
   sys.slip_matrix(p, hs.S);
   if constexpr (requires(Eigen::MatrixXd& X) { sys.torque_limit_laws(p, X, X); }) {
     Eigen::MatrixXd X, W;
@@ -88,7 +97,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
       // Over w = [u; q; T]: a law reads no quadratic torque.
       Eigen::RowVectorXd& law_w = limits[static_cast<std::size_t>(l)].law_w;
       law_w.setZero(nu + nq + ne + nl);
-      law_w.head(nu) = W.row(l).head(nu);
+      law_w.head(nu + nd) = W.row(l).head(nu + nd);
       law_w.tail(ne + nl) = W.row(l).tail(ne + nl);
     }
   }
@@ -105,6 +114,23 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
       names.push_back(prefix + e.name);
       units.emplace_back(prefix[0] == 'T' ? "N m" : prefix[0] == 's' ? (run.speeds_in_rpm ? "rpm" : "rad/s") : "J");
     }
+  // A converter's loss and an engine's work, integrated by the run (the state torques' work, HybridSample).
+  const auto driveline_work = [&](bool converter) {
+    std::vector<Eigen::Index> columns;
+    for (Eigen::Index i = 0; i < nd; ++i)
+      if ((hs.state_torques[static_cast<std::size_t>(i)].kind != StateTorqueKind::engine) == converter) columns.push_back(i);
+    return columns;
+  };
+  const std::vector<Eigen::Index> converter_columns = driveline_work(true), engine_columns = driveline_work(false);
+  if (!converter_columns.empty()) {
+    names.emplace_back("E_converter");
+    units.emplace_back("J");
+  }
+  if (!engine_columns.empty()) {
+    names.emplace_back("W_engine");
+    units.emplace_back("J");
+  }
+  const auto nwork = static_cast<Eigen::Index>(!converter_columns.empty() + !engine_columns.empty());
   names.emplace_back("mode");
   units.emplace_back("bits of the stuck elements");
   SystemRunLog log(run, suffix, names, units);
@@ -133,9 +159,9 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
 
   // 30 / pi rpm per rad/s, as the generator converts the speed outputs.
   const double slip_scale = run.speeds_in_rpm ? 30 / std::numbers::pi : 1.0;
-  typename System::Input w(nu + ne + nl);
+  typename System::Input w(nu + nd + ne + nl);
   typename System::Output y(ny);
-  Eigen::VectorXd row(ny + 3 * ne + 1);
+  Eigen::VectorXd row(ny + 3 * ne + nwork + 1);
   RunStatus st;
   std::vector<HybridEvent> events;
   int modes = 0;
@@ -149,13 +175,20 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
         return false;
       }
       const typename System::State x = s.x;
-      w << s.w.head(nu), s.w.tail(ne + nl);  // the system's inputs: its outputs compute q themselves
+      w << s.w.head(nu + nd), s.w.tail(ne + nl);  // the system's inputs: its outputs compute the quadratic q
       sys.outputs(p, x, w, y);
       row.head(ny) = y;
       row.segment(ny, ne) = s.w.segment(nu + nq, ne);
       row.segment(ny + ne, ne) = slip_scale * s.slip.head(ne);
       row.segment(ny + 2 * ne, ne) = s.energy.head(ne);
-      row(ny + 3 * ne) = static_cast<double>(s.mode);
+      Eigen::Index at = ny + 3 * ne;
+      for (const auto* columns : {&converter_columns, &engine_columns}) {
+        if (columns->empty()) continue;
+        double work = 0;
+        for (const Eigen::Index i : *columns) work += s.energy(ne + nl + i);
+        row(at++) = columns == &converter_columns ? -work : work;  // the converter's loss, the engine's work
+      }
+      row(at) = static_cast<double>(s.mode);
       if (log.writes_csv()) log.row(t, row.data(), static_cast<long>(row.size()));
       return true;
     };

@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include "pogear/driveline.hpp"
+
 namespace pogear::test {
 
 // A generated struct (Elastic or Rigid) at the given Params (by default the scene's values).
@@ -18,6 +20,8 @@ struct GeneratedSystem {
   std::function<void(Eigen::MatrixXd& M, Eigen::MatrixXd& N)> matrices;
   // A nonlinear system's quadratic loads (columns, speeds, coefficients), as the hybrid runs take them.
   std::function<void(Eigen::MatrixXd& columns, Eigen::MatrixXd& speeds, Eigen::VectorXd& c)> quadratic_loads;
+  // A system's engine and converter, as the hybrid runs take them.
+  std::function<rt::DrivelineData()> driveline;
 };
 
 struct GeneratedScene {
@@ -55,6 +59,8 @@ GeneratedSystem generated_system(const typename System::Params& params = {}) {
     g.quadratic_loads = [params](Eigen::MatrixXd& columns, Eigen::MatrixXd& speeds, Eigen::VectorXd& c) {
       System::quadratic_loads(params, columns, speeds, c);
     };
+  if constexpr (requires { System::driveline(params); })
+    g.driveline = [params] { return System::driveline(params); };
   return g;
 }
 

@@ -200,6 +200,34 @@ TEST_P(GeneratedSystems, QuadraticLoadsMatchTheReference) {
   }
 }
 
+// The engine's and converter's data as the hybrid runs take them: the generated tables equal the
+// scene's to the last bit (printed with 17 digits), the bodies' speeds the reference's.
+TEST_P(GeneratedSystems, DrivelineMatchesTheReference) {
+  for (const Systems& s : systems_) {
+    ASSERT_EQ(static_cast<bool>(s.generated.driveline), !s.specialized.driveline.empty()) << s.specialized.kind;
+    if (s.specialized.driveline.empty()) continue;
+    const rt::DrivelineData g = s.generated.driveline();
+    const rt::DrivelineData r = driveline_data(model_.scene, s.specialized, s.reference.driveline_speeds);
+    ASSERT_EQ(g.engine.has_value(), r.engine.has_value());
+    ASSERT_EQ(g.converter.has_value(), r.converter.has_value());
+    if (r.engine) {
+      EXPECT_EQ(g.engine->speeds, r.engine->speeds);
+      EXPECT_EQ(g.engine->throttles, r.engine->throttles);
+      EXPECT_EQ(g.engine->torque, r.engine->torque);
+      for (const double t : {0.0, 0.1999, 0.2, 0.2001, 1.0})
+        EXPECT_EQ(rt::value(g.throttle, t), rt::value(r.throttle, t)) << t;
+      EXPECT_LT(largest_scaled_gap(g.engine_speed.transpose(), r.engine_speed.transpose(), r.engine_speed.cwiseAbs().transpose()), kTolerance);
+    }
+    if (r.converter) {
+      EXPECT_EQ(g.converter->capacity.x, r.converter->capacity.x);
+      EXPECT_EQ(g.converter->capacity.y, r.converter->capacity.y);
+      EXPECT_EQ(g.converter->torque_ratio.y, r.converter->torque_ratio.y);
+      EXPECT_LT(largest_scaled_gap(g.pump_speed.transpose(), r.pump_speed.transpose(), r.pump_speed.cwiseAbs().transpose()), kTolerance);
+      EXPECT_LT(largest_scaled_gap(g.turbine_speed.transpose(), r.turbine_speed.transpose(), r.turbine_speed.cwiseAbs().transpose()), kTolerance);
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, GeneratedSystems, ::testing::ValuesIn(scenes()),
                          [](const ::testing::TestParamInfo<SceneUnderTest>& info) { return info.param.id; });
 

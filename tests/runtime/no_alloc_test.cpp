@@ -179,7 +179,7 @@ rt::HybridSystem clutch_and_shaft(bool fan) {
   sys.S << 1, -1, 0, 0;
   sys.elements.push_back({"C", 5, 1.2, rt::Table{{0.125, 0.375}, {0, 1}}});
   sys.inputs = {rt::Constant{0.5}, rt::Step{0, 30, 2}};
-  if (fan) sys.quadratic.push_back({Eigen::RowVector4d(0, 0, 0, 1), 0.002});
+  if (fan) sys.state_torques.push_back(rt::quadratic_torque_data(Eigen::RowVector4d(0, 0, 0, 1), 0.002));
   return sys;
 }
 

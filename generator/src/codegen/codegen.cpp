@@ -34,36 +34,6 @@ CppText effects_list(const Effects& e) {
   return on.empty() ? code("none (rigid, frictionless)") : join(on, code(", "));
 }
 
-CppText numbers(const std::vector<double>& v) {
-  std::vector<CppText> parts;
-  for (double x : v) parts.push_back(number_code(x));
-  return join(parts, code(", "));
-}
-
-CppText signal_code(const rt::Signal& signal) {
-  struct Code {
-    CppText operator()(const rt::Constant& c) const { return code("pogear::rt::Constant{{{}}}", number_code(c.v)); }
-    CppText operator()(const rt::Step& s) const {
-      return code("pogear::rt::Step{{{}, {}, {}}}", number_code(s.before), number_code(s.after), number_code(s.time));
-    }
-    CppText operator()(const rt::Ramp& r) const {
-      return code("pogear::rt::Ramp{{{}, {}, {}}}", number_code(r.start_time), number_code(r.slope),
-                  number_code(r.initial));
-    }
-    CppText operator()(const rt::Sine& s) const {
-      return code("pogear::rt::Sine{{{}, {}, {}, {}}}", number_code(s.amplitude), number_code(s.frequency_hz),
-                  number_code(s.phase_rad), number_code(s.offset));
-    }
-    CppText operator()(const rt::Table& t) const {
-      return code("pogear::rt::Table{{{{{}}}, {{{}}}}}", numbers(t.t), numbers(t.v));
-    }
-    CppText operator()(const rt::GradeLoad& g) const {
-      return code("pogear::rt::GradeLoad{{{}, {}, {}}}", (*this)(g.angle), number_code(g.sine), number_code(g.cosine));
-    }
-  };
-  return std::visit(Code{}, signal);
-}
-
 CppText signals_function(const SpecializedSystem& sys, const SymbolTable& symbols, const CppText& name) {
   CppText s = code("// Input signals of {}, in the order of its inputs.\n", name);
   s += code("std::vector<pogear::rt::Signal> {}_signals() {{\n  return {{", name);
@@ -203,6 +173,7 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   h += code("// Units are SI: rad/s, N, N m. Parameters are literals (see namespace parameters) unless listed in Params.\n");
   h += code("#pragma once\n\n#include <array>\n#include <string_view>\n\n#include <Eigen/Core>\n");
   if (needs_solve) h += code("#include <Eigen/Cholesky>\n");
+  if (!model.main.driveline.empty()) h += code("\n#include <pogear/driveline.hpp>\n");
   h += code("\nnamespace pogear_generated::{} {{\n\n", name);
   h += provenance(model);
   h += code("inline constexpr std::string_view scene_name = {};\n", string_literal(sc.name));
@@ -214,8 +185,8 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   h += code("inline constexpr long default_max_steps = {};\n\n", integer_code(sc.max_steps));
   h += parameters_namespace(model);
   const CppText main_struct = model.main.kind == SystemKind::elastic ? code("Elastic") : code("Rigid");
-  h += system_struct(model.main, d, main_struct) + code("\n");
-  if (model.rigid) h += system_struct(*model.rigid, d, code("Rigid")) + code("\n");
+  h += system_struct(model.main, model.scene, d, main_struct) + code("\n");
+  if (model.rigid) h += system_struct(*model.rigid, model.scene, d, code("Rigid")) + code("\n");
   h += code("}}  // namespace pogear_generated::{}\n", name);
   g.header = h.str();
 
@@ -227,7 +198,7 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
             model.friction.empty() ? CppText{} : code(", with its brakes' and clutches' events in .events.csv files"));
   for (const std::string& line : rt::usage_lines("PROGRAM", 100, solvers)) m += code("// {}\n", comment_text(line));
   const bool limits = !model.main.limited_controllers.empty();
-  const bool hybrid = !model.friction.empty() || limits;
+  const bool hybrid = !model.friction.empty() || limits || !model.main.driveline.empty();
   m += code("#include \"{}\"\n\n{}{}#include <pogear/parameters.hpp>\n#include <pogear/run_system.hpp>\n#include <pogear/signals.hpp>\n\n",
             header_name, limits ? code("#include <limits>\n\n") : CppText{},
             hybrid ? code("#include <pogear/hybrid_run.hpp>\n") : CppText{});

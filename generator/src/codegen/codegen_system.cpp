@@ -4,6 +4,7 @@
 #include "codegen/codegen_system.hpp"
 
 #include <set>
+#include <variant>
 
 #include "specialize/output_form.hpp"
 
@@ -53,10 +54,45 @@ CppText index_code(std::size_t i) { return integer_code(static_cast<long long>(i
 struct SystemCode {
   const SpecializedSystem& sys;
   const Derivation& d;
+  const Scene* scene;  // its engine and converter
   GiNaC::exset printed_last;
   bool fixed;
   CppText expression(const ex& e) const { return expression_code(e, printed_last); }
 };
+
+}  // namespace
+
+CppText numbers(const std::vector<double>& v) {
+  std::vector<CppText> parts;
+  for (double x : v) parts.push_back(number_code(x));
+  return join(parts, code(", "));
+}
+
+CppText signal_code(const rt::Signal& signal) {
+  struct Code {
+    CppText operator()(const rt::Constant& c) const { return code("pogear::rt::Constant{{{}}}", number_code(c.v)); }
+    CppText operator()(const rt::Step& s) const {
+      return code("pogear::rt::Step{{{}, {}, {}}}", number_code(s.before), number_code(s.after), number_code(s.time));
+    }
+    CppText operator()(const rt::Ramp& r) const {
+      return code("pogear::rt::Ramp{{{}, {}, {}}}", number_code(r.start_time), number_code(r.slope),
+                  number_code(r.initial));
+    }
+    CppText operator()(const rt::Sine& s) const {
+      return code("pogear::rt::Sine{{{}, {}, {}, {}}}", number_code(s.amplitude), number_code(s.frequency_hz),
+                  number_code(s.phase_rad), number_code(s.offset));
+    }
+    CppText operator()(const rt::Table& t) const {
+      return code("pogear::rt::Table{{{{{}}}, {{{}}}}}", numbers(t.t), numbers(t.v));
+    }
+    CppText operator()(const rt::GradeLoad& g) const {
+      return code("pogear::rt::GradeLoad{{{}, {}, {}}}", (*this)(g.angle), number_code(g.sine), number_code(g.cosine));
+    }
+  };
+  return std::visit(Code{}, signal);
+}
+
+namespace {
 
 // `const double omega_c = x[0];` for each state, input and parameter the body uses.
 CppText aliases(const SystemCode& c, const std::set<std::string>& used, const CppText& xname) {
@@ -80,6 +116,44 @@ CppText matrix_entries(const SystemCode& c, const GiNaC::matrix& m, const CppTex
     for (unsigned j = 0; j < m.cols(); ++j)
       if (!m(i, j).is_zero())
         s += code("    {}({}, {}) = {};\n", name, index_code(i), index_code(j), c.expression(m(i, j)));
+  return s;
+}
+
+// A scene's engine and converter: their tables, and the speeds of their bodies over the states.
+CppText driveline_function(const SystemCode& c) {
+  const SpecializedSystem& sys = c.sys;
+  const Scene& sc = *c.scene;
+  CppText s = code("  // The engine's and the converter's torques (Tengine, Tpump, Tturbine: the inputs after the signals)\n"
+                   "  // are functions of their bodies' speeds, their tables and the throttle: the hybrid runs compute them\n"
+                   "  // (pogear/driveline.hpp). Speeds [rad/s], torques [N m], capacity factor [(rad/s)/sqrt(N m)].\n");
+  s += code("  static pogear::rt::DrivelineData driveline([[maybe_unused]] const Params& p) {{\n");
+  s += aliases(c, symbols_in(entries({&sys.driveline_speeds})), code("x"));
+  s += code("    Eigen::MatrixXd speeds;\n    speeds.setZero({}, nx);\n", index_code(sys.driveline.size()));
+  s += matrix_entries(c, sys.driveline_speeds, code("speeds"));
+  s += code("    pogear::rt::DrivelineData d;\n");
+  for (std::size_t i = 0; i < sys.driveline.size(); ++i) {
+    const CppText row = code("speeds.row({})", index_code(i));
+    switch (sys.driveline[i].kind) {
+      case VariableKind::engine_torque: {
+        const rt::EngineData& e = sc.engine->map;
+        std::vector<CppText> rows;
+        for (const auto& r : e.torque) rows.push_back(code("{{{}}}", numbers(r)));
+        s += code("    d.engine = pogear::rt::EngineData{{{{{}}}, {{{}}}, {{{}}}}};\n", numbers(e.speeds), numbers(e.throttles),
+                  join(rows, code(", ")));
+        s += code("    d.throttle = {};\n    d.engine_speed = {};\n", signal_code(sc.engine->throttle), row);
+        break;
+      }
+      case VariableKind::pump_torque: {
+        const rt::ConverterData& k = sc.converter->curves;
+        s += code("    d.converter = pogear::rt::ConverterData{{{{{{{}}}, {{{}}}}}, {{{{{}}}, {{{}}}}}}};\n",
+                  numbers(k.capacity.x), numbers(k.capacity.y), numbers(k.torque_ratio.x), numbers(k.torque_ratio.y));
+        s += code("    d.pump_speed = {};\n", row);
+        break;
+      }
+      default: s += code("    d.turbine_speed = {};\n", row);
+    }
+  }
+  s += code("    return d;\n  }}\n\n");
   return s;
 }
 
@@ -190,10 +264,10 @@ CppText operation_text(const OperationCount& c) {
               integer_code(c.multiplications), integer_code(c.additions));
 }
 
-CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const CppText& struct_name) {
+CppText system_struct(const SpecializedSystem& sys, const Scene& scene, const Derivation& d, const CppText& struct_name) {
   const std::size_t nx = sys.states.size(), nu = sys.inputs.size(), ny = sys.outputs.size();
   const bool fixed = fixed_sizes(sys);
-  const SystemCode c{sys, d, body_variable_symbols(d.symbols), fixed};
+  const SystemCode c{sys, d, &scene, body_variable_symbols(d.symbols), fixed};
   CppText s;
   s += code("// {}\n", comment_text(sys.equations));
   s += code("struct {} {{\n", struct_name);
@@ -249,6 +323,7 @@ CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const C
     for (std::size_t i = 0; i < sys.quadratic_coefficients.size(); ++i)
       s += code("    coefficients[{}] = {};\n", index_code(i), c.expression(sys.quadratic_coefficients[i]));
     s += code("  }}\n\n");
+    if (!sys.driveline.empty()) s += driveline_function(c);
   } else {
     s += output_matrices_function(c);
   }

@@ -8,7 +8,11 @@
 namespace pogear {
 
 // `t` names the variables the expressions hold (see model_variables.hpp).
-CppText system_struct(const SpecializedSystem& sys, const Derivation& d, const CppText& struct_name);
+CppText system_struct(const SpecializedSystem& sys, const Scene& scene, const Derivation& d, const CppText& struct_name);
+
+// Numbers as a C++ initializer list's entries, and a signal as the runtime's value of it.
+CppText numbers(const std::vector<double>& v);
+CppText signal_code(const rt::Signal& signal);
 
 // "38 operations (24 multiplications, 14 additions)".
 CppText operation_text(const OperationCount& c);

@@ -31,6 +31,9 @@ KindText text_of(VariableKind kind) {
     case VariableKind::vehicle_speed: return {"vehicle_speed", "km/h"};
     case VariableKind::vehicle_acceleration: return {"vehicle_acceleration", "m/s^2"};
     case VariableKind::vehicle_jerk: return {"vehicle_jerk", "m/s^3"};
+    case VariableKind::engine_torque: return {"Tengine", "N m"};
+    case VariableKind::pump_torque: return {"Tpump", "N m"};
+    case VariableKind::turbine_torque: return {"Tturbine", "N m"};
   }
   return {"", ""};
 }
@@ -54,6 +57,10 @@ bool of_vehicle(VariableKind kind) {
          kind == VariableKind::vehicle_jerk;
 }
 
+bool of_driveline(VariableKind kind) {
+  return kind == VariableKind::engine_torque || kind == VariableKind::pump_torque || kind == VariableKind::turbine_torque;
+}
+
 bool of_controller(VariableKind kind) {
   return kind == VariableKind::controller_torque || kind == VariableKind::controller_integral ||
          kind == VariableKind::controller_error || kind == VariableKind::set_point;
@@ -61,7 +68,7 @@ bool of_controller(VariableKind kind) {
 
 std::size_t variable_count(const Topology& t, VariableKind kind) {
   if (kind == VariableKind::friction_torque) return t.friction_elements.size();
-  if (of_controller(kind) || of_vehicle(kind)) return 0;  // a scene's
+  if (of_controller(kind) || of_vehicle(kind) || of_driveline(kind)) return 0;  // a scene's
   return of_body(kind) ? t.bodies.size() : t.meshes.size();
 }
 
@@ -80,14 +87,15 @@ KindText shaft_text(VariableKind kind) {
 }
 
 bool of_shaft(const Topology& t, Variable v) {
-  return !of_body(v.kind) && !of_controller(v.kind) && !of_vehicle(v.kind) && v.kind != VariableKind::friction_torque &&
+  return !of_body(v.kind) && !of_controller(v.kind) && !of_vehicle(v.kind) && !of_driveline(v.kind) &&
+         v.kind != VariableKind::friction_torque &&
          t.meshes.at(static_cast<std::size_t>(v.index)).shaft;
 }
 
 }  // namespace
 
 std::string variable_name(const Topology& t, Variable v) {
-  if (of_vehicle(v.kind)) return std::string(text_of(v.kind).prefix);
+  if (of_vehicle(v.kind) || of_driveline(v.kind)) return std::string(text_of(v.kind).prefix);
   if (of_controller(v.kind))
     throw std::logic_error("a controller's variable is the scene's: its name comes from the symbol table");
   const auto i = static_cast<std::size_t>(v.index);
@@ -114,7 +122,7 @@ Variable derivative_of(Variable state) {
 }
 
 std::string_view unit_of(const Topology& t, Variable v) {
-  if (of_controller(v.kind) || of_vehicle(v.kind)) return text_of(v.kind).unit;
+  if (of_controller(v.kind) || of_vehicle(v.kind) || of_driveline(v.kind)) return text_of(v.kind).unit;
   return (of_shaft(t, v) ? shaft_text(v.kind) : text_of(v.kind)).unit;
 }
 

@@ -29,6 +29,9 @@ enum class VariableKind {
   vehicle_speed,         // vehicle_speed [km/h]: a scene's [vehicle], r_w omega_wheels, an output
   vehicle_acceleration,  // vehicle_acceleration [m/s^2]: its derivative, an output
   vehicle_jerk,          // vehicle_jerk [m/s^3]: the acceleration's derivative, an output of the elastic model
+  engine_torque,   // Tengine [N m]: a scene's [engine], its map's torque on its body, an input the run computes
+  pump_torque,     // Tpump [N m]: a scene's [converter], its torque on the pump (-T_p in drive), likewise
+  turbine_torque,  // Tturbine [N m]: its torque on the turbine (TR T_p in drive), likewise
 };
 
 // A variable of body or mesh `index`, as the kind says.
@@ -43,6 +46,7 @@ struct Variable {
 bool of_body(VariableKind kind);
 bool of_controller(VariableKind kind);
 bool of_vehicle(VariableKind kind);  // a scene's [vehicle]: named here, index 0
+bool of_driveline(VariableKind kind);  // a scene's [engine] and [converter]: named here, index 0
 // How many variables of this kind the model has (its bodies, meshes or friction elements; none of
 // a controller's kinds: controllers are a scene's, not the model's).
 std::size_t variable_count(const Topology& t, VariableKind kind);

@@ -57,6 +57,11 @@ void add_vehicle_symbols(SymbolTable& s) {
     s.variables.emplace(Variable{kind, 0}, GiNaC::realsymbol(variable_name(Topology{}, {kind, 0})));
 }
 
+void add_driveline_symbols(SymbolTable& s) {
+  for (const VariableKind kind : {VariableKind::engine_torque, VariableKind::pump_torque, VariableKind::turbine_torque})
+    s.variables.emplace(Variable{kind, 0}, GiNaC::realsymbol(variable_name(Topology{}, {kind, 0})));
+}
+
 std::string variable_name(const SymbolTable& s, Variable v) { return variable_symbol(s, v).get_name(); }
 
 const GiNaC::realsymbol& parameter_symbol(const SymbolTable& s, const std::string& name) {

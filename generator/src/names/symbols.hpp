@@ -26,6 +26,8 @@ SymbolTable make_symbol_table(const Topology& t);
 void add_controller_symbols(SymbolTable& s, const std::vector<std::string>& controllers);
 // A scene's [vehicle]: vehicle_speed, vehicle_acceleration and vehicle_jerk.
 void add_vehicle_symbols(SymbolTable& s);
+// A scene's [engine] and [converter]: Tengine, Tpump and Tturbine.
+void add_driveline_symbols(SymbolTable& s);
 
 // The symbol of a parameter or a variable of the table; a name the table lacks is a bug of pogear
 // (the readers check every name), reported as std::logic_error.

@@ -141,6 +141,10 @@ std::optional<Variable> find_scene_variable(const Scene& s, std::string_view nam
   for (const VariableKind kind : kinds)
     if (of_vehicle(kind) && s.vehicle && variable_name(s.model, {kind, 0}) == name) return Variable{kind, 0};
   for (const VariableKind kind : kinds)
+    if (((kind == VariableKind::engine_torque && s.engine) || (of_driveline(kind) && kind != VariableKind::engine_torque && s.converter)) &&
+        variable_name(s.model, {kind, 0}) == name)
+      return Variable{kind, 0};
+  for (const VariableKind kind : kinds)
     if (of_controller(kind))
       for (std::size_t c = 0; c < s.controllers.size(); ++c)
         if (controller_variable_name(kind, s.controllers[c].name) == name) return Variable{kind, static_cast<int>(c)};

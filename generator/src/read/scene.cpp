@@ -22,6 +22,7 @@
 #include "read/effects.hpp"
 #include "read/gear_table.hpp"
 #include "read/loads_and_controllers.hpp"
+#include "read/driveline_table.hpp"
 #include "read/vehicle_table.hpp"
 #include "read/scene_reader.hpp"
 #include "read/toml_reader.hpp"
@@ -83,6 +84,20 @@ std::string tunable_behind(const Topology& t, const std::vector<std::string>& tu
   return "";
 }
 
+// An engine's and a converter's torques are the run's, not the scene's inputs: what needs them as
+// inputs at t = 0 or as symbols is not available with them.
+void check_driveline(const Scene& s) {
+  if (!s.engine && !s.converter) return;
+  const SourceLocation& where = s.engine ? s.engine->where : s.converter->where;
+  if (!s.tunable.empty())
+    throw InputError(s.tunable_where, "a scene with an [engine] or a [converter] has no tunable parameters yet; set the "
+                                      "values in [parameters] and generate one simulator per value");
+  if (s.start != Start::given)
+    throw InputError(s.start_where.file.empty() ? where : s.start_where,
+                     "a start in a gear or at equilibrium (start = \"rigid\" or \"steady\") is not available with an "
+                     "[engine] or a [converter] yet; give the initial speeds in [initial], the engine's as omega_engine");
+}
+
 void check_loads_and_controllers(const Scene& s) {
   if (s.loads.empty() && s.controllers.empty()) return;
   if (!s.tunable.empty())
@@ -132,7 +147,8 @@ void check_solver(Scene& s, bool engaged) {
 }  // namespace
 
 bool nonlinear(const Scene& scene) {
-  return std::any_of(scene.loads.begin(), scene.loads.end(), [](const LoadSpec& l) { return l.quadratic != 0; });
+  return scene.engine || scene.converter ||
+         std::any_of(scene.loads.begin(), scene.loads.end(), [](const LoadSpec& l) { return l.quadratic != 0; });
 }
 
 bool identically_zero(const rt::Signal& signal) {
@@ -163,7 +179,8 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       fmt::format("the scene file is larger than {} bytes; a model or scene file is a few kilobytes",
                   max_model_file_bytes));
   r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
-                     "parameters", "simulation", "engagement", "speed_unit", "loads", "controllers", "vehicle"},
+                     "parameters", "simulation", "engagement", "speed_unit", "loads", "controllers", "vehicle", "engine",
+                     "converter"},
               "the scene file");
   Scene s;
   s.file = path;
@@ -210,6 +227,9 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
 
   // Before the effects, which ask for the compliance of its half-shafts.
   if (const toml::node* n = root.get("vehicle")) read_vehicle(r, *n, scene_dir, s);
+  // Before [engagement], which may command the converter's lock-up clutch.
+  if (const toml::node* n = root.get("engine")) read_engine(r, *n, scene_dir, s);
+  if (const toml::node* n = root.get("converter")) read_converter(r, *n, s);
   if (const toml::node* n = root.get("effects")) s.effects = read_effects(r, *n, topology);
   // Before the tunables, whose names must not be the controllers' variables.
   if (const toml::node* n = root.get("loads")) {
@@ -380,7 +400,9 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     for (const auto& o : listed) {
       const auto v = find_scene_variable(s, o, {VariableKind::velocity, VariableKind::force, VariableKind::spring_force,
                                                 VariableKind::controller_torque, VariableKind::vehicle_speed,
-                                                VariableKind::vehicle_acceleration, VariableKind::vehicle_jerk});
+                                                VariableKind::vehicle_acceleration, VariableKind::vehicle_jerk,
+                                                VariableKind::engine_torque, VariableKind::pump_torque,
+                                                VariableKind::turbine_torque});
       if (const std::string why = fixed_variable_refusal(topology, o); !why.empty()) r.fail(*n, why);
       if (!v)
         r.fail(*n, fmt::format("output '{}' is none of omega_<body>, F_<mesh>, Fspring_<mesh>, {}Tc_<controller>", o,
@@ -445,6 +467,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(),
                                    [](const EngagementSpec& e) { return !identically_zero(e.command); });
   check_loads_and_controllers(s);
+  check_driveline(s);
   check_solver(s, engaged);
   check_vehicle_jerk(s);
   for (const EngagementSpec& e : s.engagement) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pogear/driveline.hpp"
 #include "pogear/signals.hpp"
 #include "pogear/solver.hpp"
 #include "names/model_variables.hpp"
@@ -68,6 +69,23 @@ struct VehicleSpec {
   double speed_per_omega() const { return wheel_radius / final_drive; }
 };
 
+// A scene's [engine]: a body `engine` (crank, flywheel, the converter's pump) driven by its map's
+// torque at its speed and the throttle signal (read/driveline_table.hpp).
+struct EngineSpec {
+  int body = -1;
+  rt::EngineData map;  // SI: rad/s, N m
+  rt::Signal throttle;
+  SourceLocation where;
+};
+
+// A scene's [converter] between a pump body and a turbine body (its lock-up clutch, when it has one,
+// is a clutch of the model named `lockup`).
+struct ConverterSpec {
+  int pump = -1, turbine = -1;
+  rt::ConverterData curves;  // capacity factor in (rad/s)/sqrt(N m)
+  SourceLocation where;
+};
+
 // A PI speed controller (scene-format.md, "Controllers"): the torque kp e + ki theta on `body`, with
 // e = set_point(t) - omega_<measured> and theta its integral (a state of the scene).
 struct ControllerSpec {
@@ -113,6 +131,8 @@ struct Scene {
   std::vector<EngagementSpec> engagement;
   std::vector<LoadSpec> loads;  // in body order, at most one per body
   std::optional<VehicleSpec> vehicle;
+  std::optional<EngineSpec> engine;
+  std::optional<ConverterSpec> converter;
   // In the order of Topology::controllers, which names them for their variables.
   std::vector<ControllerSpec> controllers;
   bool solver_given = false;  // a quadratic load makes dopri5 the default
@@ -139,7 +159,8 @@ struct Scene {
 // Reads a scene and its model, applies the scene's parameter overrides to the model, and checks
 // the scene against the result (bodies, meshes, parameter names, units).
 Scene parse_scene(const std::string& path);
-// Whether a load of the scene is quadratic in speed: its equations are then nonlinear.
+// Whether a load of the scene is quadratic in speed, or the scene has an engine or a converter: its
+// equations are then nonlinear.
 bool nonlinear(const Scene& scene);
 Scene parse_scene_text(const std::string& text, const std::string& path);
 

@@ -8,11 +8,28 @@
 #include <fmt/format.h>
 
 #include "read/model_parameters.hpp"
+#include "pogear/parameters.hpp"
 #include "pogear/signal_table.hpp"
 
 namespace pogear {
 
 namespace fs = std::filesystem;
+
+void add_scene_parameter(const SceneReader& r, const toml::node& where, std::string_view table, Topology& t,
+                         const std::string& name, double value, const Dimension& dim, const std::string& unit) {
+  if (find_parameter(t, name))
+    r.fail(where, fmt::format("the model has a parameter '{}', which {} defines; rename the model's", name, table));
+  if (value != 0 && !(std::abs(value) >= rt::kSmallestParameter && std::abs(value) <= rt::kLargestParameter))
+    r.fail(where, fmt::format("{} makes {} = {:g} (SI), outside the range pogear computes with, {:g} to {:g}; "
+                              "check its values and their units", table, name, value, rt::kSmallestParameter,
+                              rt::kLargestParameter));
+  Parameter p;
+  p.name = name;
+  p.text = fmt::format("{:.17g}{}", value, unit.empty() ? "" : "*" + unit);
+  p.value = Quantity{value, dim, !unit.empty()};
+  p.where = r.loc(where);
+  t.parameters.push_back(std::move(p));
+}
 
 std::vector<std::string> SceneReader::strings(const toml::node& n, std::string_view what) const {
   if (!n.is_array()) fail(n, fmt::format("{} must be a list of strings, e.g. [\"a\", \"b\"]", what));
@@ -125,11 +142,12 @@ rt::Signal read_table_signal(const SceneReader& r, const toml::node& at, const s
 // An input torque, an engagement command or a speed set-point. An engagement command's sine form is
 // refused: the exact method is exact for piecewise linear commands, and events are located on them.
 rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path& scene_dir, SignalQuantity what) {
-  const bool engagement = what == SignalQuantity::engagement;
+  const bool engagement = what == SignalQuantity::engagement || what == SignalQuantity::throttle;
   const Dimension torque = engagement || what == SignalQuantity::angle ? Dimension{}
                            : what == SignalQuantity::speed ? angular_velocity_dimension()
                                                            : torque_dimension();
-  const char* name = engagement                      ? "an engagement command"
+  const char* name = what == SignalQuantity::throttle ? "the throttle"
+                     : engagement                      ? "an engagement command"
                      : what == SignalQuantity::speed   ? "a set-point"
                      : what == SignalQuantity::angle   ? "the grade"
                                                        : "an input torque";

@@ -38,12 +38,17 @@ struct SceneReader : TomlReader {
   Quantity checked_quantity(const toml::node& n, const Dimension& dim, std::string_view what) const;
 };
 
-// What a signal of the scene is: an input torque, a dimensionless engagement command (piecewise
-// linear), or a controller's speed set-point.
-enum class SignalQuantity { torque, engagement, speed, angle };
+// What a signal of the scene is: an input torque, a dimensionless engagement command or an engine's
+// throttle (piecewise linear), a controller's speed set-point, or a road's grade.
+enum class SignalQuantity { torque, engagement, speed, angle, throttle };
 
 // A signal; a table's file is found relative to `scene_dir`.
 rt::Signal read_signal(const SceneReader& r, const toml::node& n, const std::filesystem::path& scene_dir,
                        SignalQuantity what = SignalQuantity::torque);
+
+// Adds a parameter a scene table defines (`table` names it in messages), its text the SI value with
+// its unit, refused when the model has one of that name or the value leaves pogear's range.
+void add_scene_parameter(const SceneReader& r, const toml::node& where, std::string_view table, Topology& t,
+                         const std::string& name, double value, const Dimension& dim, const std::string& unit);
 
 }  // namespace pogear

@@ -24,21 +24,9 @@ Dimension dimension(int m, int kg, int s) {
   return d;
 }
 
-// A parameter the vehicle adds, its text the SI value with its unit (evaluated again like any).
 void add_parameter(const SceneReader& r, const toml::node& where, Topology& t, const std::string& name, double value,
                    const Dimension& dim, const std::string& unit) {
-  if (find_parameter(t, name))
-    r.fail(where, fmt::format("the model has a parameter '{}', which [vehicle] defines; rename the model's", name));
-  if (value != 0 && !(value >= rt::kSmallestParameter && value <= rt::kLargestParameter))
-    r.fail(where, fmt::format("[vehicle] makes {} = {:g} (SI), outside the range pogear computes with, {:g} to {:g}; "
-                              "check the vehicle's values and their units", name, value, rt::kSmallestParameter,
-                              rt::kLargestParameter));
-  Parameter p;
-  p.name = name;
-  p.text = fmt::format("{:.17g}{}", value, unit.empty() ? "" : "*" + unit);
-  p.value = Quantity{value, dim, !unit.empty()};
-  p.where = r.loc(where);
-  t.parameters.push_back(std::move(p));
+  add_scene_parameter(r, where, "[vehicle]", t, name, value, dim, unit);
 }
 
 }  // namespace

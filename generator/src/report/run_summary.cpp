@@ -42,8 +42,17 @@ std::string loads_and_controllers_note(const SpecializedScene& model) {
                                                "tracks the limit (time constant {} s)", c.torque_min, c.torque_max,
                                                c.tracking_time)
                                  : std::string(" (linear)"));
+  if (sc.engine)
+    s += fmt::format("engine on its body 'engine': torque from its map ({} speeds x {} throttles, bilinear) at its "
+                     "speed and the throttle (nonlinear)\n", sc.engine->map.speeds.size(), sc.engine->map.throttles.size());
+  if (sc.converter)
+    s += fmt::format("converter from {} to {}: pump torque (omega_p / K(SR))^2, turbine TR(SR) times it, coast as a "
+                     "coupling (nonlinear); its loss E_converter [J] in the CSV\n",
+                     t.bodies[static_cast<std::size_t>(sc.converter->pump)].name,
+                     t.bodies[static_cast<std::size_t>(sc.converter->turbine)].name);
   if (model.main.nonlinear) {
-    s += fmt::format("nonlinear (quadratic loads): integrated by {}{}; exact stepping needs a linear scene\n",
+    s += fmt::format("nonlinear ({}): integrated by {}{}; exact stepping needs a linear scene\n",
+                     model.main.driveline.empty() ? "quadratic loads" : "engine, converter or quadratic loads",
                      rt::solver_name(sc.solver),
                      sc.solver == rt::Solver::rk4 ? fmt::format(", fixed step {} s", sc.step)
                                                   : fmt::format(", adaptive steps at tolerance {}", sc.tolerance));

@@ -74,6 +74,8 @@ struct InterpretedSystem {
     }
   }
   void slip_matrix(const Params&, Eigen::MatrixXd& S) const { S = ns.S; }
+  rt::DrivelineData driveline_data;  // a converter's and an engine's
+  const rt::DrivelineData& driveline(const Params&) const { return driveline_data; }
   void torque_limit_laws(const Params&, Eigen::MatrixXd& X, Eigen::MatrixXd& W) const {
     X = ns.limit_x;
     W = ns.limit_u;
@@ -101,7 +103,8 @@ int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& 
   InterpretedSystem is{numeric_system(model, sys), port_names(model.derivation.symbols, output_variables(sys)),
                        output_units(model.derivation.topology, sys)};
   is.state_units = state_units(model.derivation.topology, sys);
-  if (!sys.friction_elements.empty() || !sys.limited_controllers.empty())
+  is.driveline_data = driveline_data(model.scene, sys, is.ns.driveline_speeds);
+  if (!sys.friction_elements.empty() || !sys.limited_controllers.empty() || !sys.driveline.empty())
     return rt::run_hybrid_system(is, {}, input_signals(sys), friction_data(model), torque_limits(model, sys), is.ns.x0,
                                  run, suffix);
   return rt::run_system(is, {}, input_signals(sys), is.ns.x0, run, suffix);

@@ -102,16 +102,19 @@ ClosedLoops close_loops(const Scene& sc, const Derivation& d, bool elastic, cons
   if (sc.loads.empty() && sc.controllers.empty()) return out;
   const SpeedOf speed(d, elastic, fold, sys);
   // The inputs again, in their final order: the scene's torques, the loads' constant parts, the
-  // set-points, the friction torques and the limited controllers' torques (last, as the hybrid runs expect).
-  std::vector<InputPort> torques, frictions;
+  // set-points, the engine's and converter's torques, the friction torques and the limited controllers'
+  // torques (last, as the hybrid runs expect).
+  std::vector<InputPort> torques, driveline, frictions;
   for (InputPort& u : sys.inputs) {
     if (u.variable.kind == VariableKind::torque) torques.push_back(std::move(u));
+    if (of_driveline(u.variable.kind)) driveline.push_back(std::move(u));
     if (u.variable.kind == VariableKind::friction_torque) frictions.push_back(std::move(u));
   }
   sys.inputs = std::move(torques);
   for (const LoadSpec& l : sc.loads) close_load(l, d, speed, sys, out);
   for (std::size_t c = 0; c < sc.controllers.size(); ++c)
     close_controller(sc.controllers[c], static_cast<int>(c), d.symbols, speed, sys, out);
+  sys.inputs.insert(sys.inputs.end(), driveline.begin(), driveline.end());
   sys.inputs.insert(sys.inputs.end(), frictions.begin(), frictions.end());
   for (const int c : sys.limited_controllers) sys.inputs.push_back({{VariableKind::controller_torque, c}, std::nullopt});
   for (std::size_t i = 0; i < sys.rhs.size(); ++i)

@@ -38,7 +38,7 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
   OpenLoop out;
   // The torque of each input on each body (tau_, loads, controllers: a unit column; friction
   // torques: -e_k^T; set-points: none).
-  const GiNaC::matrix G_in = input_torques(d.topology, model.scene.controllers, inputs);
+  const GiNaC::matrix G_in = input_torques(d.topology, model.scene, inputs);
   auto input_columns = [&](const GiNaC::matrix& B) { return exact_product(B, G_in); };
   const std::size_t ny = sys.outputs.size(), nu = inputs.size(), n = d.topology.bodies.size();
   out.C = Eigen::MatrixXd::Zero(ny, nx);
@@ -62,6 +62,10 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
     for (std::size_t i = 0; i < ny; ++i) {
       const Variable y = sys.outputs[i].variable;
       if (y.kind == VariableKind::controller_torque) continue;
+      if (of_driveline(y.kind)) {  // an input the run computes
+        out.D(i, index_of(inputs, y)) = 1;
+        continue;
+      }
       if (of_vehicle(y.kind)) {  // km/h of the vehicle body's speed, m/s^2 of its acceleration
         const Eigen::Index w = state_index({VariableKind::velocity, model.scene.vehicle->vehicle_body});
         const double per_omega = model.scene.vehicle->speed_per_omega();
@@ -116,6 +120,8 @@ OpenLoop open_loop(const SpecializedScene& model, const SpecializedSystem& sys, 
       const Variable y = sys.outputs[i].variable;
       if (y.kind == VariableKind::velocity) {
         out.C.row(i) = Q1n.row(y.index);
+      } else if (of_driveline(y.kind)) {
+        out.D(i, index_of(inputs, y)) = 1;
       } else if (of_vehicle(y.kind)) {
         const double per_omega = model.scene.vehicle->speed_per_omega();
         const auto row = Q1n.row(model.scene.vehicle->vehicle_body);
@@ -298,6 +304,10 @@ NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSys
     q.speed_row.head(nb) = o.speeds.row(loads[l]->body).transpose();
     out.quadratic.push_back(std::move(q));
   }
+  // The speed of each driveline torque's body, from the open loop's speeds.
+  out.driveline_speeds = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(sys.driveline.size()), nx);
+  for (std::size_t i = 0; i < sys.driveline.size(); ++i)
+    out.driveline_speeds.row(static_cast<Eigen::Index>(i)).head(nb) = o.speeds.row(driveline_body(sc, sys.driveline[i].kind));
   controller_outputs(sys, system_inputs, law, out);
   vehicle_jerk_rows(model, sys, out);
   if (sc.controllers.empty()) out.L = o.L;
@@ -315,20 +325,43 @@ Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSys
   return evaluate_matrix(sys.implicit->L, values).llt().solve(evaluate_matrix(sys.implicit->A, values));
 }
 
+rt::DrivelineData driveline_data(const Scene& scene, const SpecializedSystem& sys, const Eigen::MatrixXd& speeds) {
+  rt::DrivelineData out;
+  for (std::size_t i = 0; i < sys.driveline.size(); ++i) {
+    const Eigen::RowVectorXd row = speeds.row(static_cast<Eigen::Index>(i));
+    switch (sys.driveline[i].kind) {
+      case VariableKind::engine_torque:
+        out.engine = scene.engine->map;
+        out.throttle = scene.engine->throttle;
+        out.engine_speed = row;
+        break;
+      case VariableKind::pump_torque:
+        out.converter = scene.converter->curves;
+        out.pump_speed = row;
+        break;
+      default: out.turbine_speed = row;
+    }
+  }
+  return out;
+}
+
 rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedSystem& system, const NumericSystem& ns) {
   rt::HybridSystem hs;
   hs.M = ns.M;
   hs.S = ns.S;
   hs.inputs = input_signals(system);
-  // w = [u; q; T]: the quadratic loads' columns between the signals' and the elements'.
-  const auto nu = static_cast<Eigen::Index>(hs.inputs.size()), nq = static_cast<Eigen::Index>(ns.quadratic.size());
+  // w = [u; q; T]: the state torques' columns between the signals' and the elements', the driveline's
+  // (inputs of the system after its signals) first, then the quadratic loads'.
+  hs.state_torques = rt::driveline_state_torques(driveline_data(model.scene, system, ns.driveline_speeds));
+  const auto nd = static_cast<Eigen::Index>(hs.state_torques.size());
+  const auto nu = static_cast<Eigen::Index>(hs.inputs.size()) + nd, nq = static_cast<Eigen::Index>(ns.quadratic.size());
   hs.N.resize(ns.N.rows(), ns.N.cols() + nq);
   hs.N.leftCols(nu) = ns.N.leftCols(nu);
   hs.N.rightCols(ns.N.cols() - nu) = ns.N.rightCols(ns.N.cols() - nu);
   for (Eigen::Index i = 0; i < nq; ++i) {
     const QuadraticLoad& q = ns.quadratic[static_cast<std::size_t>(i)];
     hs.N.col(nu + i) = q.state_column;
-    hs.quadratic.push_back({q.speed_row.transpose(), q.coefficient});
+    hs.state_torques.push_back(rt::quadratic_torque_data(q.speed_row.transpose(), q.coefficient));
   }
   for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
   for (std::size_t l = 0; l < system.limited_controllers.size(); ++l) {

@@ -10,6 +10,7 @@
 
 namespace pogear {
 
+struct Scene;              // read/scene.hpp
 struct SpecializedScene;   // specialization.hpp
 struct SpecializedSystem;  // specialization.hpp
 
@@ -31,12 +32,16 @@ struct NumericSystem {
   Eigen::MatrixXd C, D, E;     // y = C x + D u + E dx/dt
   Eigen::MatrixXd S;           // slips of the engaged brakes and clutches, s = S x
   Eigen::MatrixXd limit_x, limit_u;  // laws T = limit_x x + limit_u u of the controllers with torque limits
+  Eigen::MatrixXd driveline_speeds;  // the speed each driveline torque's body turns at (SpecializedSystem::driveline)
   Eigen::VectorXd x0;
 };
 NumericSystem numeric_system(const SpecializedScene& model, const SpecializedSystem& system);
 
 // The system as the runtime's hybrid engine takes it: M, N, S, the input signals, the engaged brakes
 // and clutches, and the torque-limited controllers with their laws.
+// A system's engine and converter as the runtime takes them, their bodies' speeds given (one row each,
+// in SpecializedSystem::driveline's order).
+rt::DrivelineData driveline_data(const Scene& scene, const SpecializedSystem& sys, const Eigen::MatrixXd& speeds);
 rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedSystem& system, const NumericSystem& ns);
 
 // The state matrix M of a system at the scene's values (every tunable at its value).

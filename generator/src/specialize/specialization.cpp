@@ -43,6 +43,9 @@ std::vector<Variable> requested_outputs(const Scene& sc, const Topology& t) {
   for (std::size_t c = 0; c < sc.controllers.size(); ++c) out.push_back({VariableKind::controller_torque, static_cast<int>(c)});
   if (sc.vehicle)
     for (const VariableKind kind : {VariableKind::vehicle_speed, VariableKind::vehicle_acceleration}) out.push_back({kind, 0});
+  if (sc.engine) out.push_back({VariableKind::engine_torque, 0});
+  if (sc.converter)
+    for (const VariableKind kind : {VariableKind::pump_torque, VariableKind::turbine_torque}) out.push_back({kind, 0});
   return out;
 }
 
@@ -51,6 +54,15 @@ void inputs_of(const Scene& sc, SpecializedSystem& sys) {
     if (identically_zero(in.signal)) continue;  // a zero input is not an input
     sys.inputs.push_back({{VariableKind::torque, in.body}, in.signal});
   }
+}
+
+// An engine's and a converter's torques: inputs after the scene's signals, which the runs compute.
+void driveline_inputs_of(const Scene& sc, SpecializedSystem& sys) {
+  if (sc.engine) sys.driveline.push_back({VariableKind::engine_torque, 0});
+  if (sc.converter)
+    for (const VariableKind kind : {VariableKind::pump_torque, VariableKind::turbine_torque}) sys.driveline.push_back({kind, 0});
+  for (const Variable v : sys.driveline) sys.inputs.push_back({v, std::nullopt});
+  if (!sys.driveline.empty()) sys.nonlinear = true;
 }
 
 // Engaged brakes and clutches: their torques are inputs after the scene's (an element whose command
@@ -170,6 +182,7 @@ ex output_value(const Derivation& d, const GiNaC::exmap& fold, const OpenInputs&
                 const std::vector<Variable>& states, std::size_t gear_states, bool elastic,
                 const std::optional<VehicleSpec>& vehicle, Variable out) {
   const SymbolTable& s = d.symbols;
+  if (of_driveline(out.kind)) return variable_symbol(s, out);  // an input the runs compute
   if (out.kind == VariableKind::controller_torque) {
     const auto law = loop_outputs.find(variable_symbol(s, out));
     return law != loop_outputs.end() ? law->second : ex(variable_symbol(s, out));
@@ -229,6 +242,7 @@ SystemOutputs system_outputs(const Scene& sc, const Derivation& d, const GiNaC::
     out.reads_derivatives = out.reads_derivatives || y.kind == VariableKind::vehicle_acceleration ||
                             y.kind == VariableKind::vehicle_jerk ||
                             (!elastic && !contains(states, y) && y.kind != VariableKind::controller_torque &&
+                             !of_driveline(y.kind) &&
                              y.kind != VariableKind::velocity && y.kind != VariableKind::vehicle_speed);
     if (y.kind == VariableKind::force || y.kind == VariableKind::spring_force)
       if (const GiNaC::numeric f = output_per_model_force(t, t.meshes[static_cast<std::size_t>(y.index)]); f != 1)
@@ -239,11 +253,10 @@ SystemOutputs system_outputs(const Scene& sc, const Derivation& d, const GiNaC::
   return out;
 }
 
-// Slips s_k = e_k omega in the system's states: omega itself (elastic), omega = Q1 x1 (rigid); a
-// controller's integral enters no slip.
-GiNaC::matrix slip_rows(const Derivation& d, const GiNaC::exmap& fold, const std::vector<int>& elements,
-                        const std::vector<Variable>& states, std::size_t gear_states, bool elastic) {
-  const GiNaC::matrix E = engagement_rows(d.topology, elements);
+// Rows E omega in the system's states: omega itself (elastic), omega = Q1 x1 (rigid); a controller's
+// integral enters none.
+GiNaC::matrix state_rows(const Derivation& d, const GiNaC::exmap& fold, const GiNaC::matrix& E,
+                         const std::vector<Variable>& states, std::size_t gear_states, bool elastic) {
   GiNaC::matrix slip(E.rows(), states.size());
   for (unsigned r = 0; r < E.rows(); ++r)
     for (std::size_t j = 0; j < states.size(); ++j) {
@@ -256,6 +269,22 @@ GiNaC::matrix slip_rows(const Derivation& d, const GiNaC::exmap& fold, const std
       slip(r, j) = folded(sum, fold);
     }
   return slip;
+}
+
+// Slips s_k = e_k omega of the engaged elements.
+GiNaC::matrix slip_rows(const Derivation& d, const GiNaC::exmap& fold, const std::vector<int>& elements,
+                        const std::vector<Variable>& states, std::size_t gear_states, bool elastic) {
+  return state_rows(d, fold, engagement_rows(d.topology, elements), states, gear_states, elastic);
+}
+
+// The speed of the body each driveline torque acts on.
+GiNaC::matrix driveline_speed_rows(const Scene& sc, const Derivation& d, const GiNaC::exmap& fold,
+                                   const SpecializedSystem& sys, const std::vector<Variable>& states,
+                                   std::size_t gear_states, bool elastic) {
+  GiNaC::matrix E(sys.driveline.size(), d.topology.bodies.size());
+  for (std::size_t i = 0; i < sys.driveline.size(); ++i)
+    E(static_cast<unsigned>(i), static_cast<unsigned>(driveline_body(sc, sys.driveline[i].kind))) = 1;
+  return state_rows(d, fold, E, states, gear_states, elastic);
 }
 
 // The loads' and controllers' laws as the outputs read them: with the quadratic loads' TQ_ written
@@ -337,9 +366,10 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, const 
   for (const auto& name : sc.tunable) sys.params.push_back(tunable_parameter(t, name, parameter_value(t, name)));
   inputs_of(sc, sys);
   loop_inputs_of(sc, sys);
+  driveline_inputs_of(sc, sys);
   friction_inputs_of(sc, sys);
   OpenInputs open_inputs{input_variables(sys), {}};
-  open_inputs.torques = input_torques(t, sc.controllers, open_inputs.variables);
+  open_inputs.torques = input_torques(t, sc, open_inputs.variables);
   GearEquations gear = elastic ? elastic_equations(d, fold, open_inputs) : rigid_equations(d, fold, open_inputs);
   sys.equations = std::move(gear.description);
   for (const Variable v : gear.states) sys.states.push_back({v, 0.0});
@@ -363,8 +393,10 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, const 
     if (y.variable.kind == VariableKind::vehicle_jerk) y.value = vehicle_jerk_value(sc, d, sys);
   sys.output_derivatives = outputs.reads_derivatives;
   count_system_operations(sys);
-  sys.L = sc.controllers.empty() ? energy_matrix(d, fold, elastic) : GiNaC::matrix(0, 0);
+  // Controllers and an engine feed in power that no bound of the inputs limits: no divergence bound.
+  sys.L = sc.controllers.empty() && sys.driveline.empty() ? energy_matrix(d, fold, elastic) : GiNaC::matrix(0, 0);
   sys.slip = slip_rows(d, fold, sys.friction_elements, states, gear_states, elastic);
+  sys.driveline_speeds = driveline_speed_rows(sc, d, fold, sys, states, gear_states, elastic);
   return sys;
 }
 
@@ -424,8 +456,14 @@ std::vector<std::string> output_units(const Topology& t, const SpecializedSystem
   return units;
 }
 
-GiNaC::matrix input_torques(const Topology& t, const std::vector<ControllerSpec>& controllers,
-                            const std::vector<Variable>& inputs) {
+int driveline_body(const Scene& scene, VariableKind kind) {
+  return kind == VariableKind::engine_torque ? scene.engine->body
+         : kind == VariableKind::pump_torque ? scene.converter->pump
+                                             : scene.converter->turbine;
+}
+
+GiNaC::matrix input_torques(const Topology& t, const Scene& scene, const std::vector<Variable>& inputs) {
+  const std::vector<ControllerSpec>& controllers = scene.controllers;
   GiNaC::matrix G(t.bodies.size(), inputs.size());
   for (std::size_t j = 0; j < inputs.size(); ++j) {
     const VariableKind kind = inputs[j].kind;
@@ -433,6 +471,8 @@ GiNaC::matrix input_torques(const Topology& t, const std::vector<ControllerSpec>
       G(inputs[j].index, j) = 1;
     } else if (kind == VariableKind::controller_torque) {
       G(controllers.at(static_cast<std::size_t>(inputs[j].index)).body, j) = 1;
+    } else if (of_driveline(kind)) {
+      G(static_cast<unsigned>(driveline_body(scene, kind)), j) = 1;
     } else if (kind == VariableKind::set_point) {
       continue;  // a speed, which acts through its controller
     } else {
@@ -462,6 +502,7 @@ SpecializedScene specialize(const Scene& scene) {
   model.derivation = derive_topology(scene.model, keep, scene.keep_where, !scene.tunable.empty());
   add_controller_symbols(model.derivation.symbols, controller_names(scene));
   if (scene.vehicle) add_vehicle_symbols(model.derivation.symbols);
+  if (scene.engine || scene.converter) add_driveline_symbols(model.derivation.symbols);
   const bool rigid_forces = scene.effects.mesh_forces && (!scene.effects.elastic() || scene.compare_rigid);
   if (model.derivation.rigid.redundant_meshes && rigid_forces && !scene.tunable.empty())
     throw InputError(SourceLocation{scene.file, 0, 0},

@@ -106,6 +106,12 @@ struct SpecializedSystem {
   bool nonlinear = false;
   GiNaC::matrix quadratic_columns, quadratic_speeds;
   std::vector<GiNaC::ex> quadratic_coefficients;
+  // A scene's engine and converter (nonlinear too): their torques Tengine, Tpump, Tturbine, those the
+  // scene has, are inputs right after the signals', without a signal (the hybrid runs compute them
+  // from the state), each on its body; driveline_speeds holds, in their order, the speed over the
+  // states of the body each acts on (engine, pump, turbine).
+  std::vector<Variable> driveline;
+  GiNaC::matrix driveline_speeds;
 };
 
 // A brake or clutch of a scene at the scene's values: capacity [N m], static ratio, and command.
@@ -157,7 +163,9 @@ SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, con
 // The torque each input applies to each body (bodies x inputs, exact): a unit column for tau_<body>,
 // a load's TL_<body> and a controller's Tc_ (on its body), -e_k^T for a friction torque Tf_<k> (-T
 // on the element's first body, +T on its second, arrows taken into account), none for a set-point.
-GiNaC::matrix input_torques(const Topology& t, const std::vector<ControllerSpec>& controllers,
-                            const std::vector<Variable>& inputs);
+GiNaC::matrix input_torques(const Topology& t, const Scene& scene, const std::vector<Variable>& inputs);
+
+// The body a driveline torque (Tengine, Tpump, Tturbine) acts on.
+int driveline_body(const Scene& scene, VariableKind kind);
 
 }  // namespace pogear

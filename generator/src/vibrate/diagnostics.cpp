@@ -241,7 +241,7 @@ Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedS
   add_natural_frequency(out, d, d.values, !model.friction.empty());
   if (const auto refusal = rt::solver_refusal(rt::Solver::exact, {.nonlinear = sys.nonlinear})) {
     out.suggested_solver = out.adaptive_solver;
-    out.reason = fmt::format("the scene is nonlinear (a quadratic load), {}; its linear part is {}", refusal->reason,
+    out.reason = fmt::format("the scene is nonlinear (a quadratic load, an engine or a converter), {}; its linear part is {}", refusal->reason,
                              out.adaptive_solver == "implicit" ? "stiff" : "not stiff");
   }
   return out;

@@ -1,0 +1,38 @@
+// A scene's [converter] whose tables cannot be a converter's: speed ratios that do not increase, a
+// capacity factor that is not positive, a torque ratio that would create power.
+#include <gtest/gtest.h>
+
+#include "error_support.hpp"
+
+namespace pogear::test {
+namespace {
+
+// scene.toml with a converter from the sun s to the ring r of gear.toml.
+const std::string converter_table =
+    "[converter]\npump = \"s\"\nturbine = \"r\"\nspeed_ratio = [0, 0.5, 0.8]\ncapacity_factor = [140, 160, 200]\n"
+    "torque_ratio = [2.0, 1.4, 1.1]\n";
+Edits with_converter(const std::string& from, const std::string& to) {
+  std::string table = converter_table;
+  table.replace(table.find(from), from.size(), to);
+  return {{"[simulation]", table + "\n[simulation]"}};
+}
+
+class DrivelineErrors : public ErrorTest {};
+
+TEST_F(DrivelineErrors, SpeedRatiosNotIncreasing) {
+  expect_scene_error(with_converter("[0, 0.5, 0.8]", "[0, 0.5, 0.4]"),
+      R"~(scene.toml:17:24: error: speed_ratio must increase strictly (0.4 follows 0.5))~");
+}
+
+TEST_F(DrivelineErrors, CapacityNotPositive) {
+  expect_scene_error(with_converter("[140, 160, 200]", "[140, -5, 200]"),
+      R"~(scene.toml:18:19: error: capacity_factor must be positive (-5 at speed ratio 0.5))~");
+}
+
+TEST_F(DrivelineErrors, TorqueRatioCreatesPower) {
+  expect_scene_error(with_converter("[2.0, 1.4, 1.1]", "[2.0, 2.2, 1.1]"),
+      R"~(scene.toml:19:16: error: the converter's efficiency SR * TR reaches 1.1 between speed ratios 0 and 0.5, above 1: it would create power; lower the torque ratio there (TR at most 1/SR))~");
+}
+
+}  // namespace
+}  // namespace pogear::test
