@@ -21,8 +21,8 @@ void add_scene_parameter(const SceneReader& r, const toml::node& where, std::str
     r.fail(where, fmt::format("the model has a parameter '{}', which {} defines; rename the model's", name, table));
   if (value != 0 && !(std::abs(value) >= rt::kSmallestParameter && std::abs(value) <= rt::kLargestParameter))
     r.fail(where, fmt::format("{} makes {} = {:g} (SI), outside the range pogear computes with, {:g} to {:g}; "
-                              "check its values and their units", table, name, value, rt::kSmallestParameter,
-                              rt::kLargestParameter));
+                              "check {} values and their units", table, name, value, rt::kSmallestParameter,
+                              rt::kLargestParameter, table == "[vehicle]" ? "the vehicle's" : "its"));
   Parameter p;
   p.name = name;
   p.text = fmt::format("{:.17g}{}", value, unit.empty() ? "" : "*" + unit);
