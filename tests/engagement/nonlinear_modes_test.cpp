@@ -161,12 +161,13 @@ TEST(NonlinearModes, AClutchLetsGoOfAFanWhereTheClosedFormSays) {
   }
 }
 
-// Exact stepping needs linear modes: the engine itself refuses it a quadratic torque.
+// Exact stepping needs linear modes: the engine itself refuses it a state torque.
 TEST(NonlinearModes, ExactSteppingIsRefused) {
   const SpecializedScene m = clutch_and_fan("dopri5", "1e-8");
   const FanRun r = run_fan(m, rt::Solver::exact);
   EXPECT_FALSE(r.status.ok);
-  EXPECT_EQ(r.status.message, "a quadratic load makes the modes nonlinear, which exact stepping does not integrate");
+  EXPECT_EQ(r.status.message,
+            "a quadratic load, a converter or an engine makes the modes nonlinear, which exact stepping does not integrate");
 }
 
 }  // namespace
