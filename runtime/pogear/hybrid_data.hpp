@@ -210,33 +210,6 @@ inline bool slip_is_zero(const HybridData& d, int k, double slip, double speed) 
   return std::abs(slip) <= kZeroSlipUlps * std::numeric_limits<double>::epsilon() * d.slip_norm(k) * speed;
 }
 
-// A state torque at the state x and time t (the throttle's), with its partial derivatives in the
-// speed speed x, in the turbine's speed turbine x (a converter's) and in time (an engine's throttle).
-struct StateTorqueValue {
-  double torque = 0, d_speed = 0, d_turbine = 0, d_time = 0;
-};
-template <class X>
-StateTorqueValue state_torque(const StateTorqueData& q, const X& x, double t) {
-  const double s = q.speed.dot(x);
-  switch (q.kind) {
-    case StateTorqueKind::quadratic:
-      return {-q.coefficient * s * std::abs(s), -2 * q.coefficient * std::abs(s), 0, 0};
-    case StateTorqueKind::converter_pump: {
-      const ConverterTorques c = converter_torques(q.converter, s, q.turbine.dot(x));
-      return {c.pump, c.pump_dp, c.pump_dt, 0};
-    }
-    case StateTorqueKind::converter_turbine: {
-      const ConverterTorques c = converter_torques(q.converter, s, q.turbine.dot(x));
-      return {c.turbine, c.turbine_dp, c.turbine_dt, 0};
-    }
-    case StateTorqueKind::engine: {
-      const EngineTorque e = engine_torque(q.engine, s, value(q.throttle, t));
-      return {e.torque, e.d_speed, 0, e.d_throttle * slope(q.throttle, t)};
-    }
-  }
-  return {};
-}
-
 // v = w at time t and state x: the inputs, the state torques, slipping torques c p(t) dir, held
 // controller torques, stuck torques left at zero. `before` asks for the left limit (a step that ends
 // on a breakpoint).
@@ -280,12 +253,6 @@ inline void state_torque_slopes(const HybridSystem& sys, const HybridData& d, do
     dv(i) = v.d_speed * q.speed.dot(dx) + v.d_time;
     if (v.d_turbine != 0) dv(i) += v.d_turbine * q.turbine.dot(dx);
   }
-}
-
-// The speed of the body a state torque acts on (its power is the torque times it): a converter's
-// turbine torque's is the turbine's, every other's its speed.
-inline const Eigen::RowVectorXd& acted_speed(const StateTorqueData& q) {
-  return q.kind == StateTorqueKind::converter_turbine ? q.turbine : q.speed;
 }
 
 // The Jacobian of the state torques' contribution to dx/dt, B_q dq/dx, added to J: a mode's B column

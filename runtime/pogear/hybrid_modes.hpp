@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "pogear/balancing.hpp"
-#include "pogear/driveline.hpp"
+#include "pogear/state_torques.hpp"
 #include "pogear/run_support.hpp"
 #include "pogear/signals.hpp"
 
@@ -40,52 +40,6 @@ struct TorqueLimitData {
   Eigen::RowVectorXd law_x, law_w;  // over the states and over w (its entries on the known inputs only)
 };
 
-// A torque that is a function of the state: a quadratic load -c s |s| on the speed s = speed x (a
-// fan, a vehicle's air drag), a torque converter's torque on its pump or on its turbine (speed x the
-// pump's speed, turbine x the turbine's), or an engine's map at speed x and its throttle signal. It
-// enters dx/dt through its column of N as an input does, so that a mode's projection and its stuck
-// torques take it as they take the scene's torques.
-enum class StateTorqueKind { quadratic, converter_pump, converter_turbine, engine };
-struct StateTorqueData {
-  Eigen::RowVectorXd speed;
-  double coefficient = 0;  // a quadratic torque's c
-  StateTorqueKind kind = StateTorqueKind::quadratic;
-  Eigen::RowVectorXd turbine;  // a converter's
-  ConverterData converter;
-  EngineData engine;
-  Signal throttle = Constant{0.0};  // an engine's, in [0, 1]
-};
-// The engine's torque, the converter's on its pump and on its turbine, those the data has, in that
-// order: the order of a system's driveline inputs (Tengine, Tpump, Tturbine).
-inline std::vector<StateTorqueData> driveline_state_torques(const DrivelineData& data) {
-  std::vector<StateTorqueData> out;
-  if (data.engine) {
-    StateTorqueData q;
-    q.kind = StateTorqueKind::engine;
-    q.speed = data.engine_speed;
-    q.engine = *data.engine;
-    q.throttle = data.throttle;
-    out.push_back(std::move(q));
-  }
-  if (data.converter)
-    for (const StateTorqueKind kind : {StateTorqueKind::converter_pump, StateTorqueKind::converter_turbine}) {
-      StateTorqueData q;
-      q.kind = kind;
-      q.speed = data.pump_speed;
-      q.turbine = data.turbine_speed;
-      q.converter = *data.converter;
-      out.push_back(std::move(q));
-    }
-  return out;
-}
-
-inline StateTorqueData quadratic_torque_data(Eigen::RowVectorXd speed, double coefficient) {
-  StateTorqueData q;
-  q.speed = std::move(speed);
-  q.coefficient = coefficient;
-  return q;
-}
-
 // The system with its friction elements and torque limits: dx/dt = M x + N w, w = [u; q; T], the
 // scene's inputs u (signals of time), the state torques q (functions of the state and time), one torque T_k per
 // friction element, acting as -T_k on the element's first body and +T_k on its second, then one per
@@ -102,6 +56,22 @@ struct HybridSystem {
   // the states some slip reads.
   std::vector<Eigen::Index> speed_states;
 };
+
+// A system's own input columns N (its signals', the driveline's state torques', then its elements'
+// and limits') with the quadratic loads' columns Nq inserted after the first `head`, as HybridSystem::N
+// orders them (w = [u; q; T]); and a controller's law over the system's inputs padded to that order
+// (a law reads no quadratic torque).
+inline Eigen::MatrixXd with_quadratic_columns(const Eigen::MatrixXd& N, Eigen::Index head, const Eigen::MatrixXd& Nq) {
+  Eigen::MatrixXd out(N.rows(), N.cols() + Nq.cols());
+  out << N.leftCols(head), Nq, N.rightCols(N.cols() - head);
+  return out;
+}
+inline Eigen::RowVectorXd law_with_quadratic_columns(const Eigen::RowVectorXd& law, Eigen::Index head, Eigen::Index nq) {
+  Eigen::RowVectorXd out = Eigen::RowVectorXd::Zero(law.size() + nq);
+  out.head(head) = law.head(head);
+  out.tail(law.size() - head) = law.tail(law.size() - head);
+  return out;
+}
 
 namespace hybrid_detail {
 

@@ -86,19 +86,14 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
     for (Eigen::Index i = 0; i < coefficients.size(); ++i) hs.state_torques.push_back(quadratic_torque_data(speeds.row(i), coefficients(i)));
   }
   const Eigen::Index nq = nd + Nq.cols();
-  hs.N.resize(nx, nu + nq + ne + nl);
-  hs.N << N.leftCols(nu + nd), Nq, N.rightCols(ne + nl);
+  hs.N = with_quadratic_columns(N, nu + nd, Nq);
   sys.slip_matrix(p, hs.S);
   if constexpr (requires(Eigen::MatrixXd& X) { sys.torque_limit_laws(p, X, X); }) {
     Eigen::MatrixXd X, W;
     sys.torque_limit_laws(p, X, W);
     for (Eigen::Index l = 0; l < nl; ++l) {
       limits[static_cast<std::size_t>(l)].law_x = X.row(l);
-      // Over w = [u; q; T]: a law reads no quadratic torque.
-      Eigen::RowVectorXd& law_w = limits[static_cast<std::size_t>(l)].law_w;
-      law_w.setZero(nu + nq + ne + nl);
-      law_w.head(nu + nd) = W.row(l).head(nu + nd);
-      law_w.tail(ne + nl) = W.row(l).tail(ne + nl);
+      limits[static_cast<std::size_t>(l)].law_w = law_with_quadratic_columns(W.row(l), nu + nd, Nq.cols());
     }
   }
   for (Eigen::Index j = 0; j < nx; ++j)

@@ -2,9 +2,11 @@
 // pump run up against a held turbine (stall), a locked-up converter against a plain clutch, a
 // constant-torque engine against the same torque as an input, and the energy balance of the shipped
 // 6HP26 launch (engine work = stored + converter loss + clutch heat + bearings + road).
+#include <algorithm>
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "../support/files.hpp"
@@ -139,6 +141,17 @@ DrivelineRun run_driveline(const SpecializedScene& model, const SpecializedSyste
   return r;
 }
 
+// The largest gap between the states of two runs sampled alike (both must have run to the end).
+double largest_state_gap(const DrivelineRun& a, const DrivelineRun& b) {
+  EXPECT_TRUE(a.status.ok) << a.status.message;
+  EXPECT_TRUE(b.status.ok) << b.status.message;
+  EXPECT_EQ(a.t.size(), b.t.size());
+  double gap = 0;
+  for (std::size_t i = 0; i < std::min(a.t.size(), b.t.size()); ++i)
+    gap = std::max(gap, (a.x[i] - b.x[i]).cwiseAbs().maxCoeff());
+  return a.status.ok && b.status.ok ? gap : INFINITY;
+}
+
 // Stall: the turbine held, J_p omega' = tau - omega^2 / K0^2 runs up as
 // omega = K0 sqrt(tau) tanh(t sqrt(tau) / (K0 J_p)) to the stall speed K0 sqrt(tau); the brake holds
 // TR(0) omega^2 / K0^2.
@@ -170,6 +183,8 @@ solver = "dopri5"
     const double turbine = 2.0 * r.x[i](0) * r.x[i](0) / (K0 * K0);
     worst_torque = std::max(worst_torque, std::abs(r.w[i](3) - turbine));
   }
+  ::testing::Test::RecordProperty("speed_error", fmt::format("{:.3g}", worst));
+  ::testing::Test::RecordProperty("held_torque_error", fmt::format("{:.3g}", worst_torque));
   // dopri5 at 1e-12 on a smooth run-up: 1e-9 of the stall speed (2425 rpm = 254 rad/s).
   EXPECT_LT(worst, 2.5e-7);
   EXPECT_LT(worst_torque, 1e-8 * 600);
@@ -195,12 +210,11 @@ solver = "dopri5"
                                                            "lockup = { capacity = \"800*N*m\" }\n[engagement]\nlockup = \"1\"\n" + common);
   const SpecializedScene clutch = pair_scene("clutch", "[engagement]\nL = \"1\"\n" + common);
   const DrivelineRun a = run_driveline(locked, locked.main, 1e-11, 1e-2), b = run_driveline(clutch, clutch.main, 1e-11, 1e-2);
-  ASSERT_TRUE(a.status.ok) << a.status.message;
-  ASSERT_TRUE(b.status.ok) << b.status.message;
-  ASSERT_EQ(a.t.size(), b.t.size());
   // The stuck pair's slip is rounding (a few ulps of the speed), so is the converter's torque: speeds
   // agree to 1e-12 of the largest (100 rad/s at 1 s).
-  for (std::size_t i = 0; i < a.t.size(); ++i) EXPECT_LT((a.x[i] - b.x[i]).cwiseAbs().maxCoeff(), 1e-10) << a.t[i];
+  const double gap = largest_state_gap(a, b);
+  ::testing::Test::RecordProperty("state_gap", fmt::format("{:.3g}", gap));
+  EXPECT_LT(gap, 1e-10);
   EXPECT_GT(a.x.back()(0), 50);
 }
 
@@ -227,11 +241,10 @@ solver = "dopri5"
   };
   const SpecializedScene mapped = scene("mapped", "120", ""), input = scene("input", "0", "[inputs]\ntau_engine = \"120*N*m\"\n");
   const DrivelineRun a = run_driveline(mapped, mapped.main, 1e-11, 1e-2), b = run_driveline(input, input.main, 1e-11, 1e-2);
-  ASSERT_TRUE(a.status.ok) << a.status.message;
-  ASSERT_TRUE(b.status.ok) << b.status.message;
-  ASSERT_EQ(a.t.size(), b.t.size());
   // The same equations by two paths: the adaptive steps may differ in rounding only (1e-11 of 300 rad/s).
-  for (std::size_t i = 0; i < a.t.size(); ++i) EXPECT_LT((a.x[i] - b.x[i]).cwiseAbs().maxCoeff(), 1e-8) << a.t[i];
+  const double gap = largest_state_gap(a, b);
+  ::testing::Test::RecordProperty("state_gap", fmt::format("{:.3g}", gap));
+  EXPECT_LT(gap, 1e-8);
 }
 
 // The shipped launch: the engine's work (integrated by the run) equals the change of the stored
@@ -272,6 +285,11 @@ TEST(Converter, LaunchEnergyBalanceCloses) {
     }
   }
   const double stored0 = 0.5 * r.x.front().dot(ns.L * r.x.front()), stored = 0.5 * r.x.back().dot(ns.L * r.x.back());
+  const double residual = engine + road - (stored - stored0 + converter + heat + damping + drag);
+  ::testing::Test::RecordProperty("relative_residual", fmt::format("{:.3g}", residual / engine));
+  ::testing::Test::RecordProperty("engine_work_J", fmt::format("{:.6g}", engine));
+  ::testing::Test::RecordProperty("converter_loss_J", fmt::format("{:.6g}", converter));
+  ::testing::Test::RecordProperty("clutch_heat_J", fmt::format("{:.6g}", heat));
   EXPECT_GT(engine, 1e5);
   EXPECT_GT(converter, 1e3);
   EXPECT_GT(heat, 100);
@@ -281,6 +299,41 @@ TEST(Converter, LaunchEnergyBalanceCloses) {
   EXPECT_NEAR(engine + road, stored - stored0 + converter + heat + damping + drag, 1e-9 * engine)
       << "engine " << engine << ", road " << road << ", stored " << stored - stored0 << ", converter " << converter
       << ", heat " << heat << ", bearings " << damping << ", drag " << drag;
+}
+
+// The launch's converter follows its tables through the coupling point: at every sample before the
+// lock-up, the pump torque is omega_p^2 / K(SR)^2 and the turbine's TR(SR) times it, K and TR
+// interpolated here from the scene file's numbers, and the run crosses SR = 0.85, where TR is 1.
+TEST(Converter, LaunchFollowsItsTablesThroughTheCouplingPoint) {
+  const SpecializedScene model = specialize(parse_scene(source_path("models/scenes/zf6hp26_launch.toml")));
+  const NumericSystem ns = numeric_system(model, model.main);
+  const DrivelineRun r = run_driveline(model, model.main, 1e-10, 2e-3);
+  ASSERT_TRUE(r.status.ok) << r.status.message;
+  const std::vector<double> sr{0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.85, 0.9};
+  const std::vector<double> K{140, 141, 142, 144, 147, 151, 158, 170, 194, 218, 270};
+  const std::vector<double> TR{2.0, 1.88, 1.76, 1.64, 1.52, 1.40, 1.28, 1.16, 1.04, 1.0, 1.0};
+  auto at = [&](const std::vector<double>& y, double x) {
+    std::size_t i = 0;
+    while (i + 2 < sr.size() && x > sr[i + 1]) ++i;
+    return y[i] + (y[i + 1] - y[i]) * (x - sr[i]) / (sr[i + 1] - sr[i]);
+  };
+  // Inputs w = [TL_vehicle; Tengine, Tpump, Tturbine; ...]; speeds of the engine, pump and turbine.
+  const Eigen::Index pump = 2, turbine = 3;
+  double highest = 0;
+  int checked = 0;
+  for (std::size_t i = 0; i < r.t.size() && r.t[i] < 3.0; ++i) {
+    const double wp = ns.driveline_speeds.row(1).dot(r.x[i]), wt = ns.driveline_speeds.row(2).dot(r.x[i]);
+    const double s = wt / wp;
+    if (!(s >= 0 && s <= 0.9)) continue;
+    highest = std::max(highest, s);
+    const double k = at(K, s) * per_rpm, tp = wp * wp / (k * k);
+    // The run's interpolation and this one's differ in rounding only.
+    EXPECT_NEAR(-r.w[i](pump), tp, 1e-12 * tp) << "t " << r.t[i] << ", SR " << s;
+    EXPECT_NEAR(r.w[i](turbine), at(TR, s) * tp, 1e-12 * tp) << "t " << r.t[i] << ", SR " << s;
+    ++checked;
+  }
+  EXPECT_GT(highest, 0.85);  // past the coupling point before the 1-2 shift
+  EXPECT_GT(checked, 1000);
 }
 
 }  // namespace

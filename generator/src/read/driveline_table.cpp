@@ -73,6 +73,11 @@ void check_converter(const SceneReader& r, const toml::table& v, const rt::Conve
     if (!(c.capacity.y[i] > 0))
       r.fail(*v.get("capacity_factor"), fmt::format("capacity_factor must be positive ({} at speed ratio {})",
                                                     c.capacity.y[i] / rad_per_s_per_rpm, sr[i]));
+    // 1/K^2 is the torque per speed squared: it stays a normal double for K from 1e-15 to 1e15.
+    if (!(c.capacity.y[i] >= 1e-15 && c.capacity.y[i] <= 1e15))
+      r.fail(*v.get("capacity_factor"), fmt::format("capacity_factor {} rpm/sqrt(N m) at speed ratio {} is outside the "
+                                                    "range pogear computes with; converters' are 50 to 1000",
+                                                    c.capacity.y[i] / rad_per_s_per_rpm, sr[i]));
     if (!(c.torque_ratio.y[i] > 0))
       r.fail(*v.get("torque_ratio"), fmt::format("torque_ratio must be positive ({} at speed ratio {})",
                                                  c.torque_ratio.y[i], sr[i]));
@@ -104,16 +109,7 @@ void read_engine(const SceneReader& r, const toml::node& n, const std::filesyste
   if (!(J > 0)) r.fail(inertia, fmt::format("the engine's inertia must be positive (it is {})", J));
   e.throttle = read_signal(r, required(r, n, "throttle", "{ step = 0.6, at = \"0.2*s\" }", "[engine]"), scene_dir,
                            SignalQuantity::throttle);
-  const toml::node& throttle = *v.get("throttle");
-  std::vector<double> times = rt::breakpoints(e.throttle, 0.0, std::numeric_limits<double>::max());
-  times.push_back(0.0);
-  for (const double at : times)
-    for (const double p : {rt::value(e.throttle, at), rt::value(e.throttle, std::nextafter(at, 0.0))})
-      if (!(p >= 0 && p <= 1)) r.fail(throttle, fmt::format("the throttle is {} at t = {} s; it is from 0 to 1", p, at));
-  if (const auto* table = std::get_if<rt::Table>(&e.throttle))
-    for (const double p : table->v)
-      if (!(p >= 0 && p <= 1)) r.fail(throttle, fmt::format("the throttle table holds {}; it is from 0 to 1", p));
-
+  e.throttle_where = r.loc(*v.get("throttle"));
   const toml::node& speeds = required(r, n, "map_speeds", "[800, 2000, 4000, 6000]", "[engine]");
   e.map.speeds = numbers(r, speeds, "map_speeds", 1, true);
   for (double& w : e.map.speeds) w *= rad_per_s_per_rpm;
@@ -202,6 +198,29 @@ void read_converter(const SceneReader& r, const toml::node& n, Scene& s) {
     t.friction_elements.push_back(std::move(e));
   }
   s.converter = std::move(c);
+}
+
+void check_driveline(const Scene& s) {
+  if (!s.engine && !s.converter) return;
+  const SourceLocation& where = s.engine ? s.engine->where : s.converter->where;
+  if (!s.tunable.empty())
+    throw InputError(s.tunable_where, "a scene with an [engine] or a [converter] has no tunable parameters yet; set the "
+                                      "values in [parameters] and generate one simulator per value");
+  if (s.start != Start::given)
+    throw InputError(s.start_where.file.empty() ? where : s.start_where,
+                     "a start in a gear or at equilibrium (start = \"rigid\" or \"steady\") is not available with an "
+                     "[engine] or a [converter] yet; give the initial speeds in [initial], the engine's as omega_engine");
+  if (!s.engine) return;
+  // The throttle is piecewise linear: its extremes over the run are at 0, the horizon and its breakpoints.
+  std::vector<double> times = rt::breakpoints(s.engine->throttle, 0.0, s.horizon);
+  times.push_back(0.0);
+  times.push_back(s.horizon);
+  for (const double at : times)
+    for (const double p : {rt::value(s.engine->throttle, at), rt::value(s.engine->throttle, std::nextafter(at, 0.0))})
+      if (!(p >= 0 && p <= 1))
+        throw InputError(s.engine->throttle_where,
+                         fmt::format("the throttle is {} at t = {} s; it is from 0 (closed) to 1 (wide open) over the "
+                                     "whole run", p, at));
 }
 
 }  // namespace pogear

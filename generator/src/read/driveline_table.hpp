@@ -28,4 +28,8 @@ void read_engine(const SceneReader& r, const toml::node& n, const std::filesyste
 // Sets s.converter.
 void read_converter(const SceneReader& r, const toml::node& n, Scene& s);
 
+// Once the whole scene is read: what an engine or a converter cannot be combined with (yet), and a
+// throttle from 0 to 1 over the run.
+void check_driveline(const Scene& s);
+
 }  // namespace pogear

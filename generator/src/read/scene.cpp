@@ -25,6 +25,7 @@
 #include "read/driveline_table.hpp"
 #include "read/vehicle_table.hpp"
 #include "read/scene_reader.hpp"
+#include "read/simulation_table.hpp"
 #include "read/toml_reader.hpp"
 #include "read/tooth_counts.hpp"
 
@@ -84,20 +85,6 @@ std::string tunable_behind(const Topology& t, const std::vector<std::string>& tu
   return "";
 }
 
-// An engine's and a converter's torques are the run's, not the scene's inputs: what needs them as
-// inputs at t = 0 or as symbols is not available with them.
-void check_driveline(const Scene& s) {
-  if (!s.engine && !s.converter) return;
-  const SourceLocation& where = s.engine ? s.engine->where : s.converter->where;
-  if (!s.tunable.empty())
-    throw InputError(s.tunable_where, "a scene with an [engine] or a [converter] has no tunable parameters yet; set the "
-                                      "values in [parameters] and generate one simulator per value");
-  if (s.start != Start::given)
-    throw InputError(s.start_where.file.empty() ? where : s.start_where,
-                     "a start in a gear or at equilibrium (start = \"rigid\" or \"steady\") is not available with an "
-                     "[engine] or a [converter] yet; give the initial speeds in [initial], the engine's as omega_engine");
-}
-
 void check_loads_and_controllers(const Scene& s) {
   if (s.loads.empty() && s.controllers.empty()) return;
   if (!s.tunable.empty())
@@ -109,22 +96,6 @@ void check_loads_and_controllers(const Scene& s) {
   if (s.start == Start::steady && nonlinear(s))
     throw InputError(s.start_where, "start = \"steady\" solves a linear equilibrium, which a quadratic load does not "
                                     "have; start from given speeds, or with start = \"rigid\"");
-}
-
-// vehicle_jerk is the elastic model's: there the half-shafts' twist makes the car's acceleration a
-// function of the state, whose rate the outputs read off dx/dt. The rigid model's acceleration jumps
-// with every event and input step.
-void check_vehicle_jerk(const Scene& s) {
-  const bool jerk = std::find(s.outputs.begin(), s.outputs.end(), Variable{VariableKind::vehicle_jerk, 0}) != s.outputs.end();
-  if (!jerk) return;
-  if (!s.effects.elastic())
-    throw InputError(s.outputs_where, "vehicle_jerk is an output of the elastic model, where the half-shafts' twist "
-                                      "smooths the car's acceleration; add shaft_compliance (and mesh_compliance) to "
-                                      "effects, or drop vehicle_jerk");
-  if (s.compare_rigid)
-    throw InputError(s.outputs_where, "vehicle_jerk is an output of the elastic model only (the rigid model's "
-                                      "acceleration jumps at every event and input step); drop compare_rigid, or "
-                                      "vehicle_jerk");
 }
 
 // The scene's solver, or dopri5 for a nonlinear scene that names none, refused (rt::solver_refusal)
@@ -424,46 +395,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     }
   }
 
-  if (const toml::node* n = root.get("simulation")) {
-    if (!n->is_table()) r.fail(*n, "[simulation] must be a table");
-    const toml::table& t = *n->as_table();
-    r.only_keys(t, {"horizon", "sample", "solver", "tolerance", "step", "max_steps"}, "[simulation]");
-    if (const toml::node* v = t.get("max_steps")) {
-      if (!v->is_integer() || *v->value<long>() < rt::limits::min_max_steps ||
-          *v->value<long>() > rt::limits::max_max_steps)
-        r.fail(*v, fmt::format("max_steps is a whole number from {} to {}", rt::limits::min_max_steps,
-                               rt::limits::max_max_steps));
-      s.max_steps = *v->value<long>();
-    }
-    if (const toml::node* v = t.get("horizon")) s.horizon = r.quantity(*v, time_dimension(), "horizon");
-    if (const toml::node* v = t.get("sample")) {
-      s.sample = r.quantity(*v, time_dimension(), "sample");
-      s.sample_where = r.loc(*v);
-    }
-    if (const toml::node* v = t.get("step")) s.step = r.quantity(*v, time_dimension(), "step");
-    if (const toml::node* v = t.get("tolerance")) {
-      if (!v->is_number()) r.fail(*v, "tolerance is a plain number, the relative tolerance, e.g. 1e-8");
-      s.tolerance = *v->value<double>();
-      if (!(s.tolerance >= rt::limits::min_tolerance && s.tolerance <= rt::limits::max_tolerance))
-        r.fail(*v, fmt::format("tolerance must be from {} to {} (a looser one lets an adaptive method "
-                               "diverge, a tighter one stalls it on rounding); give one in that range, e.g. 1e-8",
-                               rt::limits::min_tolerance, rt::limits::max_tolerance));
-    }
-    if (const toml::node* v = t.get("solver")) {
-      s.solver_where = r.loc(*v);
-      s.solver = parse_solver(r.string(*v, "solver"), s.solver_where);
-      s.solver_given = true;
-    }
-    if (!(s.horizon > 0)) r.fail(*t.get("horizon"), "horizon must be positive; give the simulated time, e.g. horizon = \"2*s\"");
-    if (!(s.sample > 0) || s.sample > s.horizon)
-      r.fail(t.get("sample") ? *t.get("sample") : *n, "sample must be positive and at most the horizon");
-    if (!(s.step > 0)) r.fail(*t.get("step"), "step must be positive");
-    if (!(s.step >= rt::limits::min_step && s.step <= rt::limits::max_step))
-      r.fail(*t.get("step"), fmt::format("step must be from {} s to {} s; give a step in that range",
-                                             rt::limits::min_step, rt::limits::max_step));
-    if (s.horizon / s.sample > rt::limits::max_samples)
-      r.fail(*n, fmt::format("{} samples requested; at most 1e7 (raise sample or shorten the horizon)", s.horizon / s.sample));
-  }
+  if (const toml::node* n = root.get("simulation")) read_simulation(r, *n, s);
   const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(),
                                    [](const EngagementSpec& e) { return !identically_zero(e.command); });
   check_loads_and_controllers(s);

@@ -75,7 +75,7 @@ struct EngineSpec {
   int body = -1;
   rt::EngineData map;  // SI: rad/s, N m
   rt::Signal throttle;
-  SourceLocation where;
+  SourceLocation where, throttle_where;
 };
 
 // A scene's [converter] between a pump body and a turbine body (its lock-up clutch, when it has one,

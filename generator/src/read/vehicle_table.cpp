@@ -3,6 +3,7 @@
 // model keeps its shafts and loads, and the outputs scale back (speed r omega / i, torque i T).
 #include "read/vehicle_table.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -152,6 +153,22 @@ void add_road_load(Scene& s) {
                                             "range pogear computes with, {:g} to {:g}; check the vehicle's values and "
                                             "their units", what, c, rt::kSmallestParameter, rt::kLargestParameter));
   if (road.constant != 0 || road.quadratic != 0 || road.varying) s.loads.push_back(road);
+}
+
+// vehicle_jerk is the elastic model's: there the half-shafts' twist makes the car's acceleration a
+// function of the state, whose rate the outputs read off dx/dt. The rigid model's acceleration jumps
+// with every event and input step.
+void check_vehicle_jerk(const Scene& s) {
+  const bool jerk = std::find(s.outputs.begin(), s.outputs.end(), Variable{VariableKind::vehicle_jerk, 0}) != s.outputs.end();
+  if (!jerk) return;
+  if (!s.effects.elastic())
+    throw InputError(s.outputs_where, "vehicle_jerk is an output of the elastic model, where the half-shafts' twist "
+                                      "smooths the car's acceleration; add shaft_compliance (and mesh_compliance) to "
+                                      "effects, or drop vehicle_jerk");
+  if (s.compare_rigid)
+    throw InputError(s.outputs_where, "vehicle_jerk is an output of the elastic model only (the rigid model's "
+                                      "acceleration jumps at every event and input step); drop compare_rigid, or "
+                                      "vehicle_jerk");
 }
 
 }  // namespace pogear

@@ -21,4 +21,7 @@ void read_vehicle(const SceneReader& r, const toml::node& n, const std::filesyst
 // After [loads]: the vehicle's road load joins them (a load of the user's on the vehicle is refused).
 void add_road_load(Scene& s);
 
+// Once the whole scene is read: vehicle_jerk only where the run can give it (the elastic model alone).
+void check_vehicle_jerk(const Scene& s);
+
 }  // namespace pogear

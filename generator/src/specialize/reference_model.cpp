@@ -9,6 +9,7 @@
 #include "common/exact_algebra.hpp"
 #include "specialize/parameter_folding.hpp"
 #include "specialize/specialization.hpp"
+#include "specialize/state_torques.hpp"
 
 namespace pogear {
 
@@ -353,25 +354,20 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedS
   // w = [u; q; T]: the state torques' columns between the signals' and the elements', the driveline's
   // (inputs of the system after its signals) first, then the quadratic loads'.
   hs.state_torques = rt::driveline_state_torques(driveline_data(model.scene, system, ns.driveline_speeds));
-  const auto nd = static_cast<Eigen::Index>(hs.state_torques.size());
-  const auto nu = static_cast<Eigen::Index>(hs.inputs.size()) + nd, nq = static_cast<Eigen::Index>(ns.quadratic.size());
-  hs.N.resize(ns.N.rows(), ns.N.cols() + nq);
-  hs.N.leftCols(nu) = ns.N.leftCols(nu);
-  hs.N.rightCols(ns.N.cols() - nu) = ns.N.rightCols(ns.N.cols() - nu);
+  const auto head = static_cast<Eigen::Index>(hs.inputs.size() + hs.state_torques.size());
+  const auto nq = static_cast<Eigen::Index>(ns.quadratic.size());
+  Eigen::MatrixXd Nq(ns.N.rows(), nq);
   for (Eigen::Index i = 0; i < nq; ++i) {
     const QuadraticLoad& q = ns.quadratic[static_cast<std::size_t>(i)];
-    hs.N.col(nu + i) = q.state_column;
+    Nq.col(i) = q.state_column;
     hs.state_torques.push_back(rt::quadratic_torque_data(q.speed_row.transpose(), q.coefficient));
   }
+  hs.N = rt::with_quadratic_columns(ns.N, head, Nq);
   for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
   for (std::size_t l = 0; l < system.limited_controllers.size(); ++l) {
     const ControllerSpec& c = model.scene.controllers[static_cast<std::size_t>(system.limited_controllers[l])];
-    // Over w = [u; q; T]: a law reads no quadratic torque.
-    const Eigen::RowVectorXd u = ns.limit_u.row(static_cast<Eigen::Index>(l));
-    Eigen::RowVectorXd law_w = Eigen::RowVectorXd::Zero(hs.N.cols());
-    law_w.head(nu) = u.head(nu);
-    law_w.tail(u.size() - nu) = u.tail(u.size() - nu);
-    hs.limits.push_back({c.name, c.torque_min, c.torque_max, ns.limit_x.row(static_cast<Eigen::Index>(l)), law_w});
+    hs.limits.push_back({c.name, c.torque_min, c.torque_max, ns.limit_x.row(static_cast<Eigen::Index>(l)),
+                         rt::law_with_quadratic_columns(ns.limit_u.row(static_cast<Eigen::Index>(l)), head, nq)});
   }
   return hs;
 }

@@ -165,7 +165,5 @@ SpecializedSystem specialize_system(const Scene& scene, const Derivation& d, con
 // on the element's first body, +T on its second, arrows taken into account), none for a set-point.
 GiNaC::matrix input_torques(const Topology& t, const Scene& scene, const std::vector<Variable>& inputs);
 
-// The body a driveline torque (Tengine, Tpump, Tturbine) acts on.
-int driveline_body(const Scene& scene, VariableKind kind);
 
 }  // namespace pogear

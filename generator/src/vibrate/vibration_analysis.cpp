@@ -207,6 +207,9 @@ SceneResponse response_of(const ResponseRequest& request) {
   const Scene scene = parse_scene(request.scene_file);
   // A frequency response is of a linear system: with a quadratic load it would be of the linear
   // part only, the gear linearized at rest, which the scene does not say.
+  if (scene.engine || scene.converter)
+    throw InputError(where, "the scene is nonlinear (an engine or a converter), and a frequency response is of a linear "
+                            "system; analyse a scene of the gear without [engine] and [converter], driven by tau_ inputs");
   if (nonlinear(scene))
     throw InputError(where, "the scene is nonlinear (a quadratic load), and a frequency response is of a linear "
                             "system; drop the load's quadratic part (or linearize it: a linear load of 2 c omega at "
