@@ -1,5 +1,5 @@
 // A scene's [converter] whose tables cannot be a converter's: speed ratios that do not increase, a
-// capacity factor that is not positive, a torque ratio that would create power.
+// capacity factor that is not positive, a torque ratio that would create power; exact stepping of it.
 #include <gtest/gtest.h>
 
 #include "error_support.hpp"
@@ -32,6 +32,11 @@ TEST_F(DrivelineErrors, CapacityNotPositive) {
 TEST_F(DrivelineErrors, TorqueRatioCreatesPower) {
   expect_scene_error(with_converter("[2.0, 1.4, 1.1]", "[2.0, 2.2, 1.1]"),
       R"~(scene.toml:19:16: error: the converter's efficiency SR * TR reaches 1.1 between speed ratios 0 and 0.5, above 1: it would create power; lower the torque ratio there (TR at most 1/SR))~");
+}
+
+TEST_F(DrivelineErrors, ExactStepping) {
+  expect_scene_error(with_converter("", ""),
+      R"~(scene.toml:24:10: error: an engine or a converter makes the scene nonlinear, which exact stepping does not integrate; use solver = "dopri5" or "implicit")~");
 }
 
 }  // namespace

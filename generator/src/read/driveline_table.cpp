@@ -22,7 +22,8 @@ namespace {
 std::vector<double> numbers(const SceneReader& r, const toml::node& n, const char* key, std::size_t fewest,
                             bool increasing) {
   if (!n.is_array() || n.as_array()->size() < fewest)
-    r.fail(n, fmt::format("{} is a list of at least {} plain numbers, e.g. {} = [0, 0.5, 0.9]", key, fewest, key));
+    r.fail(n, fmt::format("{} is a list of at least {} plain number{} in its unit (docs/scene-format.md, \"Engine and "
+                          "converter\")", key, fewest, fewest == 1 ? "" : "s"));
   std::vector<double> out;
   for (const toml::node& e : *n.as_array()) {
     if (!e.is_integer() && !e.is_floating_point()) r.fail(e, fmt::format("{} holds plain numbers (in its unit)", key));
@@ -162,11 +163,13 @@ void read_converter(const SceneReader& r, const toml::node& n, Scene& s) {
   const toml::node& sr = required(r, n, "speed_ratio", "[0, 0.4, 0.8, 0.9]", "[converter]");
   const std::vector<double> ratios = numbers(r, sr, "speed_ratio", 1, true);
   const toml::node& k = required(r, n, "capacity_factor", "[150, 155, 190, 260]", "[converter]");
-  std::vector<double> capacity = numbers(r, k, "capacity_factor", ratios.size(), false);
+  std::vector<double> capacity = numbers(r, k, "capacity_factor", 1, false);
   const toml::node& tr = required(r, n, "torque_ratio", "[2.1, 1.6, 1.1, 1.0]", "[converter]");
-  const std::vector<double> torque_ratio = numbers(r, tr, "torque_ratio", ratios.size(), false);
-  if (capacity.size() != ratios.size()) r.fail(k, "capacity_factor has one value per speed_ratio");
-  if (torque_ratio.size() != ratios.size()) r.fail(tr, "torque_ratio has one value per speed_ratio");
+  const std::vector<double> torque_ratio = numbers(r, tr, "torque_ratio", 1, false);
+  if (capacity.size() != ratios.size())
+    r.fail(k, fmt::format("capacity_factor has {} values; it has one per speed_ratio ({})", capacity.size(), ratios.size()));
+  if (torque_ratio.size() != ratios.size())
+    r.fail(tr, fmt::format("torque_ratio has {} values; it has one per speed_ratio ({})", torque_ratio.size(), ratios.size()));
   for (double& K : capacity) K *= rad_per_s_per_rpm;  // rpm / sqrt(N m) -> (rad/s) / sqrt(N m)
   c.curves.capacity = {ratios, capacity};
   c.curves.torque_ratio = {ratios, torque_ratio};
