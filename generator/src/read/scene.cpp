@@ -108,14 +108,12 @@ void check_solver(Scene& s, bool engaged) {
   const std::vector<Solver> admissible = rt::admissible_solvers(traits);
   if (traits.nonlinear && !s.solver_given) s.solver = Solver::dopri5;
   if (const auto refusal = rt::solver_refusal(s.solver, traits)) {
-    const bool nonlinear_cause = refusal->cause == rt::solver_refusal(Solver::exact, {.nonlinear = true})->cause;
-    // An engine's or a converter's torques are what makes the scene nonlinear, whatever its loads.
-    if (nonlinear_cause && (s.engine || s.converter))
-      throw InputError(s.solver_where, fmt::format("an engine or a converter makes the scene nonlinear, {}; use solver = {}",
-                                                   refusal->reason, rt::solver_alternatives(admissible, true)));
-    throw InputError(s.solver_where, fmt::format("{}; use solver = {}{}", rt::describe(*refusal),
-                                                 rt::solver_alternatives(admissible, true),
-                                                 nonlinear_cause ? ", or a linear load" : ""));
+    // An engine's or a converter's torques make the scene nonlinear whatever its loads; a load can be linear.
+    const bool load = refusal->cause == rt::solver_refusal(Solver::exact, {.nonlinear = true})->cause,
+               driveline = load && (s.engine || s.converter);
+    throw InputError(s.solver_where, fmt::format("{}; use solver = {}{}", driveline ? "an engine or a converter makes the "
+                     "scene nonlinear, " + std::string(refusal->reason) : rt::describe(*refusal),
+                     rt::solver_alternatives(admissible, true), load && !driveline ? ", or a linear load" : ""));
   }
 }
 
