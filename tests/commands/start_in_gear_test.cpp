@@ -93,6 +93,50 @@ TEST(StartInGear, ZF6HP26StartsStuckInFirstOnItsRigidModel) {
   EXPECT_GT(gap, 1e-3 * scale);
 }
 
+// The launch scene's engine and converter, started in 1st at 2000 rpm with the turbine at 1200 rpm
+// (SR = 0.6, a table point): the converter's and the engine's torques at t = 0 enter the gear's
+// rigid start, so A and D start stuck, and stay so with the throttle held.
+TEST(StartInGear, EngineAndConverterStartInFirst) {
+  const fs::path dir = temp_dir("driveline_in_gear");
+  std::string text = read_text(source_path("models/scenes/zf6hp26_launch.toml"));
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"{ step = 0.5, at = \"0.2*s\", before = 0.18 }", "0.5"},
+                                 {"\"../zf6hp26.toml\"", "\"" + source_path("models/zf6hp26.toml") + "\""},
+                                 {"\"zf6hp26_launch_", "\"" + source_path("models/scenes/zf6hp26_launch_")},
+                                 {"\"zf6hp26_launch_", "\"" + source_path("models/scenes/zf6hp26_launch_")},
+                                 {"\"zf6hp26_launch_", "\"" + source_path("models/scenes/zf6hp26_launch_")},
+                                 {"omega_engine = \"750*rpm\"", "gear = \"1\"\nomega_engine = \"2000*rpm\"\nomega_in = \"1200*rpm\""},
+                                 {"horizon = \"4*s\"", "horizon = \"0.5*s\""}}) {
+    const std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  write_text(dir / "zf6hp26_launch.toml", text);
+  const Csv c = simulate(dir / "zf6hp26_launch.toml", dir, "");
+  ASSERT_EQ(c.rows.size(), 251u);
+  std::ifstream events(dir / "zf6hp26_launch.events.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(events, line));
+  EXPECT_FALSE(std::getline(events, line)) << "an event: " << line;  // none within the run
+
+  const auto& first = c.rows.front();
+  EXPECT_EQ(first[c.column("mode")], 5);  // A and D stuck (bits of the commanded A, C, D, lockup)
+  // The speeds are exact rationals rounded once (in rpm, ~2000): the slips are a few 1e-13 rpm.
+  EXPECT_LE(std::abs(first[c.column("slip_A")]), 1e-9);
+  EXPECT_LE(std::abs(first[c.column("slip_D")]), 1e-9);
+  EXPECT_NEAR(first[c.column("omega_in")] / first[c.column("omega_out")], 9180.0 / 2201, 1e-12);
+  // At t = 0, by hand from the tables: the map's 180 N m at (2000 rpm, 50 %); K(0.6) = 158 rpm/sqrt(N m),
+  // so T_p = (2000/158)^2 N m, and TR(0.6) = 1.28. Table points: only the rounding of a few operations.
+  const double pump = std::pow(2000.0 / 158, 2);
+  EXPECT_NEAR(first[c.column("Tengine")], 180, 1e-12 * 180);
+  EXPECT_NEAR(first[c.column("Tpump")], -pump, 1e-12 * pump);
+  EXPECT_NEAR(first[c.column("Tturbine")], 1.28 * pump, 1e-12 * pump);
+  // The engine accelerates at (Tengine + Tpump) / J_engine: over the first 2 ms sample the difference
+  // quotient differs from it by the change of the torques (their slopes in the speeds, ~1e-3 of it).
+  const double rpm = 0.10471975511965977;
+  const double rate = (c.rows[1][c.column("omega_engine")] - first[c.column("omega_engine")]) * rpm / 2e-3;
+  EXPECT_NEAR(rate, (180 - pump) / 0.22, 0.01 * (180 - pump) / 0.22);
+}
+
 // At equilibrium in 1st: the load's linear part against the drive, bearing friction on every body.
 TEST(StartInGear, SteadyStartInFirstStaysPut) {
   const fs::path dir = temp_dir("steady_in_gear");

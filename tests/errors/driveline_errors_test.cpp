@@ -1,5 +1,6 @@
 // A scene's [converter] whose tables cannot be a converter's: speed ratios that do not increase, a
-// capacity factor that is not positive, a torque ratio that would create power; exact stepping of it.
+// capacity factor that is not positive, a torque ratio that would create power; exact stepping of it,
+// and a steady start.
 #include <gtest/gtest.h>
 
 #include "error_support.hpp"
@@ -37,6 +38,14 @@ TEST_F(DrivelineErrors, TorqueRatioCreatesPower) {
 TEST_F(DrivelineErrors, ExactStepping) {
   expect_scene_error(with_converter("", ""),
       R"~(scene.toml:24:10: error: an engine or a converter makes the scene nonlinear, which exact stepping does not integrate; use solver = "dopri5" or "implicit")~");
+}
+
+TEST_F(DrivelineErrors, SteadyStart) {
+  Edits edits = with_converter("", "");
+  edits.push_back({"omega_c = \"0*rpm\"", "start = \"steady\""});
+  edits.push_back({"solver = \"exact\"", "solver = \"dopri5\""});
+  expect_scene_error(edits,
+      R"~(scene.toml:12:9: error: start = "steady" is not available with an [engine] or a [converter]: their tables make the equilibrium nonlinear; start from given speeds (start = "rigid" or a gear, with omega_engine))~");
 }
 
 }  // namespace

@@ -205,14 +205,15 @@ void read_converter(const SceneReader& r, const toml::node& n, Scene& s) {
 
 void check_driveline(const Scene& s) {
   if (!s.engine && !s.converter) return;
-  const SourceLocation& where = s.engine ? s.engine->where : s.converter->where;
   if (!s.tunable.empty())
     throw InputError(s.tunable_where, "a scene with an [engine] or a [converter] has no tunable parameters yet; set the "
                                       "values in [parameters] and generate one simulator per value");
-  if (s.start != Start::given)
-    throw InputError(s.start_where.file.empty() ? where : s.start_where,
-                     "a start in a gear or at equilibrium (start = \"rigid\" or \"steady\") is not available with an "
-                     "[engine] or a [converter] yet; give the initial speeds in [initial], the engine's as omega_engine");
+  // Their torques follow the speeds through tables: the equilibrium is a nonlinear problem, where the
+  // gear's alone is linear and solved exactly.
+  if (s.start == Start::steady)
+    throw InputError(s.start_where,
+                     "start = \"steady\" is not available with an [engine] or a [converter]: their tables make the "
+                     "equilibrium nonlinear; start from given speeds (start = \"rigid\" or a gear, with omega_engine)");
   if (!s.engine) return;
   // The throttle is piecewise linear: its extremes over the run are at 0, the horizon and its breakpoints.
   std::vector<double> times = rt::breakpoints(s.engine->throttle, 0.0, s.horizon);

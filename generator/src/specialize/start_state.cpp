@@ -3,6 +3,7 @@
 #include "specialize/start_state.hpp"
 
 #include <fmt/format.h>
+#include <pogear/driveline.hpp>
 
 #include "common/exact_algebra.hpp"
 #include "specialize/gear_start.hpp"
@@ -31,6 +32,17 @@ void add_load_torques(const Scene& sc, const GiNaC::matrix& omega, std::vector<G
     const auto b = static_cast<std::size_t>(l.body);
     const GiNaC::numeric w = GiNaC::ex_to<GiNaC::numeric>(omega(static_cast<unsigned>(b), 0));
     tau[b] -= exact_number(l.constant) + exact_number(l.linear) * w + exact_number(l.quadratic) * w * abs(w);
+  }
+  // The engine's and the converter's torques, as the runtime evaluates them from the state at t = 0.
+  auto speed = [&](int body) { return to_double(omega(static_cast<unsigned>(body), 0)); };
+  if (sc.engine) {
+    const double throttle = rt::value(sc.engine->throttle, 0.0);
+    tau[static_cast<std::size_t>(sc.engine->body)] += exact_number(rt::engine_torque(sc.engine->map, speed(sc.engine->body), throttle).torque);
+  }
+  if (sc.converter) {
+    const rt::ConverterTorques c = rt::converter_torques(sc.converter->curves, speed(sc.converter->pump), speed(sc.converter->turbine));
+    tau[static_cast<std::size_t>(sc.converter->pump)] += exact_number(c.pump);
+    tau[static_cast<std::size_t>(sc.converter->turbine)] += exact_number(c.turbine);
   }
 }
 
