@@ -89,6 +89,23 @@ int main(int argc, char** argv) {
   for (pogear::rt::Solver s : pogear::rt::all_solvers) solver_names.emplace_back(pogear::rt::solver_name(s));
   simulate->add_option("--solver", simulate_command.solver, "Override the scene's solver")
       ->check(CLI::IsMember(solver_names));
+  simulate->add_option("--tolerance", simulate_command.options.tolerance,
+                       "Relative tolerance of the adaptive solvers instead of the scene's, e.g. 1e-10")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            double r = 0;
+            const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), r);
+            if (ec == std::errc() && end == value.data() + value.size() && r >= pogear::rt::limits::min_tolerance &&
+                r <= pogear::rt::limits::max_tolerance)
+              return std::string();
+            return fmt::format("'{}' is not a tolerance from {:g} to {:g}; give a relative tolerance, e.g. "
+                               "--tolerance 1e-10", value, pogear::rt::limits::min_tolerance,
+                               pogear::rt::limits::max_tolerance);
+          },
+          "R"));
+  simulate->add_option("--param", simulate_command.options.params,
+                       "A tunable parameter's value for this run, NAME=VALUE (e.g. K_ps=2000*N/mm); repeatable")
+      ->allow_extra_args(false);
   simulate->add_flag("--interpreted", simulate_command.options.interpreted,
                      "Run from the numeric matrices, without compiling");
   simulate->add_option("--repeat", simulate_command.repeat, "Run N times and report the median time")

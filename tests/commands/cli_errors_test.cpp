@@ -22,6 +22,31 @@ TEST_F(Cli, InputErrorExitsTwo) {
       R"~(gear.toml:40:7: error: parameter 'r_g' is a radius and must be positive (it is 0))~");
 }
 
+TEST_F(Cli, ParamOfASceneWithoutTunables) {
+  expect_pogear_error("simulate scene.toml --interpreted -o out --param J_c=0.5", 2,
+      R"~(scene.toml: error: --param J_c: the scene has no tunable parameters; list J_c in the scene's tunable = [...] to set it at run time, or set it in [parameters])~");
+  EXPECT_FALSE(fs::exists("out"));  // refused before anything runs
+}
+
+TEST_F(Cli, ParamNotTunable) {
+  write_text("scene.toml", edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"J_c\"]"}}));
+  expect_pogear_error("simulate scene.toml --interpreted -o out --param J_p=0.5", 2,
+      R"~(scene.toml: error: --param J_p: not a tunable parameter of the scene; its tunables are J_c)~");
+}
+
+TEST_F(Cli, ParamValueRefused) {
+  write_text("scene.toml", edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"J_c\"]"}}));
+  expect_pogear_error("simulate scene.toml --interpreted -o out --param J_c=-0.5", 2,
+      R"~(scene.toml: error: --param J_c=-0.5: parameter 'J_c' is an inertia and must be positive (it is -0.5))~");
+  EXPECT_FALSE(fs::exists("out"));
+}
+
+TEST_F(Cli, ToleranceOutOfRange) {
+  expect_pogear_error("simulate scene.toml --interpreted --tolerance 0.5", 1,
+      R"~(--tolerance: '0.5' is not a tolerance from 1e-14 to 0.01; give a relative tolerance, e.g. --tolerance 1e-10
+Run with --help for more information.)~");
+}
+
 TEST_F(Cli, OutputInAFile) { expect_pogear_error("derive gear.toml -o gear.toml/report.txt", 2,
     R"~(pogear: error: cannot create the directory gear.toml: a file of that name is in the way; give another directory)~"); }
 

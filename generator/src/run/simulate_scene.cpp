@@ -17,6 +17,7 @@
 #include "report/run_summary.hpp"
 #include "common/input_error.hpp"
 #include "run/interpreted_run.hpp"
+#include "run/parameter_options.hpp"
 #include "common/output_file.hpp"
 #include "run/plot.hpp"
 #include "run/simulator_cache.hpp"
@@ -96,6 +97,9 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   check_output_size(model, options.large_output);
   rt::SceneRun run = scene_run(model.scene);
   if (options.solver) run.solver = *options.solver;
+  if (options.tolerance) rt::set_tolerance(run.options, *options.tolerance);
+  const std::vector<ParameterOption> params = read_parameter_options(model, options.params);
+  for (const ParameterOption& p : params) run.params.emplace_back(p.name, rt::detail::shortest(p.value));
   const rt::SystemTraits traits = solver_traits(model);
   if (const auto refusal = rt::solver_refusal(run.solver, traits))
     throw InputError(SourceLocation{model.scene.file, 0, 0},
@@ -105,20 +109,29 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   run.repeat = options.repeat;
   ensure_directory(options.out_dir);
   const fs::file_time_type started = fs::file_time_type::clock::now();
-  // The summary of the run as it goes: with --solver's method, whose notes (a fixed step's error, an
-  // adaptive method's cost) are its own.
-  if (run.solver == model.scene.solver) {
+  // The summary of the run as it goes: with --solver's method and --tolerance, whose notes (a fixed
+  // step's error, an adaptive method's cost) are their own.
+  if (run.solver == model.scene.solver && !options.tolerance) {
     out << operation_summary(model) << std::flush;
   } else {
     SpecializedScene as_run = model;
     as_run.scene.solver = run.solver;
+    if (options.tolerance) as_run.scene.tolerance = *options.tolerance;
     out << operation_summary(as_run) << std::flush;
   }
   int status = 0;
   if (options.interpreted) {
-    status = run_interpreted(model, run);
+    if (params.empty()) {
+      status = run_interpreted(model, run);
+    } else {
+      SpecializedScene at = model;
+      at.values.numbers = values_at(model, params);
+      status = run_interpreted(at, run);
+    }
   } else {
+    // One simulator for every --param and --tolerance: they are its options, not its sources.
     const CompiledSimulator simulator = build_simulator(generate_sources(model, {run.solver}));
+    if (simulator.cached()) out << "simulator " << simulator.executable() << "\n" << std::flush;
     status = run_compiled(simulator.executable(), run);
   }
   if (status != 0) return status;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "common/output_file.hpp"
 #include "pogear/command_line.hpp"
@@ -17,6 +18,8 @@ namespace pogear {
 struct SimulateOptions {
   std::string out_dir = "out";
   std::optional<rt::Solver> solver;  // instead of the scene's
+  std::optional<double> tolerance;   // instead of the scene's
+  std::vector<std::string> params;   // --param NAME=VALUE, as given
   bool interpreted = false;          // from the numeric matrices, without compiling
   int repeat = 1;
   bool large_output = false;  // write CSV files above max_csv_bytes all the same

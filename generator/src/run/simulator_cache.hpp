@@ -40,6 +40,7 @@ class CompiledSimulator {
   CompiledSimulator& operator=(const CompiledSimulator&) = delete;
   ~CompiledSimulator();
   const std::string& executable() const { return executable_; }
+  bool cached() const { return temporary_dir_.empty(); }  // else removed with this object
 
  private:
   std::string executable_, temporary_dir_;

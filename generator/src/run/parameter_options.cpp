@@ -1,0 +1,66 @@
+// A value is read by the model's own parameter evaluation on a copy of the scene's model, so the
+// units, signs and ranges are those of a scene's [parameters].
+#include "run/parameter_options.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "common/exact_algebra.hpp"
+#include "common/input_error.hpp"
+#include "names/symbols.hpp"
+#include "read/model_parameters.hpp"
+
+namespace pogear {
+
+std::vector<ParameterOption> read_parameter_options(const SpecializedScene& model, const std::vector<std::string>& given) {
+  const Scene& sc = model.scene;
+  const SourceLocation at{sc.file, 0, 0};
+  std::vector<ParameterOption> out;
+  for (const std::string& option : given) {
+    const auto eq = option.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == option.size())
+      throw InputError(at, fmt::format("--param '{}' is not NAME=VALUE; give a tunable parameter and its value, e.g. "
+                                       "--param J_c=0.5 or --param K_ps=2000*N/mm", option));
+    const std::string name = option.substr(0, eq), text = option.substr(eq + 1);
+    if (std::find(sc.tunable.begin(), sc.tunable.end(), name) == sc.tunable.end()) {
+      std::string tunables;
+      for (const std::string& t : sc.tunable) tunables += (tunables.empty() ? "" : ", ") + t;
+      throw InputError(at, sc.tunable.empty()
+                               ? fmt::format("--param {}: the scene has no tunable parameters; list {} in the scene's "
+                                             "tunable = [...] to set it at run time, or set it in [parameters]",
+                                             name, name)
+                               : fmt::format("--param {}: not a tunable parameter of the scene; its tunables are {}",
+                                             name, tunables));
+    }
+    Topology t = sc.model;
+    const auto p = std::find_if(t.parameters.begin(), t.parameters.end(), [&](const Parameter& q) { return q.name == name; });
+    p->text = text;
+    p->where = at;
+    p->column_offset = 0;
+    try {
+      evaluate_parameters(t.parameters);
+      check_parameter_roles(t);
+    } catch (const InputError& e) {
+      throw InputError(at, fmt::format("--param {}: {}", option, e.message()));
+    }
+    out.push_back({name, parameter_value(t, name)});
+  }
+  return out;
+}
+
+GiNaC::exmap values_at(const SpecializedScene& model, const std::vector<ParameterOption>& options) {
+  const SymbolTable& s = model.derivation.symbols;
+  GiNaC::exmap tunables;
+  for (const std::string& name : model.scene.tunable) {
+    const GiNaC::realsymbol& symbol = parameter_symbol(s, name);
+    tunables[symbol] = model.values.numbers.at(symbol);
+  }
+  for (const ParameterOption& o : options) tunables[parameter_symbol(s, o.name)] = exact_number(o.value);
+  GiNaC::exmap numbers = tunables;
+  for (const auto& [symbol, value] : model.values.equations)
+    numbers[symbol] = value.subs(tunables, GiNaC::subs_options::no_pattern).expand();
+  return numbers;
+}
+
+}  // namespace pogear
