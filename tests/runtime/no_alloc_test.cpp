@@ -1,6 +1,7 @@
 // Checks that stepping fixed-size states never touches the heap (generated simulators run millions
-// of steps), using Eigen's runtime malloc guard; and that the hybrid engine's exact stepping does not
-// either once its caches hold a mode's step, counting every call into the C heap.
+// of steps), using Eigen's runtime malloc guard; and that the hybrid engine's stepping does not either
+// once its caches hold a mode's step (exact, and adaptive with quadratic, engine and converter
+// torques), counting every call into the C heap.
 // The CMake target defines EIGEN_RUNTIME_NO_MALLOC for all its files (they must agree on Eigen's
 // configuration); the fallback keeps this file meaningful when compiled on its own.
 #ifndef EIGEN_RUNTIME_NO_MALLOC
@@ -158,36 +159,56 @@ TEST(NoAlloc, HeapCountIsActive) {
 
 namespace {
 
+// What drives clutch_and_shaft's bodies besides its two input signals.
+enum class Drive {
+  inputs,     // the signals alone
+  fan,        // a quadratic torque (an input of the state) brakes body 3
+  driveline,  // an engine on body 1 and a converter from it to body 2, the clutch its lock-up
+};
+
 // Body 1 spins against bodies 2 and 3 (an elastic shaft between them) through a clutch that engages,
-// locks, and breaks away under a load step; with `fan`, a quadratic torque (an input of the state)
-// brakes body 3.
-rt::HybridSystem clutch_and_shaft(bool fan) {
+// locks, and breaks away under a load step.
+rt::HybridSystem clutch_and_shaft(Drive drive) {
   const double J1 = 0.1, J2 = 0.1, J3 = 0.1, k = 60, c = 0.05;
   rt::HybridSystem sys;
   sys.M = Eigen::MatrixXd::Zero(4, 4);  // x = [omega1, omega2, twist, omega3]
   sys.M.row(1) << 0, -c / J2, -k / J2, c / J2;
   sys.M.row(2) << 0, 1, 0, -1;
   sys.M.row(3) << 0, c / J3, k / J3, -c / J3;
-  const Eigen::Index q = fan ? 1 : 0;
-  sys.N = Eigen::MatrixXd::Zero(4, 3 + q);  // w = [tau1, load on body 3, (fan on body 3,) clutch torque]
+  // w = [tau1, load on body 3, state torques, clutch torque]
+  const Eigen::Index q = drive == Drive::fan ? 1 : drive == Drive::driveline ? 3 : 0;
+  sys.N = Eigen::MatrixXd::Zero(4, 3 + q);
   sys.N(0, 0) = 1 / J1;
   sys.N(3, 1) = -1 / J3;
-  if (fan) sys.N(3, 2) = 1 / J3;
+  if (drive == Drive::fan) sys.N(3, 2) = 1 / J3;
+  if (drive == Drive::driveline) {  // Tengine and Tpump on body 1, Tturbine on body 2
+    sys.N(0, 2) = sys.N(0, 3) = 1 / J1;
+    sys.N(1, 4) = 1 / J2;
+  }
   sys.N(0, 2 + q) = -1 / J1;
   sys.N(1, 2 + q) = 1 / J2;
   sys.S = Eigen::MatrixXd(1, 4);
   sys.S << 1, -1, 0, 0;
   sys.elements.push_back({"C", 5, 1.2, rt::Table{{0.125, 0.375}, {0, 1}}});
   sys.inputs = {rt::Constant{0.5}, rt::Step{0, 30, 2}};
-  if (fan) sys.state_torques.push_back(rt::quadratic_torque_data(Eigen::RowVector4d(0, 0, 0, 1), 0.002));
+  if (drive == Drive::fan) sys.state_torques.push_back(rt::quadratic_torque_data(Eigen::RowVector4d(0, 0, 0, 1), 0.002));
+  if (drive == Drive::driveline) {
+    rt::DrivelineData d;
+    d.engine = rt::EngineData{{0, 100}, {0, 1}, {{0, -2}, {4, 2}}};
+    d.throttle = rt::Constant{0.6};
+    d.engine_speed = d.pump_speed = Eigen::RowVector4d(1, 0, 0, 0);
+    d.turbine_speed = Eigen::RowVector4d(0, 1, 0, 0);
+    d.converter = rt::ConverterData{{{0, 0.5, 0.9}, {18, 20, 30}}, {{0, 0.5, 0.9}, {2, 1.4, 1}}};
+    sys.state_torques = rt::driveline_state_torques(d);
+  }
   return sys;
 }
 
-// Runs clutch_and_shaft(fan) from 30 rad/s on body 1 and expects no heap call in a sample period
+// Runs clutch_and_shaft(drive) from 30 rad/s on body 1 and expects no heap call in a sample period
 // of a mode met before (none of its own or the one before it with an event or a change of mode).
-void expect_later_periods_allocate_nothing(bool fan, rt::HybridMethod method) {
+void expect_later_periods_allocate_nothing(Drive drive, rt::HybridMethod method) {
   const double sample = 0.03125, horizon = 4;
-  const rt::HybridSystem sys = clutch_and_shaft(fan);
+  const rt::HybridSystem sys = clutch_and_shaft(drive);
   Eigen::VectorXd x0 = Eigen::VectorXd::Zero(4);
   x0(0) = 30;
   rt::HybridEngine engine(sys, horizon, method);
@@ -241,14 +262,23 @@ void expect_later_periods_allocate_nothing(bool fan, rt::HybridMethod method) {
 // event proof; the breakpoints fall on sample times.
 TEST(NoAlloc, HybridExactStepping) {
   ASSERT_GT(0.03125, 0.25 * std::numbers::pi / std::sqrt(60 * (1 / 0.1 + 1 / 0.1)));  // the stuck mode's is longer still
-  expect_later_periods_allocate_nothing(false, rt::HybridMethod{rt::Solver::exact, {}});
+  expect_later_periods_allocate_nothing(Drive::inputs, rt::HybridMethod{rt::Solver::exact, {}});
 }
 
 // dopri5 and TR-BDF2 stepping the nonlinear modes of the same clutch with a fan.
 TEST(NoAlloc, HybridAdaptiveSteppingOfNonlinearModes) {
   for (const rt::Solver solver : {rt::Solver::dopri5, rt::Solver::implicit}) {
     SCOPED_TRACE(std::string(rt::solver_name(solver)));
-    expect_later_periods_allocate_nothing(true, rt::HybridMethod{solver, {}});
+    expect_later_periods_allocate_nothing(Drive::fan, rt::HybridMethod{solver, {}});
+  }
+}
+
+// The same with an engine map and a converter, the clutch as its lock-up: their torques and slopes
+// come from the tables in place.
+TEST(NoAlloc, HybridSteppingOfAnEngineAndAConverter) {
+  for (const rt::Solver solver : {rt::Solver::dopri5, rt::Solver::implicit}) {
+    SCOPED_TRACE(std::string(rt::solver_name(solver)));
+    expect_later_periods_allocate_nothing(Drive::driveline, rt::HybridMethod{solver, {}});
   }
 }
 #endif
