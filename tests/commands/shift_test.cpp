@@ -19,6 +19,35 @@
 namespace pogear::test {
 namespace {
 
+// The Simpson upshift's command tables written in the scene, with units and as plain numbers of
+// seconds: the same signals as its CSV files, so the same run to the bit, events and all. (A unit is
+// applied in doubles: "1150*ms" is 1.15 and one ulp, which moves the events by ~1e-16 s.)
+TEST(Shift, InlineCommandTablesRunAsTheirCsvFiles) {
+  namespace fs = std::filesystem;
+  const fs::path dir = temp_dir("inline_tables");
+  std::string text = read_text(source_path("models/scenes/simpson_1_2_upshift.toml"));
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
+        {"{ table = \"simpson_B2_release.csv\" }", "{ table = [[0, 1], [\"1000*ms\", 1], [1.15, 0]] }"},
+        {"{ table = \"simpson_B1_apply.csv\" }", "{ table = [[\"0*s\", 0], [1, 0], [\"1.15*s\", \"1\"]] }"}}) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  write_text(dir / "simpson_1_2_upshift.toml", text);
+  for (const auto& [scene, out] : {std::pair<std::string, std::string>{source_path("models/scenes/simpson_1_2_upshift.toml"), "files"},
+                                   {(dir / "simpson_1_2_upshift.toml").string(), "inline"}}) {
+    const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + scene + " --interpreted -o " +
+                                  (dir / out).string());
+    ASSERT_EQ(c.status, 0) << c.err;
+  }
+  for (const std::string file : {"simpson_1_2_upshift.csv", "simpson_1_2_upshift.events.csv"}) {
+    const std::string files = read_text(dir / "files" / file);
+    EXPECT_GT(files.size(), 100u) << file;
+    EXPECT_EQ(read_text(dir / "inline" / file), files) << file;
+  }
+}
+
 // `pogear simulate` compiles the scene's simulator; `--interpreted` runs the reference numeric
 // model instead. Both step the same modes, so events and samples agree to rounding.
 TEST(Shift, CompiledSimulatorAgreesWithTheInterpretedRunAcrossEvents) {

@@ -844,7 +844,7 @@ TEST_F(Signals, SineFrequencyBeyondAGearsDynamics) {
     R"~(scene.toml:9:39: error: frequency is 1e+30 Hz, above 1e+06 Hz, far beyond a gear's dynamics and what its sine can be computed at in double precision; give the frequency in Hz)~");
 }
 TEST_F(Signals, UnknownForm) { expect_signal_error(R"({ pulse = "10*Nm" })",
-    R"~(scene.toml:9:9: error: a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., frequency = ... } or { table = "file.csv" })~"); }
+    R"~(scene.toml:9:9: error: a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., frequency = ... }, { table = "file.csv" } or { table = [[time, value], ...] })~"); }
 
 class Tables : public ErrorTest {
  protected:
@@ -858,6 +858,19 @@ class Tables : public ErrorTest {
   }
 };
 
+TEST_F(Tables, InlineRowNotAPair) {
+  expect_scene_error({{R"(tau_c = { constant = "100*Nm" })", R"(tau_c = { table = [["0*s", "0*Nm"], "1"] })"}},
+      R"~(scene.toml:9:37: error: a row of the table is [time, value], e.g. table = [["0*s", "0*Nm"], ["1*s", "100*Nm"]])~");
+}
+TEST_F(Tables, InlineTimeGoesBack) {
+  expect_scene_error({{R"(tau_c = { constant = "100*Nm" })",
+                       R"(tau_c = { table = [["0*s", "0*Nm"], ["1*s", "100*Nm"], ["0.5*s", "50*Nm"]] })"}},
+      R"~(scene.toml:9:57: error: time 0.5 s is before the previous row's (1 s); the rows go forward in time)~");
+}
+TEST_F(Tables, InlineWithoutRows) {
+  expect_scene_error({{R"(tau_c = { constant = "100*Nm" })", R"(tau_c = { table = [] })"}},
+      R"~(scene.toml:9:19: error: the table has no rows; give rows [time, value], e.g. table = [["0*s", "0*Nm"], ["1*s", "100*Nm"]])~");
+}
 TEST_F(Tables, CannotOpen) { expect_table_file_error("torques.csv",
     R"~(scene.toml:9:19: error: table 'torques.csv': cannot open file (No such file or directory); give its path relative to the scene file)~"); }
 TEST_F(Tables, ThreeColumns) { expect_table_error("t,tau\n0,0,1\n",

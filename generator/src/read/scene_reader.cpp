@@ -137,6 +137,28 @@ rt::Signal read_table_signal(const SceneReader& r, const toml::node& at, const s
   return rt::Table{table->t, table->v};
 }
 
+// A table written in the scene: rows [time, value] with their units, read as a CSV file's rows are
+// (times forward, equal times a jump).
+rt::Signal inline_table_signal(const SceneReader& r, const toml::node& n, const Dimension& dim, const std::string& example) {
+  const toml::array& rows = *n.as_array();
+  if (rows.empty()) r.fail(n, "the table has no rows; give rows [time, value], e.g. table = " + example);
+  if (rows.size() > rt::max_table_rows)
+    r.fail(n, fmt::format("the table has more than {} rows; resample it more coarsely", rt::max_table_rows));
+  rt::Table table;
+  for (const toml::node& row : rows) {
+    const toml::array* pair = row.as_array();
+    if (!pair || pair->size() != 2) r.fail(row, "a row of the table is [time, value], e.g. table = " + example);
+    const double time = r.quantity(*pair->get(0), time_dimension(), "a table's time");
+    const double value = r.quantity(*pair->get(1), dim, "a table's value");
+    if (!table.t.empty() && time < table.t.back())
+      r.fail(*pair->get(0), fmt::format("time {} s is before the previous row's ({} s); the rows go forward in time",
+                                        time, table.t.back()));
+    table.t.push_back(time);
+    table.v.push_back(value);
+  }
+  return table;
+}
+
 }  // namespace
 
 // An input torque, an engagement command or a speed set-point. An engagement command's sine form is
@@ -207,6 +229,11 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
   }
   if (const toml::node* v = get("table")) {
     r.only_keys(t, {"table"}, "a table signal");
+    if (v->is_array())
+      return inline_table_signal(r, *v, torque,
+                                 engagement ? "[[\"1.9*s\", 1], [\"2*s\", 0]]"
+                                 : what == SignalQuantity::speed ? "[[\"0*s\", \"0*rpm\"], [\"1*s\", \"600*rpm\"]]"
+                                                                 : "[[\"0*s\", \"0*Nm\"], [\"1*s\", \"100*Nm\"]]");
     const std::string file = r.string(*v, "table");
     const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : scene_dir / file;
     return read_table_signal(r, *v, path.lexically_normal().string(),
@@ -215,7 +242,7 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
                                                              : "the table needs two columns: time [s], torque [N m]");
   }
   r.fail(n, "a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., "
-            "frequency = ... } or { table = \"file.csv\" }");
+            "frequency = ... }, { table = \"file.csv\" } or { table = [[time, value], ...] }");
 }
 
 }  // namespace pogear
