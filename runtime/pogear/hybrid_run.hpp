@@ -130,7 +130,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   units.emplace_back("bits of the stuck elements");
   SystemRunLog log(run, suffix, names, units);
   // The one admissibility rule (solver.hpp), as pogear simulate words it.
-  const SystemTraits traits{.nonlinear = nq > 0, .engages_friction = ne > 0, .limits_torque = nl > 0};
+  const SystemTraits traits{.nonlinear = nq > 0, .engages_friction = ne > 0, .limits_torque = nl > 0, .driveline = nd > 0};
   if (const auto refusal = solver_refusal(run.solver, traits)) {
     const std::vector<Solver> solvers = admissible_solvers(traits);
     std::fprintf(stderr, "%s%s: error: %s; use --solver %s\n", run.name.c_str(), suffix.c_str(),

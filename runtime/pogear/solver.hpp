@@ -55,6 +55,7 @@ struct SystemTraits {
   bool nonlinear = false;
   bool engages_friction = false;
   bool limits_torque = false;
+  bool driveline = false;  // an engine or a converter, nonlinear whatever the loads
 };
 
 // Why a solver cannot run a system: what the system holds (`cause`), and how that meets the solver
@@ -74,7 +75,8 @@ inline std::string describe(const SolverRefusal& r) {
 // The one decision of which solvers may run a system; nullopt when `s` can. Events refuse rk4 first;
 // a nonlinear system (with events or without) is run by dopri5 and implicit.
 inline constexpr std::optional<SolverRefusal> solver_refusal(Solver s, const SystemTraits& system) {
-  constexpr std::string_view nonlinear = "a quadratic load makes the scene nonlinear";
+  const std::string_view nonlinear = system.driveline ? "an engine or a converter makes the scene nonlinear"
+                                                      : "a quadratic load makes the scene nonlinear";
   if (system.engages_friction && s == Solver::rk4)
     return SolverRefusal{"the scene engages brakes or clutches",
                          "which rk4 does not simulate (its fixed steps cannot locate their events)"};

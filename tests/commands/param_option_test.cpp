@@ -97,5 +97,29 @@ TEST(SimulateCommand, ParamAndToleranceAsTheSimulatorTakesThem) {
   EXPECT_GT(relative_gap(at_option, reference), 1e-8);
 }
 
+// A value may name another --param's parameter, in either order, as in [parameters]; the summary's
+// figures (the frequencies, the step limits) are those of the values run.
+TEST(SimulateCommand, ParamValuesNameEachOtherAndTheSummaryFollows) {
+  const fs::path dir = temp_dir("param_each_other");
+  const fs::path tunable = one_stage_scene(dir, "tunable", "tunable = [\"J_c\", \"J_p\", \"K_ps\"]");
+  const fs::path literal = one_stage_scene(dir, "literal",
+                                           "[parameters]\nJ_c = \"2*J_p\"\nJ_p = \"0.02*kg*m^2\"\nK_ps = \"3000*N/mm\"");
+  const Command reference = simulate(literal, "--interpreted -o " + (dir / "ref").string());
+  const Csv expected = read_csv((dir / "ref/literal.csv").string());
+  auto frequency_line = [](const std::string& out) {
+    const auto at = out.find("lowest natural frequency");
+    return at == std::string::npos ? std::string() : out.substr(at, out.find('\n', at) - at);
+  };
+  ASSERT_FALSE(frequency_line(reference.out).empty()) << reference.out;
+  for (const std::string order : {"--param J_c=2*J_p --param J_p=0.02*kg*m^2", "--param J_p=0.02*kg*m^2 --param J_c=2*J_p"}) {
+    SCOPED_TRACE(order);
+    const Command c = simulate(tunable, "--interpreted " + order + " --param K_ps=1*N/mm --param K_ps=3000*N/mm -o " +
+                                            (dir / "run").string());
+    // The same exact numbers but for the two doubles the options pass on (0.02 and 0.04 kg m^2).
+    EXPECT_LT(relative_gap(read_csv((dir / "run/tunable.csv").string()), expected), 1e-12);
+    EXPECT_EQ(frequency_line(c.out), frequency_line(reference.out));
+  }
+}
+
 }  // namespace
 }  // namespace pogear::test

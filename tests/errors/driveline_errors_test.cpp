@@ -48,5 +48,13 @@ TEST_F(DrivelineErrors, SteadyStart) {
       R"~(scene.toml:12:9: error: start = "steady" is not available with an [engine] or a [converter]: their tables make the equilibrium nonlinear; start from given speeds (start = "rigid" or a gear, with omega_engine))~");
 }
 
+// The same refusal where --solver asks for it: worded as the scene's, remedied on the command line.
+TEST_F(DrivelineErrors, ExactSteppingFromTheCommandLine) {
+  write_text("scene.toml", edited(base_scene(), {{"[simulation]", converter_table + "\n[simulation]"},
+                                                 {"solver = \"exact\"", "solver = \"dopri5\""}}));
+  expect_pogear_error("simulate scene.toml --interpreted --solver exact -o out", 2,
+      R"~(scene.toml: error: an engine or a converter makes the scene nonlinear, which exact stepping does not integrate; use --solver dopri5 or implicit)~");
+}
+
 }  // namespace
 }  // namespace pogear::test

@@ -793,6 +793,11 @@ TEST_F(Scenes, TunableTwice) {
   expect_scene_error({{"compare_rigid = true", "compare_rigid = true\ntunable = [\"K_ps\", \"K_ps\"]"}},
       R"~(scene.toml:7:11: error: tunable 'K_ps' is listed twice)~");
 }
+TEST_F(Scenes, QuantityNamesATunable) {
+  expect_scene_error({{"compare_rigid = true", "compare_rigid = true\ntunable = [\"J_c\"]"},
+                      {R"(tau_c = { constant = "100*Nm" })", R"(tau_c = { constant = "J_c*500/s^2" })"}},
+      R"~(scene.toml:10:22: error: constant names tunable 'J_c', but the simulator takes this value at the scene's value of it, whatever --param sets; write the value without 'J_c', or drop 'J_c' from tunable)~");
+}
 TEST_F(Scenes, TunableClashesWithGeneratedCode) {
   const std::string model = edited(base_model(), {{"[parameters]\n", "[parameters]\ndouble = 2\n"}});
   expect_documented(scene_error(edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"double\"]"}}), model),

@@ -73,18 +73,6 @@ void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
 }
 
 // What loads and controllers cannot be combined with (yet), each refused at the line that asks for it.
-// The tunable that parameter `name` is or is defined through (directly or through other
-// parameters), or "". The model's evaluation has ruled out cycles.
-std::string tunable_behind(const Topology& t, const std::vector<std::string>& tunable, const std::string& name) {
-  if (std::find(tunable.begin(), tunable.end(), name) != tunable.end()) return name;
-  const auto p = std::find_if(t.parameters.begin(), t.parameters.end(), [&](const Parameter& q) { return q.name == name; });
-  if (p == t.parameters.end()) return "";
-  for (const std::string& ref : referenced_names(p->text))
-    if (ref != name)
-      if (std::string found = tunable_behind(t, tunable, ref); !found.empty()) return found;
-  return "";
-}
-
 void check_loads_and_controllers(const Scene& s) {
   if (s.loads.empty() && s.controllers.empty()) return;
   if (!s.tunable.empty())
@@ -93,7 +81,7 @@ void check_loads_and_controllers(const Scene& s) {
   if (s.start != Start::given && !s.controllers.empty())
     throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [controllers]; give the "
                                     "initial speeds in [initial]");
-  if (s.start == Start::steady && nonlinear(s))
+  if (s.start == Start::steady && std::any_of(s.loads.begin(), s.loads.end(), [](const LoadSpec& l) { return l.quadratic != 0; }))
     throw InputError(s.start_where, "start = \"steady\" solves a linear equilibrium, which a quadratic load does not "
                                     "have; start from given speeds, or with start = \"rigid\"");
 }
@@ -104,16 +92,15 @@ void check_solver(Scene& s, bool engaged) {
   const rt::SystemTraits traits{.nonlinear = nonlinear(s),
                                 .engages_friction = engaged,
                                 .limits_torque = std::any_of(s.controllers.begin(), s.controllers.end(),
-                                                             [](const ControllerSpec& c) { return c.limited(); })};
+                                                             [](const ControllerSpec& c) { return c.limited(); }),
+                                .driveline = s.engine || s.converter};
   const std::vector<Solver> admissible = rt::admissible_solvers(traits);
   if (traits.nonlinear && !s.solver_given) s.solver = Solver::dopri5;
   if (const auto refusal = rt::solver_refusal(s.solver, traits)) {
-    // An engine's or a converter's torques make the scene nonlinear whatever its loads; a load can be linear.
-    const bool load = refusal->cause == rt::solver_refusal(Solver::exact, {.nonlinear = true})->cause,
-               driveline = load && (s.engine || s.converter);
-    throw InputError(s.solver_where, fmt::format("{}; use solver = {}{}", driveline ? "an engine or a converter makes the "
-                     "scene nonlinear, " + std::string(refusal->reason) : rt::describe(*refusal),
-                     rt::solver_alternatives(admissible, true), load && !driveline ? ", or a linear load" : ""));
+    // A quadratic load can be made linear; an engine's or a converter's torques cannot.
+    const bool load = refusal->cause == rt::solver_refusal(Solver::exact, {.nonlinear = true})->cause;
+    throw InputError(s.solver_where, fmt::format("{}; use solver = {}{}", rt::describe(*refusal),
+                                                 rt::solver_alternatives(admissible, true), load ? ", or a linear load" : ""));
   }
 }
 
@@ -252,6 +239,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         r.fail(*n, fmt::format("tunable '{}' cannot be a variable of the generated C++ (a keyword, a macro or a name "
                                "the code uses itself); rename the parameter in the model", name));
     }
+    r.tunable = &s.tunable;  // what the scene's quantities below may not name
   }
 
   if (const toml::node* n = root.get("inputs")) {

@@ -1,12 +1,14 @@
 // The scene file's quantities and signals; every complaint located at the value it concerns.
 #include "read/scene_reader.hpp"
 
+#include <algorithm>
 #include <numbers>
 
 #include <cmath>
 
 #include <fmt/format.h>
 
+#include "common/quantity.hpp"
 #include "read/model_parameters.hpp"
 #include "pogear/parameters.hpp"
 #include "pogear/signal_table.hpp"
@@ -38,12 +40,31 @@ std::vector<std::string> SceneReader::strings(const toml::node& n, std::string_v
   return out;
 }
 
+std::string tunable_behind(const Topology& t, const std::vector<std::string>& tunable, const std::string& name) {
+  if (std::find(tunable.begin(), tunable.end(), name) != tunable.end()) return name;
+  const auto p = std::find_if(t.parameters.begin(), t.parameters.end(), [&](const Parameter& q) { return q.name == name; });
+  if (p == t.parameters.end()) return "";
+  for (const std::string& ref : referenced_names(p->text))
+    if (ref != name)
+      if (std::string found = tunable_behind(t, tunable, ref); !found.empty()) return found;
+  return "";
+}
+
 Quantity SceneReader::evaluated(const toml::node& n, const Dimension& dim, std::string_view what) const {
   Quantity q;
   if (n.is_integer() || n.is_floating_point()) {
     q.si = *n.value<double>();
   } else if (n.is_string()) {
-    q = evaluate_quantity(*n.value<std::string>(), parameter_quantities(*model), loc(n), 1);
+    const std::string text = *n.value<std::string>();
+    q = evaluate_quantity(text, parameter_quantities(*model), loc(n), 1);
+    if (tunable)
+      for (const std::string& name : referenced_names(text))
+        if (const std::string t = tunable_behind(*model, *tunable, name); !t.empty())
+          fail(n, fmt::format("{} names {}, but the simulator takes this value at the scene's value of it, whatever "
+                              "--param sets; write the value without '{}', or drop '{}' from tunable", what,
+                              t == name ? fmt::format("tunable '{}'", t)
+                                        : fmt::format("'{}', which is defined through tunable '{}'", name, t),
+                              name, t));
   } else {
     fail(n, fmt::format("{} must be a number (SI) or a string with a unit", what));
   }

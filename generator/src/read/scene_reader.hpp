@@ -18,6 +18,9 @@ namespace pogear {
 
 struct SceneReader : TomlReader {
   const Topology* model = nullptr;
+  // The scene's tunables, once read: a quantity of the scene is a number of the generated code, so it
+  // may not name one (nor a parameter defined through one), which --param would change without it.
+  const std::vector<std::string>* tunable = nullptr;
 
   std::vector<std::string> strings(const toml::node& n, std::string_view what) const;
 
@@ -37,6 +40,10 @@ struct SceneReader : TomlReader {
   // The same, and no Hz in a speed.
   Quantity checked_quantity(const toml::node& n, const Dimension& dim, std::string_view what) const;
 };
+
+// The tunable that parameter `name` is or is defined through (directly or through other
+// parameters), or "". The model's evaluation has ruled out cycles.
+std::string tunable_behind(const Topology& t, const std::vector<std::string>& tunable, const std::string& name);
 
 // What a signal of the scene is: an input torque, a dimensionless engagement command or an engine's
 // throttle (piecewise linear), a controller's speed set-point, or a road's grade.

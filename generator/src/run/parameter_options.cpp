@@ -16,7 +16,10 @@ namespace pogear {
 std::vector<ParameterOption> read_parameter_options(const SpecializedScene& model, const std::vector<std::string>& given) {
   const Scene& sc = model.scene;
   const SourceLocation at{sc.file, 0, 0};
-  std::vector<ParameterOption> out;
+  // One copy of the model takes every option in turn, so a value may name another option's parameter
+  // in either order, as in [parameters]; each is checked as it comes, so a refusal names its option.
+  Topology t = sc.model;
+  std::vector<std::string> names;
   for (const std::string& option : given) {
     const auto eq = option.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == option.size())
@@ -33,7 +36,6 @@ std::vector<ParameterOption> read_parameter_options(const SpecializedScene& mode
                                : fmt::format("--param {}: not a tunable parameter of the scene; its tunables are {}",
                                              name, tunables));
     }
-    Topology t = sc.model;
     const auto p = std::find_if(t.parameters.begin(), t.parameters.end(), [&](const Parameter& q) { return q.name == name; });
     p->text = text;
     p->where = at;
@@ -44,12 +46,14 @@ std::vector<ParameterOption> read_parameter_options(const SpecializedScene& mode
     } catch (const InputError& e) {
       throw InputError(at, fmt::format("--param {}: {}", option, e.message()));
     }
-    out.push_back({name, parameter_value(t, name)});
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   }
+  std::vector<ParameterOption> out;
+  for (const std::string& name : names) out.push_back({name, parameter_value(t, name)});
   return out;
 }
 
-GiNaC::exmap values_at(const SpecializedScene& model, const std::vector<ParameterOption>& options) {
+SpecializedScene at_parameter_options(const SpecializedScene& model, const std::vector<ParameterOption>& options) {
   const SymbolTable& s = model.derivation.symbols;
   GiNaC::exmap tunables;
   for (const std::string& name : model.scene.tunable) {
@@ -57,10 +61,22 @@ GiNaC::exmap values_at(const SpecializedScene& model, const std::vector<Paramete
     tunables[symbol] = model.values.numbers.at(symbol);
   }
   for (const ParameterOption& o : options) tunables[parameter_symbol(s, o.name)] = exact_number(o.value);
-  GiNaC::exmap numbers = tunables;
+  SpecializedScene at = model;
+  at.values.numbers = tunables;
   for (const auto& [symbol, value] : model.values.equations)
-    numbers[symbol] = value.subs(tunables, GiNaC::subs_options::no_pattern).expand();
-  return numbers;
+    at.values.numbers[symbol] = value.subs(tunables, GiNaC::subs_options::no_pattern).expand();
+  // The derivation's values keep what the scene leaves out (its folding zeroes a friction the scene
+  // does not simulate); only the tunables and what follows them move.
+  for (auto& [symbol, value] : at.derivation.values) {
+    const auto folded = model.values.equations.find(symbol);
+    const bool follows = tunables.count(symbol) > 0 ||
+                         (folded != model.values.equations.end() &&
+                          std::any_of(tunables.begin(), tunables.end(), [&](const auto& t) { return folded->second.has(t.first); }));
+    if (follows) value = at.values.numbers.at(symbol);
+  }
+  const Derivation& d = at.derivation;
+  at.derivation.rigid_values = exact_rigid_values(d.rigid, d.elastic, d.values);
+  return at;
 }
 
 }  // namespace pogear

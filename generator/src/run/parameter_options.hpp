@@ -16,13 +16,15 @@ struct ParameterOption {
   double value = 0;  // SI
 };
 
-// Each NAME=VALUE of `given`, in order (a later one for the same name wins when applied). Throws
+// The tunables `given` sets (NAME=VALUE, a later one for the same name winning), each value read with
+// the others applied, as [parameters] reads them. Throws
 // InputError at the scene file for a name that is not one of the scene's tunables, or a value its
 // [parameters] would refuse (unit, sign, range).
 std::vector<ParameterOption> read_parameter_options(const SpecializedScene& model, const std::vector<std::string>& given);
 
-// The scene's numeric values with the tunables at `options`: every parameter defined through a
-// tunable follows it, as in the generated code's Params.
-GiNaC::exmap values_at(const SpecializedScene& model, const std::vector<ParameterOption>& options);
+// The scene at the tunables' values `options`: its numeric values (what the interpreted run evaluates
+// at) and its derivation's (what the summary's frequencies and step limits are computed at), every
+// parameter defined through a tunable following it, as in the generated code's Params.
+SpecializedScene at_parameter_options(const SpecializedScene& model, const std::vector<ParameterOption>& options);
 
 }  // namespace pogear

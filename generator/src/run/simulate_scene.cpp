@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
@@ -109,25 +110,18 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   run.repeat = options.repeat;
   ensure_directory(options.out_dir);
   const fs::file_time_type started = fs::file_time_type::clock::now();
-  // The summary of the run as it goes: with --solver's method and --tolerance, whose notes (a fixed
-  // step's error, an adaptive method's cost) are their own.
-  if (run.solver == model.scene.solver && !options.tolerance) {
-    out << operation_summary(model) << std::flush;
-  } else {
-    SpecializedScene as_run = model;
-    as_run.scene.solver = run.solver;
-    if (options.tolerance) as_run.scene.tolerance = *options.tolerance;
-    out << operation_summary(as_run) << std::flush;
+  // The summary of the run as it goes: with --solver's method, --tolerance and the --param values,
+  // whose notes (a fixed step's error, an adaptive method's cost, the frequencies) are their own.
+  std::optional<SpecializedScene> as_run;
+  if (run.solver != model.scene.solver || options.tolerance || !params.empty()) {
+    as_run = params.empty() ? model : at_parameter_options(model, params);
+    as_run->scene.solver = run.solver;
+    if (options.tolerance) as_run->scene.tolerance = *options.tolerance;
   }
+  out << operation_summary(as_run ? *as_run : model) << std::flush;
   int status = 0;
   if (options.interpreted) {
-    if (params.empty()) {
-      status = run_interpreted(model, run);
-    } else {
-      SpecializedScene at = model;
-      at.values.numbers = values_at(model, params);
-      status = run_interpreted(at, run);
-    }
+    status = run_interpreted(as_run ? *as_run : model, run);  // at the --param values
   } else {
     // One simulator for every --param and --tolerance: they are its options, not its sources.
     const CompiledSimulator simulator = build_simulator(generate_sources(model, {run.solver}));

@@ -391,7 +391,8 @@ GiNaC::matrix input_torques(const Topology& t, const Scene& scene, const std::ve
 rt::SystemTraits solver_traits(const SpecializedScene& model) {
   return {.nonlinear = model.main.nonlinear,
           .engages_friction = !model.friction.empty(),
-          .limits_torque = !model.main.limited_controllers.empty()};
+          .limits_torque = !model.main.limited_controllers.empty(),
+          .driveline = !model.main.driveline.empty()};
 }
 
 GiNaC::numeric output_per_model_force(const Topology& t, const Mesh& m) {
