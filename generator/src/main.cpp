@@ -1,6 +1,7 @@
 // The pogear command line: the table of subcommands and options, parsed by CLI11; each subcommand
 // is one function of commands/.
 #include <charconv>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -93,10 +94,8 @@ int main(int argc, char** argv) {
                        "Relative tolerance of the adaptive solvers instead of the scene's, e.g. 1e-10")
       ->check(CLI::Validator(
           [](std::string& value) {
-            double r = 0;
-            const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), r);
-            if (ec == std::errc() && end == value.data() + value.size() && r >= pogear::rt::limits::min_tolerance &&
-                r <= pogear::rt::limits::max_tolerance)
+            const std::optional<double> r = pogear::rt::detail::parse_finite(value);
+            if (r && *r >= pogear::rt::limits::min_tolerance && *r <= pogear::rt::limits::max_tolerance)
               return std::string();
             return fmt::format("'{}' is not a tolerance from {:g} to {:g}; give a relative tolerance, e.g. "
                                "--tolerance 1e-10", value, pogear::rt::limits::min_tolerance,

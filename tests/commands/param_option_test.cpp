@@ -10,6 +10,7 @@
 #include "../support/commands.hpp"
 #include "../support/csv.hpp"
 #include "../support/files.hpp"
+#include "../support/gaps.hpp"
 
 namespace pogear::test {
 namespace {
@@ -46,14 +47,8 @@ double relative_gap(const Csv& a, const Csv& b) {
   EXPECT_EQ(a.rows.size(), b.rows.size());
   EXPECT_EQ(a.header.size(), b.header.size());
   double worst = 0;
-  for (std::size_t col = 1; col < std::min(a.header.size(), b.header.size()); ++col) {
-    double scale = 0, gap = 0;
-    for (std::size_t i = 0; i < std::min(a.rows.size(), b.rows.size()); ++i) {
-      scale = std::max(scale, std::abs(b.rows[i][col]));
-      gap = std::max(gap, std::abs(a.rows[i][col] - b.rows[i][col]));
-    }
-    if (scale > 0) worst = std::max(worst, gap / scale);
-  }
+  for (std::size_t col = 1; col < std::min(a.header.size(), b.header.size()); ++col)
+    worst = std::max(worst, column_error(a.rows, b.rows, col));
   return worst;
 }
 

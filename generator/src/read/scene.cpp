@@ -81,7 +81,7 @@ void check_loads_and_controllers(const Scene& s) {
   if (s.start != Start::given && !s.controllers.empty())
     throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [controllers]; give the "
                                     "initial speeds in [initial]");
-  if (s.start == Start::steady && std::any_of(s.loads.begin(), s.loads.end(), [](const LoadSpec& l) { return l.quadratic != 0; }))
+  if (s.start == Start::steady && has_quadratic_load(s))
     throw InputError(s.start_where, "start = \"steady\" solves a linear equilibrium, which a quadratic load does not "
                                     "have; start from given speeds, or with start = \"rigid\"");
 }
@@ -106,10 +106,11 @@ void check_solver(Scene& s, bool engaged) {
 
 }  // namespace
 
-bool nonlinear(const Scene& scene) {
-  return scene.engine || scene.converter ||
-         std::any_of(scene.loads.begin(), scene.loads.end(), [](const LoadSpec& l) { return l.quadratic != 0; });
+bool has_quadratic_load(const Scene& scene) {
+  return std::any_of(scene.loads.begin(), scene.loads.end(), [](const LoadSpec& l) { return l.quadratic != 0; });
 }
+
+bool nonlinear(const Scene& scene) { return scene.engine || scene.converter || has_quadratic_load(scene); }
 
 bool identically_zero(const rt::Signal& signal) {
   struct Zero {

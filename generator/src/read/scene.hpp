@@ -159,8 +159,9 @@ struct Scene {
 // Reads a scene and its model, applies the scene's parameter overrides to the model, and checks
 // the scene against the result (bodies, meshes, parameter names, units).
 Scene parse_scene(const std::string& path);
-// Whether a load of the scene is quadratic in speed, or the scene has an engine or a converter: its
-// equations are then nonlinear.
+// Whether a load of the scene is quadratic in speed.
+bool has_quadratic_load(const Scene& scene);
+// Whether it has such a load, an engine or a converter: its equations are then nonlinear.
 bool nonlinear(const Scene& scene);
 Scene parse_scene_text(const std::string& text, const std::string& path);
 

@@ -28,7 +28,7 @@ std::vector<ParameterOption> read_parameter_options(const SpecializedScene& mode
     const std::string name = option.substr(0, eq), text = option.substr(eq + 1);
     if (std::find(sc.tunable.begin(), sc.tunable.end(), name) == sc.tunable.end()) {
       std::string tunables;
-      for (const std::string& t : sc.tunable) tunables += (tunables.empty() ? "" : ", ") + t;
+      for (const std::string& tunable : sc.tunable) tunables += (tunables.empty() ? "" : ", ") + tunable;
       throw InputError(at, sc.tunable.empty()
                                ? fmt::format("--param {}: the scene has no tunable parameters; list {} in the scene's "
                                              "tunable = [...] to set it at run time, or set it in [parameters]",
@@ -66,13 +66,11 @@ SpecializedScene at_parameter_options(const SpecializedScene& model, const std::
   for (const auto& [symbol, value] : model.values.equations)
     at.values.numbers[symbol] = value.subs(tunables, GiNaC::subs_options::no_pattern).expand();
   // The derivation's values keep what the scene leaves out (its folding zeroes a friction the scene
-  // does not simulate); only the tunables and what follows them move.
+  // does not simulate); only the tunables and what the folding leaves in terms of them move.
   for (auto& [symbol, value] : at.derivation.values) {
     const auto folded = model.values.equations.find(symbol);
-    const bool follows = tunables.count(symbol) > 0 ||
-                         (folded != model.values.equations.end() &&
-                          std::any_of(tunables.begin(), tunables.end(), [&](const auto& t) { return folded->second.has(t.first); }));
-    if (follows) value = at.values.numbers.at(symbol);
+    if (tunables.count(symbol) || (folded != model.values.equations.end() && !GiNaC::is_a<GiNaC::numeric>(folded->second)))
+      value = at.values.numbers.at(symbol);
   }
   const Derivation& d = at.derivation;
   at.derivation.rigid_values = exact_rigid_values(d.rigid, d.elastic, d.values);

@@ -121,7 +121,7 @@ StartState start_in_gear(const SpecializedScene& model) {
   } else {
     for (unsigned j = 0; j < k; ++j)
       x(j, 0) = exact_number(sc.initial.at(Variable{VariableKind::velocity, mode.rigid.kept[j]}));
-    add_load_torques(sc, exact_product(rv.Q1, x), tau);
+    add_speed_dependent_torques(sc, exact_product(rv.Q1, x), tau);
     dx = rigid_acceleration(rv, x, tau);
   }
   const GiNaC::matrix omega = exact_product(rv.Q1, x), domega = exact_product(rv.Q1, dx);

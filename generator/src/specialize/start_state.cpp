@@ -27,7 +27,7 @@ std::vector<GiNaC::numeric> torques_at_start(const Scene& sc, std::size_t bodies
   return tau;
 }
 
-void add_load_torques(const Scene& sc, const GiNaC::matrix& omega, std::vector<GiNaC::numeric>& tau) {
+void add_speed_dependent_torques(const Scene& sc, const GiNaC::matrix& omega, std::vector<GiNaC::numeric>& tau) {
   for (const LoadSpec& l : sc.loads) {
     const auto b = static_cast<std::size_t>(l.body);
     const GiNaC::numeric w = GiNaC::ex_to<GiNaC::numeric>(omega(static_cast<unsigned>(b), 0));
@@ -81,7 +81,7 @@ GiNaC::matrix steady_rigid_state(const Scene& sc, const RigidValues& rv, std::ve
                      "a constant torque accelerates it for ever); add bearing_friction to the effects, or start "
                      "from given speeds");
   }
-  add_load_torques(sc, exact_product(rv.Q1, x), tau);  // at the equilibrium speeds
+  add_speed_dependent_torques(sc, exact_product(rv.Q1, x), tau);  // at the equilibrium speeds
   return x;
 }
 
@@ -133,7 +133,7 @@ StartState start_from_rigid_model(const SpecializedScene& model, const GiNaC::ex
   if (sc.start == Start::rigid) {
     const std::vector<double> x1 = rigid_initial_state(sc, d, values);
     for (unsigned j = 0; j < k; ++j) x(j, 0) = exact_number(x1[j]);
-    add_load_torques(sc, exact_product(rv.Q1, x), tau);  // at the given speeds
+    add_speed_dependent_torques(sc, exact_product(rv.Q1, x), tau);  // at the given speeds
     dx = rigid_acceleration(rv, x, tau);
   } else {
     x = steady_rigid_state(sc, rv, tau);

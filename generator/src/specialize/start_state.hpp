@@ -19,7 +19,7 @@ struct StartState {
 std::vector<GiNaC::numeric> torques_at_start(const Scene& sc, std::size_t bodies);
 // The loads' torques -(c0 + c1 omega + c2 omega |omega|), the engine's map and the converter's pump
 // and turbine torques added to tau at the body speeds omega.
-void add_load_torques(const Scene& sc, const GiNaC::matrix& omega, std::vector<GiNaC::numeric>& tau);
+void add_speed_dependent_torques(const Scene& sc, const GiNaC::matrix& omega, std::vector<GiNaC::numeric>& tau);
 // The rigid model's x1' at x1 under the torques tau: L1 x1' = A1 x1 + Q1^T tau.
 GiNaC::matrix rigid_acceleration(const RigidValues& rv, const GiNaC::matrix& x, const std::vector<GiNaC::numeric>& tau);
 // The rigid model's equilibrium A1 x1 + Q1^T tau = 0 with the loads' constant parts driving and
