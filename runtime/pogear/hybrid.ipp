@@ -9,6 +9,7 @@
 
 #include "pogear/hybrid.hpp"
 #include "pogear/hybrid_adaptive.hpp"
+#include "pogear/hybrid_data_check.hpp"
 #include "pogear/hybrid_driver.hpp"
 #include "pogear/hybrid_exact.hpp"
 
@@ -56,11 +57,34 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   if (c.method.solver == Solver::exact && !sys.state_torques.empty())
     return RunStatus{false, "a quadratic load, a converter or an engine makes the modes nonlinear, which exact "
                             "stepping does not integrate", 0.0};
-  std::vector<Signal> all = sys.inputs;
-  for (const auto& e : sys.elements) all.push_back(e.command);
+  // The signals as the run reads them: a triggered one is its `before` until it starts.
+  d.inputs = sys.inputs;
+  for (std::size_t k = 0; k < sys.elements.size(); ++k) d.commands[k] = sys.elements[k].command;
+  std::fill(d.input_trigger.begin(), d.input_trigger.end(), -1);
+  std::fill(d.command_trigger.begin(), d.command_trigger.end(), -1);
+  std::size_t start_breaks = 0;
+  std::vector<Signal> all;
+  for (std::size_t i = 0; i < sys.triggered.size(); ++i) {
+    const TriggeredSignal& s = sys.triggered[i];
+    const auto j = static_cast<std::size_t>(s.index);
+    (s.command ? d.command_trigger[j] : d.input_trigger[j]) = static_cast<int>(i);
+    const Signal& after = s.command ? d.commands[j] : d.inputs[j];
+    d.before[i] = s.before ? *s.before : Signal{Constant{value(waiting(after), 0.0)}};
+    all.push_back(d.before[i]);
+    for_each_break(after, [&](double) { ++start_breaks; });
+    ++start_breaks;  // the start itself
+  }
+  std::fill(d.start.begin(), d.start.end(), std::numeric_limits<double>::infinity());
+  std::fill(d.reported.begin(), d.reported.end(), 0);
+  d.triggers_live = d.started_now = false;
+  for (std::size_t j = 0; j < d.inputs.size(); ++j)
+    if (d.input_trigger[j] < 0) all.push_back(d.inputs[j]);
+  for (std::size_t k = 0; k < d.commands.size(); ++k)
+    if (d.command_trigger[k] < 0) all.push_back(d.commands[k]);
   for (const auto& q : sys.state_torques)  // an engine's throttle steps end steps as an input's do
     if (q.kind == StateTorqueKind::engine) all.push_back(q.throttle);
   d.breaks = breakpoints(all, 0.0, d.horizon);
+  d.breaks.reserve(d.breaks.size() + start_breaks);
   d.sine_period = shortest_sine_period(all);
   d.hold_step = std::numeric_limits<double>::infinity();
   if (c.method.solver == Solver::exact && (std::isfinite(d.sine_period) || curved(all))) {
@@ -82,6 +106,7 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   const EventObserver no_event = [](const HybridEvent&) {};
   if (!resolve_mode(sys, d, 0.0, -1, no_event, error)) return RunStatus{false, error, 0.0};
   if (!observe_sample(sys, d, 0.0, d.x, d.energy, obs)) return RunStatus{false, "stopped", 0.0};
+  d.triggers_live = true;
   switch (c.method.solver) {
     case Solver::exact: {
       ExactStepper s(sys, d);

@@ -52,6 +52,16 @@ struct HybridData {
   Eigen::VectorXd slip_norm;  // ||S_k||_1, the zero-slip rule's scale (slip_is_zero)
   std::vector<Eigen::Index> speed_states;  // the system's speeds, or the states some slip reads
   std::vector<double> breaks;  // of the inputs and commands
+  // The signals as the run reads them: the system's, a triggered one's times moved to its start;
+  // for each input and command the triggered signal it is (-1: none); for each triggered signal what
+  // it is until it starts, its start (infinite until its trigger) and whether that was reported.
+  // `triggers_live`: off while the initial mode resolves (no event); `started_now`: a signal started
+  // at the instant being resolved, which must be resolved again with it.
+  std::vector<Signal> inputs, commands, before;
+  std::vector<int> input_trigger, command_trigger;
+  std::vector<double> start;
+  std::vector<char> reported;
+  bool triggers_live = false, started_now = false;
   // The shortest period of a sine among the inputs and commands (infinity without one), and the
   // longest step over which the exact method may hold the inputs linear: the scene's step when a
   // sine or a grade's load is present (its error is what the summary states), else unbounded.
@@ -118,45 +128,14 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   for (Eigen::VectorXd* w : {&d.v0, &d.dv, &d.v, &d.sample_w}) w->resize(d.nw);
   for (Eigen::VectorXd* x : {&d.dx, &d.sample_x, &d.projected}) x->resize(d.nx);
   d.end = d.mid = d.side = make_event_point(d);
+  d.inputs = sys.inputs;
+  for (const FrictionElementData& e : sys.elements) d.commands.push_back(e.command);
+  d.input_trigger.assign(sys.inputs.size(), -1);
+  d.command_trigger.assign(sys.elements.size(), -1);
+  d.before.resize(sys.triggered.size());
+  d.start.assign(sys.triggered.size(), std::numeric_limits<double>::infinity());
+  d.reported.assign(sys.triggered.size(), 0);
   return d;
-}
-
-// Why data does not fit the system, or nullptr: a run on data sized for another system would read
-// out of bounds.
-inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
-  const Eigen::Index nx = sys.M.rows(), ne = sys.S.rows() + static_cast<Eigen::Index>(sys.limits.size());
-  if (sys.M.cols() != nx || sys.N.rows() != nx || sys.S.cols() != nx)
-    return "the system's matrices M, N and S do not agree on the number of states";
-  if (sys.S.rows() != static_cast<Eigen::Index>(sys.elements.size()))
-    return "the system has not one slip row per brake or clutch";
-  if (sys.N.cols() != static_cast<Eigen::Index>(sys.inputs.size() + sys.state_torques.size()) + ne)
-    return "the system has not one input column per input, state torque, brake or clutch, and torque limit";
-  for (const StateTorqueData& q : sys.state_torques) {
-    if (q.speed.size() != nx) return "a state torque's speed is not a row over the system's states";
-    const bool converter = q.kind == StateTorqueKind::converter_pump || q.kind == StateTorqueKind::converter_turbine;
-    if (converter && (q.turbine.size() != nx || q.converter.capacity.x.size() < 1 ||
-                      q.converter.capacity.x.size() != q.converter.capacity.y.size() ||
-                      q.converter.torque_ratio.x.size() < 1 ||
-                      q.converter.torque_ratio.x.size() != q.converter.torque_ratio.y.size()))
-      return "a converter's turbine speed or tables do not fit the system";
-    if (q.kind == StateTorqueKind::engine &&
-        (q.engine.speeds.empty() || q.engine.throttles.empty() || q.engine.torque.size() != q.engine.throttles.size() ||
-         std::any_of(q.engine.torque.begin(), q.engine.torque.end(),
-                     [&](const std::vector<double>& row) { return row.size() != q.engine.speeds.size(); })))
-      return "an engine's map does not fit its speeds and throttles";
-  }
-  for (const TorqueLimitData& l : sys.limits)
-    if (l.law_x.size() != nx || l.law_w.size() != sys.N.cols())
-      return "a controller's law is not a row over the system's states and inputs";
-  if (ne > 32) return "more than 32 brakes, clutches and torque limits (a mode is a 32-bit set)";
-  for (const Eigen::Index j : sys.speed_states)
-    if (j < 0 || j >= nx) return "a speed state of the system is not one of its states";
-  if (d.nx != nx || d.ne != ne || d.nf != sys.S.rows() || d.nw != sys.N.cols() || d.S.rows() != ne ||
-      d.S.cols() != nx || d.x.size() != nx || d.energy.size() != ne + static_cast<Eigen::Index>(sys.state_torques.size()) || d.state.size() != static_cast<std::size_t>(ne) ||
-      d.dir.size() != d.state.size() || d.g0.size() != ne || d.v.size() != d.nw || d.dx.size() != nx ||
-      d.nu != d.ns + static_cast<Eigen::Index>(sys.state_torques.size()))
-    return "the hybrid workspace was sized for another system";
-  return nullptr;
 }
 
 // The elements' laws: a controller's limits and law, a friction element's command and torque.
@@ -176,9 +155,20 @@ template <class X, class V>
 double law(const HybridSystem& sys, const HybridData& d, int k, const X& x, const V& v) {
   return limit(sys, d, k).law_x.dot(x) + limit(sys, d, k).law_w.dot(v);
 }
+// Input j's and element k's signal at time t: a triggered one's `before` until it starts.
+inline const Signal& input_signal(const HybridData& d, std::size_t j, double t) {
+  const int i = d.input_trigger[j];
+  return i >= 0 && t < d.start[static_cast<std::size_t>(i)] ? d.before[static_cast<std::size_t>(i)] : d.inputs[j];
+}
+inline const Signal& command_signal(const HybridData& d, std::size_t k, double t) {
+  const int i = d.command_trigger[k];
+  return i >= 0 && t < d.start[static_cast<std::size_t>(i)] ? d.before[static_cast<std::size_t>(i)] : d.commands[k];
+}
+
 // An element's command: a controller's is 1 throughout (it is never open).
 inline double command(const HybridSystem& sys, const HybridData& d, int k, double t) {
-  return is_limit(d, k) ? 1.0 : value(sys.elements[static_cast<std::size_t>(k)].command, t);
+  (void)sys;
+  return is_limit(d, k) ? 1.0 : value(command_signal(d, static_cast<std::size_t>(k), t), t);
 }
 // The torque per unit command of element k while it slips: its capacity, or zero for a one-way
 // element overrunning in its free direction.
@@ -217,7 +207,7 @@ inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t,
                          Eigen::VectorXd& v) {
   const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
   v.resize(d.nw);
-  for (Eigen::Index i = 0; i < d.ns; ++i) v(i) = value(sys.inputs[static_cast<std::size_t>(i)], at);
+  for (Eigen::Index i = 0; i < d.ns; ++i) v(i) = value(input_signal(d, static_cast<std::size_t>(i), at), at);
   for (Eigen::Index i = d.ns; i < d.nu; ++i) v(i) = state_torque(sys.state_torques[static_cast<std::size_t>(i - d.ns)], x, at).torque;
   for (int k = 0; k < d.ne; ++k) {
     const auto K = static_cast<std::size_t>(k);
@@ -234,12 +224,12 @@ inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t,
 inline void known_input_slopes(const HybridSystem& sys, const HybridData& d, double t, bool before,
                                Eigen::VectorXd& dv) {
   const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
-  for (Eigen::Index i = 0; i < d.ns; ++i) dv(i) = slope(sys.inputs[static_cast<std::size_t>(i)], at);
+  for (Eigen::Index i = 0; i < d.ns; ++i) dv(i) = slope(input_signal(d, static_cast<std::size_t>(i), at), at);
   for (int k = 0; k < d.ne; ++k) {
     const auto K = static_cast<std::size_t>(k);
     dv(d.nu + k) = d.state[K] == ElementState::stuck || is_limit(d, k)
                        ? 0.0
-                       : torque_scale(sys, d, k) * slope(sys.elements[K].command, at) * d.dir[K];
+                       : torque_scale(sys, d, k) * slope(command_signal(d, K, at), at) * d.dir[K];
   }
 }
 

@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "pogear/balancing.hpp"
+#include "pogear/hybrid_observe.hpp"
 #include "pogear/state_torques.hpp"
 #include "pogear/run_support.hpp"
 #include "pogear/signals.hpp"
@@ -40,6 +42,21 @@ struct TorqueLimitData {
   Eigen::RowVectorXd law_x, law_w;  // over the states and over w (its entries on the known inputs only)
 };
 
+// A signal of the system that starts on an event (docs/scene-format.md, "Triggered signals"): an
+// input's (index into HybridSystem::inputs) or an element's command (into elements). Its times count
+// from the instant `element` first enters `state` (slipping or stuck) after the start, plus `delay`;
+// until then the signal is `before`, a signal of time (without one: the value the signal has before
+// its own times, waiting in signals.hpp).
+struct TriggeredSignal {
+  bool command = false;
+  int index = -1;
+  int element = -1;
+  ElementState state = ElementState::stuck;
+  double delay = 0;
+  std::string name;  // in the events file
+  std::optional<Signal> before;
+};
+
 // The system with its friction elements and torque limits: dx/dt = M x + N w, w = [u; q; T], the
 // scene's inputs u (signals of time), the state torques q (functions of the state and time), one torque T_k per
 // friction element, acting as -T_k on the element's first body and +T_k on its second, then one per
@@ -52,6 +69,7 @@ struct HybridSystem {
   std::vector<TorqueLimitData> limits;
   std::vector<Signal> inputs;  // u
   std::vector<StateTorqueData> state_torques;  // q
+  std::vector<TriggeredSignal> triggered;
   // The states that are speeds (rad/s): the scale of the zero-slip rule (hybrid_data.hpp). Empty:
   // the states some slip reads.
   std::vector<Eigen::Index> speed_states;

@@ -13,10 +13,13 @@ inline const char* state_name(ElementState s) {
   return s == ElementState::open ? "open" : s == ElementState::slipping ? "slipping" : "stuck";
 }
 
+// A change of element's state; or, with `started` >= 0, triggered signal `started`
+// (HybridSystem::triggered) starting at t, its trigger's element in `element`.
 struct HybridEvent {
   double t = 0;
   int element = 0;
   ElementState from = ElementState::open, to = ElementState::open;
+  int started = -1;
 };
 
 // What the run knows at a sample: state, the full input w (stuck torques recovered), slips, the

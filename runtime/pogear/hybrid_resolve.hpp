@@ -11,8 +11,47 @@
 
 namespace pogear::rt::hybrid {
 
-inline void record(double t, int k, ElementState from, ElementState to, const EventObserver& on_event) {
-  if (from != to) on_event(HybridEvent{t, k, from, to});
+// A triggered signal's start moved to t0: its times, and its breakpoints (t0 itself among them)
+// added to d.breaks, whose capacity run() reserved for them (no allocation within a run). Its
+// `before` still holds until t0.
+inline void start_signal(const HybridSystem& sys, HybridData& d, std::size_t i, double t0) {
+  const TriggeredSignal& s = sys.triggered[i];
+  const auto j = static_cast<std::size_t>(s.index);
+  d.start[i] = t0;
+  if (s.command) move_times(d.commands[j], sys.elements[j].command, t0);
+  else move_times(d.inputs[j], sys.inputs[j], t0);
+  auto add = [&](double b) {
+    if (!(b >= t0) || !(b < d.horizon)) return;
+    const auto at = std::lower_bound(d.breaks.begin(), d.breaks.end(), b);
+    if ((at == d.breaks.end() || *at != b) && d.breaks.size() < d.breaks.capacity()) d.breaks.insert(at, b);
+  };
+  add(t0);
+  for_each_break(s.command ? d.commands[j] : d.inputs[j], add);
+}
+
+// A change of element k's state at t, reported; the signals it triggers start (after their delay).
+inline void record(const HybridSystem& sys, HybridData& d, double t, int k, ElementState from, ElementState to,
+                   const EventObserver& on_event) {
+  if (from == to) return;
+  on_event(HybridEvent{t, k, from, to, -1});
+  if (!d.triggers_live) return;
+  for (std::size_t i = 0; i < sys.triggered.size(); ++i) {
+    const TriggeredSignal& s = sys.triggered[i];
+    if (s.element != k || s.state != to || std::isfinite(d.start[i])) continue;
+    start_signal(sys, d, i, t + s.delay);
+    if (s.delay == 0) d.started_now = true;  // its value may jump at this very instant
+  }
+}
+
+// The triggered signals that start at or before t, reported once (in time order: at the
+// breakpoint of their start, or at their trigger's instant without a delay).
+inline void report_starts(const HybridSystem& sys, HybridData& d, double t, const EventObserver& on_event) {
+  for (std::size_t i = 0; i < sys.triggered.size(); ++i)
+    if (!d.reported[i] && d.start[i] <= t) {
+      d.reported[i] = 1;
+      on_event(HybridEvent{d.start[i], sys.triggered[i].element, ElementState::open, ElementState::open,
+                           static_cast<int>(i)});
+    }
 }
 
 // How far element k's torque Tk lies beyond what it can hold, as a ratio above 1 (at most 1 when it
@@ -40,6 +79,7 @@ inline double overload(const HybridSystem& sys, const HybridData& d, int k, doub
 // stuck elements over-constrain the gear or an element chatters.
 inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int trigger, const EventObserver& on_event,
                          std::string& error) {
+  report_starts(sys, d, t, on_event);
   d.old_state = d.state;
   std::uint32_t mask = 0;
   d.slip.noalias() = d.S * d.x;
@@ -105,7 +145,7 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
     const auto K = static_cast<std::size_t>(k);
     if (d.state[K] != ElementState::stuck && open_after(sys, d, k, t)) d.state[K] = ElementState::open;
     if (d.old_state[K] != d.state[K]) {
-      record(t, k, d.old_state[K], d.state[K], on_event);
+      record(sys, d, t, k, d.old_state[K], d.state[K], on_event);
       if (++d.events_in_sample[K] > max_events_per_sample) {
         error = "chattering: " + element_name(sys, d, k) + " changed state more than " +
                 std::to_string(max_events_per_sample) + " times within one sample period, at t = " + detail::num(t) +
@@ -113,6 +153,10 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
         return false;
       }
     }
+  }
+  if (d.started_now) {  // each signal starts once, so this ends
+    d.started_now = false;
+    return resolve_mode(sys, d, t, -1, on_event, error);
   }
   return true;
 }
@@ -128,7 +172,7 @@ inline void watch(const HybridSystem& sys, HybridData& d, double t, double t_end
       const double s = d.S.row(k).dot(d.x);
       d.dir[K] = s > 0 ? 1 : s < 0 ? -1 : d.dir[K];
       if (d.state[K] != ElementState::open) {
-        record(t, k, d.state[K], ElementState::open, on_event);
+        record(sys, d, t, k, d.state[K], ElementState::open, on_event);
         d.state[K] = ElementState::open;
       }
     }

@@ -16,11 +16,12 @@
 namespace pogear::rt {
 
 // Writes OUT/<name><suffix>.events.csv: `t [s],element,from,to`, one row per change of state (a
-// controller's states are `linear` and `at_limit`). Element and controller names are identifiers
-// (the readers check them), so no field needs quoting.
+// controller's states are `linear` and `at_limit`), and one `t,<signal>,waiting,started` where a
+// triggered signal starts. Element, controller and signal names are identifiers (the readers check
+// them), so no field needs quoting.
 inline bool write_events(const SceneRun& run, const std::string& suffix, const std::vector<HybridEvent>& events,
                          const std::vector<FrictionElementData>& elements, const std::vector<TorqueLimitData>& limits,
-                         const std::string& incomplete) {
+                         const std::vector<TriggeredSignal>& triggered, const std::string& incomplete) {
   OutputFile file(run.out_dir + "/" + run.name + suffix + ".events.csv");
   if (!file.ok()) {
     std::fprintf(stderr, "%s%s: error: %s\n", run.name.c_str(), suffix.c_str(), file.error().c_str());
@@ -31,7 +32,9 @@ inline bool write_events(const SceneRun& run, const std::string& suffix, const s
     char t[32];
     text.append(t, std::to_chars(t, t + sizeof t, e.t).ptr);
     const auto k = static_cast<std::size_t>(e.element);
-    if (k < elements.size()) {
+    if (e.started >= 0 && static_cast<std::size_t>(e.started) < triggered.size()) {
+      text += ',' + triggered[static_cast<std::size_t>(e.started)].name + ",waiting,started\n";
+    } else if (k < elements.size()) {
       text += ',' + elements[k].name + ',' + state_name(e.from) + ',' + state_name(e.to) + '\n';
     } else {
       auto name = [](ElementState s) { return s == ElementState::stuck ? "linear" : "at_limit"; };
@@ -56,11 +59,13 @@ inline bool write_events(const SceneRun& run, const std::string& suffix, const s
 // controllers' laws come from the system's torque_limit_laws, the quadratic loads of a nonlinear system
 // from its quadratic_loads, a converter's and an engine's torques from its driveline (exact
 // stepping then refused; the CSV then has E_converter [J], the converter's loss, and W_engine [J],
-// the engine's work, before the mode). Returns 0, or 3 when the run failed.
+// the engine's work, before the mode). `triggered`: the signals and commands that start on an
+// event (HybridSystem::triggered). Returns 0, or 3 when the run failed.
 template <class System>
 int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
                       const std::vector<FrictionElementData>& elements, std::vector<TorqueLimitData> limits,
-                      const typename System::State& x0, const SceneRun& run, const std::string& suffix) {
+                      const typename System::State& x0, const SceneRun& run, const std::string& suffix,
+                      std::vector<TriggeredSignal> triggered = {}) {
   const Eigen::Index nx = x0.size();
   const auto nu = static_cast<Eigen::Index>(signals.size()), ne = static_cast<Eigen::Index>(elements.size()),
              nl = static_cast<Eigen::Index>(limits.size());
@@ -101,6 +106,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   hs.elements = elements;
   hs.limits = std::move(limits);
   hs.inputs = signals;
+  hs.triggered = std::move(triggered);
 
   std::vector<std::string> names(std::begin(sys.output_names), std::end(sys.output_names));
   std::vector<std::string> units(std::begin(sys.output_units), std::end(sys.output_units));
@@ -192,7 +198,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
     st.rhs_evals = engine.rhs_evals();
     modes = engine.modes_met();
     if (!log.end(st)) return 3;
-    if (run.csv && !write_events(run, suffix, events, elements, hs.limits, st.ok ? "" : st.message)) return 3;
+    if (run.csv && !write_events(run, suffix, events, elements, hs.limits, hs.triggered, st.ok ? "" : st.message)) return 3;
     if (!st.ok) break;
   }
   if (st.ok && !run.quiet)
@@ -204,8 +210,9 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
 template <class System>
 int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
                       const std::vector<FrictionElementData>& elements, const typename System::State& x0,
-                      const SceneRun& run, const std::string& suffix) {
-  return run_hybrid_system(sys, p, signals, elements, std::vector<TorqueLimitData>{}, x0, run, suffix);
+                      const SceneRun& run, const std::string& suffix, std::vector<TriggeredSignal> triggered = {}) {
+  return run_hybrid_system(sys, p, signals, elements, std::vector<TorqueLimitData>{}, x0, run, suffix,
+                           std::move(triggered));
 }
 
 }  // namespace pogear::rt

@@ -113,18 +113,46 @@ inline double shortest_sine_period(const std::vector<Signal>& signals) {
   return period;
 }
 
+// Signals that start on an event (a triggered command, HybridSystem::triggered): the times of
+// `original` moved by t0 into `live`, in place (no allocation: live is a copy of original). With t0
+// infinite every time is infinite, and the signal holds the value it has before its own times (a
+// table's first row, a ramp's initial value, a step's `before`): it waits. A sine has no such value
+// (it is refused as a triggered signal: startable).
+inline bool startable(const Signal& s) { return !std::holds_alternative<Sine>(s); }
+inline void move_times(Signal& live, const Signal& original, double t0) {
+  if (auto* st = std::get_if<Step>(&live)) st->time = t0 + std::get<Step>(original).time;
+  if (auto* r = std::get_if<Ramp>(&live)) r->start_time = t0 + std::get<Ramp>(original).start_time;
+  auto move_table = [t0](Table& to, const Table& from) {
+    for (std::size_t i = 0; i < to.t.size() && i < from.t.size(); ++i) to.t[i] = t0 + from.t[i];
+  };
+  if (auto* tab = std::get_if<Table>(&live)) move_table(*tab, std::get<Table>(original));
+  if (auto* g = std::get_if<GradeLoad>(&live)) move_table(g->angle, std::get<GradeLoad>(original).angle);
+}
+// The signal as it holds until it starts (every time infinite): what a start at t = 0 reads.
+inline Signal waiting(const Signal& s) {
+  Signal w = s;
+  move_times(w, s, std::numeric_limits<double>::infinity());
+  return w;
+}
+// Calls f(t) for every time of the signal where it or its slope may jump, unsorted (breakpoints
+// without their vector).
+template <class F>
+void for_each_break(const Signal& s, F&& f) {
+  if (const auto* st = std::get_if<Step>(&s)) f(st->time);
+  if (const auto* r = std::get_if<Ramp>(&s)) f(r->start_time);
+  if (const auto* tab = std::get_if<Table>(&s))
+    for (double t : tab->t) f(t);
+  if (const auto* g = std::get_if<GradeLoad>(&s))
+    for (double t : g->angle.t) f(t);
+}
+
 // Times in the open interval (t0, t1) where the signal or its slope jumps, sorted, without duplicates.
 inline std::vector<double> breakpoints(const Signal& s, double t0, double t1) {
   std::vector<double> out;
   auto add = [&](double t) {
     if (t > t0 && t < t1) out.push_back(t);
   };
-  if (const auto* st = std::get_if<Step>(&s)) add(st->time);
-  if (const auto* r = std::get_if<Ramp>(&s)) add(r->start_time);
-  if (const auto* tab = std::get_if<Table>(&s))
-    for (double t : tab->t) add(t);
-  if (const auto* g = std::get_if<GradeLoad>(&s))
-    for (double t : g->angle.t) add(t);
+  for_each_break(s, add);
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }

@@ -48,6 +48,64 @@ TEST(Shift, InlineCommandTablesRunAsTheirCsvFiles) {
   }
 }
 
+// Signals that start on events, compiled: B1's apply ramp starts 20 ms after B2 breaks away, and a
+// torque cut of tau_i ends when B1 locks. The generated simulator's elastic and rigid runs and the
+// interpreted ones report the same events and starts, at times that differ by rounding.
+TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
+  namespace fs = std::filesystem;
+  const fs::path dir = temp_dir("triggered_compiled");
+  std::string text = read_text(source_path("models/scenes/simpson_1_2_upshift.toml"));
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{
+                                     "\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
+                                 {"{ table = \"simpson_B2_release.csv\" }",
+                                  "{ table = \"" + source_path("models/scenes/simpson_B2_release.csv") + "\" }"},
+                                 {"{ table = \"simpson_B1_apply.csv\" }",
+                                  "{ table = [[0, 0], [\"0.15*s\", 1]], when = \"B2 slipping\", delay = \"20*ms\" }"},
+                                 {"tau_i = \"150*Nm\"",
+                                  "tau_i = { table = [[0, \"100*Nm\"], [\"20*ms\", \"150*Nm\"]], when = \"B1 stuck\", "
+                                  "before = { table = [[0, \"150*Nm\"], [\"1*s\", \"150*Nm\"], [\"1.02*s\", \"100*Nm\"]] } }"}}) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  write_text(dir / "triggered.toml", text);
+  for (const std::string how : {"", " --interpreted"}) {
+    const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / "triggered.toml").string() + how +
+                                  " -o " + (dir / (how.empty() ? "compiled" : "interpreted")).string());
+    ASSERT_EQ(c.status, 0) << c.err;
+  }
+  for (const std::string suffix : {"", ".rigid"}) {
+    SCOPED_TRACE(suffix);
+    auto rows = [&](const std::string& which) {
+      std::vector<std::vector<std::string>> out;
+      std::stringstream in(read_text(dir / which / ("simpson_1_2_upshift" + suffix + ".events.csv")));
+      for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> fields;
+        std::stringstream ss(line);
+        for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
+        out.push_back(fields);
+      }
+      return out;
+    };
+    const auto a = rows("compiled"), b = rows("interpreted");
+    ASSERT_EQ(a.size(), b.size());
+    // B2 breaks away, B1's ramp starts, B1 slips, B2 opens, B1 locks and the cut's end starts.
+    ASSERT_GE(a.size(), 7u);
+    auto has = [&](const std::string& name) {
+      return std::any_of(a.begin(), a.end(), [&](const auto& r) {
+        return r.size() == 4 && r[1] == name && r[2] == "waiting" && r[3] == "started";
+      });
+    };
+    EXPECT_TRUE(has("command_B1"));
+    EXPECT_TRUE(has("tau_i"));
+    for (std::size_t i = 1; i < a.size(); ++i) {
+      EXPECT_EQ(std::vector<std::string>(a[i].begin() + 1, a[i].end()), std::vector<std::string>(b[i].begin() + 1, b[i].end()));
+      // Event times: located to a few ulps on each path's own trajectory, which differ by rounding.
+      EXPECT_NEAR(std::stod(a[i][0]), std::stod(b[i][0]), 1e-9) << i;
+    }
+  }
+}
+
 // `pogear simulate` compiles the scene's simulator; `--interpreted` runs the reference numeric
 // model instead. Both step the same modes, so events and samples agree to rounding.
 TEST(Shift, CompiledSimulatorAgreesWithTheInterpretedRunAcrossEvents) {

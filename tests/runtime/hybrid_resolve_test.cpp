@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "pogear/hybrid_data_check.hpp"
 #include "pogear/hybrid_resolve.hpp"
 
 namespace pogear::rt {

@@ -65,7 +65,7 @@ TEST(Response, MatchesATimeSimulationAroundTheFirstResonance) {
   const Variable F = *find_variable(scene.model, "F_ps");
   // The same system as a scene with this input and these outputs, for the time simulation.
   Scene s = scene;
-  s.inputs = {InputSpec{tau_c.index, rt::Constant{1}, {}}};
+  s.inputs = {InputSpec{tau_c.index, rt::Constant{1}, {}, std::nullopt}};
   s.outputs = {omega_r, F};
   s.compare_rigid = false;
   const SpecializedScene model = specialize(s);
@@ -128,7 +128,7 @@ TEST(Response, EveryWrittenValueIsAccurate) {
   const std::vector<TransferFunction> h = frequency_response(scene, inputs, outputs, grid);
   Scene s = scene;
   s.inputs.clear();
-  for (const Variable u : inputs) s.inputs.push_back(InputSpec{u.index, rt::Constant{1}, {}});
+  for (const Variable u : inputs) s.inputs.push_back(InputSpec{u.index, rt::Constant{1}, {}, std::nullopt});
   s.outputs = outputs;
   s.compare_rigid = false;
   const SpecializedScene model = specialize(s);
@@ -193,7 +193,7 @@ TEST(Response, StiffDrivelineWithAHeavyVehicleIsWrittenAtEveryFrequency) {
   const FrequencyGrid grid{0.5, 100, 200};
   const std::vector<TransferFunction> h = frequency_response(scene, inputs, outputs, grid);
   Scene s = scene;
-  s.inputs = {InputSpec{inputs[0].index, rt::Constant{1}, {}}};
+  s.inputs = {InputSpec{inputs[0].index, rt::Constant{1}, {}, std::nullopt}};
   s.outputs = outputs;
   s.compare_rigid = false;
   const SpecializedScene specialized = specialize(s);

@@ -17,6 +17,7 @@
 #include "codegen/codegen_system.hpp"
 #include "common/cpp_text.hpp"
 #include "specialize/initial_state.hpp"
+#include "specialize/triggered_signals.hpp"
 #include "pogear/command_line.hpp"
 #include "common/printer.hpp"
 
@@ -80,6 +81,25 @@ CppText torque_limits_function(const SpecializedScene& model, const SpecializedS
     const ControllerSpec& k = model.scene.controllers[static_cast<std::size_t>(sys.limited_controllers[i])];
     s += (i ? code(",\n          ") : CppText{}) +
          code("{{{}, {}, {}, {{}}, {{}}}}", string_literal(k.name), limit_code(k.torque_min), limit_code(k.torque_max));
+  }
+  s += code("}};\n}}\n");
+  return s;
+}
+
+// The signals and commands of `sys` that start on an event, as the hybrid engine takes them: input
+// or command, its index, the trigger's element (among the friction elements), state and delay [s],
+// and the name the events file gives its start.
+CppText triggered_function(const std::vector<rt::TriggeredSignal>& triggered, const CppText& name) {
+  CppText s = code("// Signals of {} that start on an event: command?, index, trigger's element, state, delay [s], name,\n"
+                   "// what the signal is until then (none: the value before its own times).\n", name);
+  s += code("std::vector<pogear::rt::TriggeredSignal> {}_triggered_signals() {{\n  return {{", name);
+  for (std::size_t i = 0; i < triggered.size(); ++i) {
+    const rt::TriggeredSignal& t = triggered[i];
+    s += (i ? code(",\n          ") : CppText{}) +
+         code("{{{}, {}, {}, pogear::rt::ElementState::{}, {}, {}, {}}}", t.command ? code("true") : code("false"),
+              integer_code(t.index), integer_code(t.element), identifier(rt::state_name(t.state)),
+              number_code(t.delay), string_literal(t.name),
+              t.before ? code("pogear::rt::Signal{{{}}}", signal_code(*t.before)) : code("std::nullopt"));
   }
   s += code("}};\n}}\n");
   return s;
@@ -215,6 +235,13 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
     m += code("\n") + torque_limits_function(model, model.main, main_struct);
     if (model.rigid) m += code("\n") + torque_limits_function(model, *model.rigid, code("Rigid"));
   }
+  const std::vector<rt::TriggeredSignal> triggered = triggered_signals(model, model.main);
+  if (!triggered.empty()) {
+    m += code("\n") + triggered_function(triggered, main_struct);
+    if (model.rigid) m += code("\n") + triggered_function(triggered_signals(model, *model.rigid), code("Rigid"));
+  }
+  const CppText main_triggers = triggered.empty() ? CppText{} : code(", {}_triggered_signals()", main_struct);
+  const CppText rigid_triggers = triggered.empty() ? CppText{} : code(", Rigid_triggered_signals()");
   m += code("\n}}  // namespace\n\n");
   m += code("int main(int argc, char** argv) {{\n");
   m += code("  pogear::rt::SceneRun run;\n");
@@ -230,8 +257,8 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   m += code("  const scene::{} system;\n", main_struct);
   if (hybrid)
     m += code("  int status = pogear::rt::run_hybrid_system(system, params, {}_signals(), friction_elements(), {}"
-              "scene::{}::initial_state(), run, \"\");\n", main_struct,
-              limits ? code("{}_torque_limits(), ", main_struct) : CppText{}, main_struct);
+              "scene::{}::initial_state(), run, \"\"{});\n", main_struct,
+              limits ? code("{}_torque_limits(), ", main_struct) : CppText{}, main_struct, main_triggers);
   else
     m += code("  int status = pogear::rt::run_system<Solvers>(system, params, {}_signals(), scene::{}::initial_state(), run, \"\");\n",
               main_struct, main_struct);
@@ -241,8 +268,8 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
       m += code("  rigid_params.{} = params.{};\n", identifier(p.name), identifier(p.name));
     if (hybrid)
       m += code("  if (status == 0)\n    status = pogear::rt::run_hybrid_system(scene::Rigid{{}}, rigid_params, Rigid_signals(), "
-                "friction_elements(), {}scene::Rigid::initial_state(), run, \".rigid\");\n",
-                limits ? code("Rigid_torque_limits(), ") : CppText{});
+                "friction_elements(), {}scene::Rigid::initial_state(), run, \".rigid\"{});\n",
+                limits ? code("Rigid_torque_limits(), ") : CppText{}, rigid_triggers);
     else
       m += code("  if (status == 0)\n    status = pogear::rt::run_system<Solvers>(scene::Rigid{{}}, rigid_params, Rigid_signals(), "
                 "scene::Rigid::initial_state(), run, \".rigid\");\n");

@@ -105,6 +105,7 @@ std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::n
     const toml::node* set_point = t.get("set_point");
     if (!set_point) r.fail(value, "the controller has no set_point; add set_point = \"<speed>\", e.g. \"1500*rpm\"");
     c.set_point = read_signal(r, *set_point, scene_dir, SignalQuantity::speed);
+    c.set_point_start = read_signal_start(r, *set_point, c.set_point, scene_dir, SignalQuantity::speed);
     const toml::node* kp = t.get("kp");
     const toml::node* ki = t.get("ki");
     if (kp) c.kp = r.coefficient(*kp, times_seconds(torque_dimension(), 1), "kp", "1.5*N*m*s/rad");

@@ -254,7 +254,8 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         throw InputError(toml_location(path, key.source()),
                          fmt::format("input '{}' names no body; inputs are tau_<body>, e.g. tau_{}", name,
                                      topology.bodies.front().name));
-      s.inputs.push_back(InputSpec{tau->index, read_signal(r, value, scene_dir), r.loc(value)});
+      const rt::Signal signal = read_signal(r, value, scene_dir);
+      s.inputs.push_back(InputSpec{tau->index, signal, r.loc(value), read_signal_start(r, value, signal, scene_dir, SignalQuantity::torque)});
     }
     // Inputs in body order, the order of the model's tau vector.
     std::sort(s.inputs.begin(), s.inputs.end(), [](const InputSpec& a, const InputSpec& b) { return a.body < b.body; });
@@ -274,7 +275,8 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         throw InputError(toml_location(path, key.source()),
                          fmt::format("'{}' is not a brake or clutch of the model; its elements are {}", name, names));
       }
-      s.engagement.push_back(EngagementSpec{k, read_signal(r, value, scene_dir, SignalQuantity::engagement), r.loc(value)});
+      const rt::Signal command = read_signal(r, value, scene_dir, SignalQuantity::engagement);
+      s.engagement.push_back(EngagementSpec{k, command, r.loc(value), read_signal_start(r, value, command, scene_dir, SignalQuantity::engagement)});
     }
     std::sort(s.engagement.begin(), s.engagement.end(),
               [](const EngagementSpec& a, const EngagementSpec& b) { return a.element < b.element; });
@@ -388,8 +390,9 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
 
   if (const toml::node* n = root.get("simulation")) read_simulation(r, *n, s);
   const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(),
-                                   [](const EngagementSpec& e) { return !identically_zero(e.command); });
+                                   [](const EngagementSpec& e) { return !identically_zero(e.command, e.start); });
   check_loads_and_controllers(s);
+  check_signal_starts(s);
   check_driveline(s);
   check_solver(s, engaged);
   check_vehicle_jerk(s);
@@ -416,18 +419,21 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                                      f.name, f.static_ratio, t, t));
   }
   // A command is piecewise linear: its extremes over the run are at 0, the horizon and its breakpoints.
-  for (const EngagementSpec& e : s.engagement) {
-    std::vector<double> times = rt::breakpoints(e.command, 0.0, s.horizon);
-    times.push_back(0.0);
-    times.push_back(s.horizon);
-    for (double t : times)
-      for (double p : {rt::value(e.command, t), rt::value(e.command, std::nextafter(t, 0.0))})
-        if (!(p >= 0 && p <= 1))
-          throw InputError(e.where, fmt::format("the command of {} is {} at t = {} s; an engagement command is from 0 "
-                                                "(open) to 1 (fully engaged) over the whole run",
-                                                topology.friction_elements[static_cast<std::size_t>(e.element)].name,
-                                                p, t));
-  }
+  // A triggered command's times count from its event, and its `before` is a command as well.
+  for (const EngagementSpec& e : s.engagement)
+    for (const rt::Signal* command : {&e.command, e.start && e.start->before ? &*e.start->before : nullptr}) {
+      if (!command) continue;
+      std::vector<double> times = rt::breakpoints(*command, 0.0, s.horizon);
+      times.push_back(0.0);
+      times.push_back(s.horizon);
+      for (double t : times)
+        for (double p : {rt::value(*command, t), rt::value(*command, std::nextafter(t, 0.0))})
+          if (!(p >= 0 && p <= 1))
+            throw InputError(e.where, fmt::format("the command of {} is {} at t = {} s; an engagement command is from 0 "
+                                                  "(open) to 1 (fully engaged) over the whole run",
+                                                  topology.friction_elements[static_cast<std::size_t>(e.element)].name,
+                                                  p, t));
+    }
   return s;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pogear/driveline.hpp"
+#include "pogear/hybrid_observe.hpp"
 #include "pogear/signals.hpp"
 #include "pogear/solver.hpp"
 #include "names/model_variables.hpp"
@@ -29,11 +30,27 @@ struct Effects {
   bool elastic() const { return mesh_compliance || shaft_compliance; }
 };
 
+// A signal that starts on an event (docs/scene-format.md, "Triggered signals"): its times count from
+// the instant brake or clutch `element` first slips or sticks after the start, plus `delay` [s].
+// Until then it is `before`, a signal of time (without one: the value the signal has before its
+// own times).
+struct SignalStart {
+  int element = -1;  // index into Topology::friction_elements
+  rt::ElementState state = rt::ElementState::stuck;
+  double delay = 0;
+  SourceLocation where;
+  std::optional<rt::Signal> before;
+};
+
+// The signal's value at t = 0: a triggered one's before it starts (rt::waiting).
+double value_at_start(const rt::Signal& signal, const std::optional<SignalStart>& start);
+
 // An input torque of the scene, in SI units, as the runtime evaluates it.
 struct InputSpec {
   int body = -1;  // the driven body; the input is tau_<body>
   rt::Signal signal;
   SourceLocation where;
+  std::optional<SignalStart> start;
 };
 
 // The engagement command p(t) in [0, 1] of a brake or clutch of the model.
@@ -41,6 +58,7 @@ struct EngagementSpec {
   int element = -1;  // index into Topology::friction_elements
   rt::Signal command;
   SourceLocation where;
+  std::optional<SignalStart> start;
 };
 
 // A load on a body (scene-format.md, "Loads"): the torque -(constant + linear omega + quadratic
@@ -92,6 +110,7 @@ struct ControllerSpec {
   std::string name;
   int body = -1, measured = -1;
   rt::Signal set_point;
+  std::optional<SignalStart> set_point_start;
   double kp = 0, ki = 0;
   // Torque limits [N m]: the torque stays within them, held at a limit while the law asks for more;
   // events at both ends, as for brakes and clutches. At a limit the integral tracks it (anti-windup
@@ -104,6 +123,8 @@ struct ControllerSpec {
 
 // Whether the signal is zero at every time: such an input is no input.
 bool identically_zero(const rt::Signal& signal);
+// The same for a signal that may start on an event: it and what it is before.
+bool identically_zero(const rt::Signal& signal, const std::optional<SignalStart>& start);
 
 using rt::Solver;
 

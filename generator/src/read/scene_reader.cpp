@@ -197,6 +197,8 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
   if (!n.is_table()) return rt::Constant{r.quantity(n, torque, name)};
   const toml::table& t = *n.as_table();
   auto get = [&](std::string_view key) { return t.get(key); };
+  if (const toml::node* w = get("when"); w && (what == SignalQuantity::throttle || what == SignalQuantity::angle))
+    r.fail(*w, fmt::format("{} cannot wait for an event; give it as a table of time", name));
   // A road's grade: an angle, or a table of it in degrees (the load's hold in exact stepping is
   // stated for a piecewise linear angle).
   if (what == SignalQuantity::angle) {
@@ -211,11 +213,15 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
     return table;
   }
   if (const toml::node* v = get("constant")) {
+    if (get("when")) r.fail(*get("when"), "a constant has nothing to start on an event; give a step, ramp or table");
     r.only_keys(t, {"constant"}, "a constant signal");
     return rt::Constant{r.quantity(*v, torque, "constant")};
   }
   if (const toml::node* v = get("step")) {
-    r.only_keys(t, {"step", "at", "before"}, "a step signal");
+    r.only_keys(t, {"step", "at", "before", "when", "delay"}, "a step signal");
+    if (get("when") && get("before"))
+      r.fail(*get("before"), "a step that starts on an event holds its 'before' until its 'at'; give what comes before "
+                             "the event as a table or ramp of its own");
     rt::Step s;
     s.after = r.quantity(*v, torque, "step");
     if (!get("at")) r.fail(n, "a step needs at = \"<time>\", e.g. at = \"0.5*s\"");
@@ -224,7 +230,7 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
     return s;
   }
   if (const toml::node* v = get("ramp")) {
-    r.only_keys(t, {"ramp", "start", "initial"}, "a ramp signal");
+    r.only_keys(t, {"ramp", "start", "initial", "when", "delay", "before"}, "a ramp signal");
     rt::Ramp s;
     Dimension slope = torque;
     slope.exponent[2] -= 1;
@@ -239,6 +245,8 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
     r.fail(*v, "an engagement command is constant, a step, a ramp or a table (piecewise linear, so that events are "
                "located exactly); give the sine as a table");
   if (const toml::node* v = get("sine")) {
+    if (get("when"))
+      r.fail(*get("when"), "a sine has no value to hold until an event; start a table of its points instead");
     r.only_keys(t, {"sine", "frequency", "phase", "offset"}, "a sine signal");
     rt::Sine s;
     s.amplitude = r.quantity(*v, torque, "sine (its amplitude)");
@@ -249,7 +257,7 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
     return s;
   }
   if (const toml::node* v = get("table")) {
-    r.only_keys(t, {"table"}, "a table signal");
+    r.only_keys(t, {"table", "when", "delay", "before"}, "a table signal");
     if (v->is_array())
       return inline_table_signal(r, *v, torque,
                                  engagement ? "[[\"1.9*s\", 1], [\"2*s\", 0]]"
@@ -264,6 +272,82 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
   }
   r.fail(n, "a signal is { constant = ... }, { step = ..., at = ... }, { ramp = ... }, { sine = ..., "
             "frequency = ... }, { table = \"file.csv\" } or { table = [[time, value], ...] }");
+}
+
+// `when = "<element> slipping"` (or stuck) and `delay`: the signal's times then count from that
+// event plus the delay, so they may not be negative (the signal would have changed before it).
+std::optional<SignalStart> read_signal_start(const SceneReader& r, const toml::node& n, const rt::Signal& signal,
+                                             const fs::path& scene_dir, SignalQuantity what) {
+  const toml::table* t = n.as_table();
+  const toml::node* when = t ? t->get("when") : nullptr;
+  if (!when) {
+    for (const char* key : {"delay", "before"})  // a step's own `before` is its value until `at`
+      if (t && t->get(key) && !(std::string_view(key) == "before" && std::holds_alternative<rt::Step>(signal)))
+        r.fail(*t->get(key), fmt::format("{} needs when = \"<element> slipping\" or \"<element> stuck\"", key));
+    return std::nullopt;
+  }
+  const std::string text = r.string(*when, "when");
+  const std::size_t space = text.find(' ');
+  const std::string element = text.substr(0, space), state = space == std::string::npos ? "" : text.substr(space + 1);
+  const std::string form = "when = \"<element> slipping\" or \"<element> stuck\", e.g. when = \"C stuck\"";
+  if (state != "slipping" && state != "stuck")
+    r.fail(*when, fmt::format("'{}' is no event a signal can wait for; give {}", text, form));
+  SignalStart start;
+  start.where = r.loc(*when);
+  start.state = state == "stuck" ? rt::ElementState::stuck : rt::ElementState::slipping;
+  const std::vector<FrictionElement>& elements = r.model->friction_elements;
+  for (std::size_t k = 0; k < elements.size(); ++k)
+    if (elements[k].name == element) start.element = static_cast<int>(k);
+  if (start.element < 0) {
+    std::string names;
+    for (const FrictionElement& e : elements) names += (names.empty() ? "" : ", ") + e.name;
+    r.fail(*when, fmt::format("'{}' is no brake or clutch of the model{}; {}", element,
+                              names.empty() ? std::string(", which has none") : " (it has " + names + ")", form));
+  }
+  if (const toml::node* d = t->get("delay")) {
+    start.delay = r.quantity(*d, time_dimension(), "delay");
+    if (!(start.delay >= 0)) r.fail(*d, "a delay is not negative; the signal starts at the event or after it");
+  }
+  if (const toml::node* b = t->get("before")) {
+    if (b->is_table() && b->as_table()->get("when"))
+      r.fail(*b->as_table()->get("when"), "what a signal is before its event is a signal of time; give it without when");
+    start.before = read_signal(r, *b, scene_dir, what);
+  }
+  double first = 0;
+  rt::for_each_break(signal, [&](double b) { first = std::min(first, b); });
+  if (first < 0)
+    r.fail(n, fmt::format("a signal that starts on an event counts its times from it, but this one changes at {} s; "
+                          "give its times from 0", first));
+  return start;
+}
+
+bool identically_zero(const rt::Signal& signal, const std::optional<SignalStart>& start) {
+  return identically_zero(signal) && !(start && start->before && !identically_zero(*start->before));
+}
+
+double value_at_start(const rt::Signal& signal, const std::optional<SignalStart>& start) {
+  if (start && start->before) return rt::value(*start->before, 0.0);
+  return rt::value(start ? rt::waiting(signal) : signal, 0.0);
+}
+
+// A signal waits for an element the scene engages: an open one never slips or sticks.
+void check_signal_starts(const Scene& s) {
+  std::vector<const SignalStart*> starts;
+  for (const InputSpec& in : s.inputs) starts.push_back(in.start ? &*in.start : nullptr);
+  for (const EngagementSpec& e : s.engagement) starts.push_back(e.start ? &*e.start : nullptr);
+  for (const ControllerSpec& c : s.controllers) starts.push_back(c.set_point_start ? &*c.set_point_start : nullptr);
+  for (const SignalStart* start : starts) {
+    if (!start) continue;
+    const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(), [&](const EngagementSpec& e) {
+      return e.element == start->element && !identically_zero(e.command, e.start);
+    });
+    if (!engaged)
+      throw InputError(start->where,
+                       fmt::format("the signal waits for {}, which the scene does not engage, so it never slips or "
+                                   "sticks; give {} a command in [engagement]",
+                                   s.model.friction_elements[static_cast<std::size_t>(start->element)].name,
+                                   s.model.friction_elements[static_cast<std::size_t>(start->element)].name));
+  }
 }
 
 }  // namespace pogear

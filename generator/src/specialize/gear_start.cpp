@@ -62,7 +62,7 @@ void check_others_open(const SpecializedScene& model, const std::string& gear) {
   const Topology& t = model.derivation.topology;
   for (const FrictionRun& run : model.friction) {
     const bool in_gear = std::find(sc.initial_engaged.begin(), sc.initial_engaged.end(), run.element) != sc.initial_engaged.end();
-    const double command = rt::value(run.command, 0.0);
+    const double command = value_at_start(run.command, run.start);
     if (!in_gear && command != 0)
       throw InputError(sc.initial_engaged_where,
                        fmt::format("starting in {}, {} is commanded {:.6g} at t = 0, but the gear does not engage it; "
@@ -81,7 +81,7 @@ void check_stuck_torques(const SpecializedScene& model, const std::string& gear,
     const int k = sc.initial_engaged[j];
     const FrictionElement& e = t.friction_elements[static_cast<std::size_t>(k)];
     const auto run = std::find_if(model.friction.begin(), model.friction.end(), [&](const FrictionRun& f) { return f.element == k; });
-    const double command = run == model.friction.end() ? 0.0 : rt::value(run->command, 0.0);
+    const double command = run == model.friction.end() ? 0.0 : value_at_start(run->command, run->start);
     if (!(command > 0))
       throw InputError(sc.initial_engaged_where,
                        fmt::format("{} engages {}, but [engagement] leaves it open at t = 0; command it engaged from "

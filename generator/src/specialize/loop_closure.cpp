@@ -13,9 +13,9 @@ namespace pogear {
 using GiNaC::ex;
 
 void loop_inputs_of(const Scene& sc, SpecializedSystem& sys) {
-  for (const LoadSpec& l : sc.loads) sys.inputs.push_back({{VariableKind::load_torque, l.body}, std::nullopt});
+  for (const LoadSpec& l : sc.loads) sys.inputs.push_back({{VariableKind::load_torque, l.body}, std::nullopt, std::nullopt});
   for (std::size_t c = 0; c < sc.controllers.size(); ++c)
-    sys.inputs.push_back({{VariableKind::controller_torque, static_cast<int>(c)}, std::nullopt});
+    sys.inputs.push_back({{VariableKind::controller_torque, static_cast<int>(c)}, std::nullopt, std::nullopt});
 }
 
 namespace {
@@ -50,7 +50,7 @@ void close_load(const LoadSpec& l, const Derivation& d, const SpeedOf& speed, Sp
   const Variable constant{VariableKind::load_torque, l.body};
   ex law = -exact_number(l.linear) * speed(l.body);
   if (l.constant != 0 || l.varying) {
-    sys.inputs.push_back({constant, l.varying ? *l.varying : rt::Signal{rt::Constant{-l.constant}}});
+    sys.inputs.push_back({constant, l.varying ? *l.varying : rt::Signal{rt::Constant{-l.constant}}, std::nullopt});
     law += variable_symbol(s, constant);
   }
   if (l.quadratic != 0) {
@@ -74,7 +74,7 @@ void close_load(const LoadSpec& l, const Derivation& d, const SpeedOf& speed, Sp
 void close_controller(const ControllerSpec& k, int i, const SymbolTable& s, const SpeedOf& speed,
                       SpecializedSystem& sys, ClosedLoops& out) {
   const Variable ref{VariableKind::set_point, i}, theta{VariableKind::controller_integral, i};
-  sys.inputs.push_back({ref, k.set_point});
+  sys.inputs.push_back({ref, k.set_point, k.set_point_start});
   sys.states.push_back({theta, 0.0});
   const ex error = variable_symbol(s, ref) - speed(k.measured);
   const ex law = (exact_number(k.kp) * error + exact_number(k.ki) * variable_symbol(s, theta)).expand();
@@ -116,7 +116,7 @@ ClosedLoops close_loops(const Scene& sc, const Derivation& d, bool elastic, cons
     close_controller(sc.controllers[c], static_cast<int>(c), d.symbols, speed, sys, out);
   sys.inputs.insert(sys.inputs.end(), driveline.begin(), driveline.end());
   sys.inputs.insert(sys.inputs.end(), frictions.begin(), frictions.end());
-  for (const int c : sys.limited_controllers) sys.inputs.push_back({{VariableKind::controller_torque, c}, std::nullopt});
+  for (const int c : sys.limited_controllers) sys.inputs.push_back({{VariableKind::controller_torque, c}, std::nullopt, std::nullopt});
   for (std::size_t i = 0; i < sys.rhs.size(); ++i)
     sys.rhs[i] = sys.rhs[i].subs(out.torques, GiNaC::subs_options::no_pattern).expand();
   return out;

@@ -10,6 +10,7 @@
 #include "specialize/parameter_folding.hpp"
 #include "specialize/specialization.hpp"
 #include "specialize/state_torques.hpp"
+#include "specialize/triggered_signals.hpp"
 
 namespace pogear {
 
@@ -364,6 +365,7 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedS
   }
   hs.N = rt::with_quadratic_columns(ns.N, head, Nq);
   for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
+  hs.triggered = triggered_signals(model, system);
   for (std::size_t l = 0; l < system.limited_controllers.size(); ++l) {
     const ControllerSpec& c = model.scene.controllers[static_cast<std::size_t>(system.limited_controllers[l])];
     hs.limits.push_back({c.name, c.torque_min, c.torque_max, ns.limit_x.row(static_cast<Eigen::Index>(l)),

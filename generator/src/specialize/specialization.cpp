@@ -52,8 +52,8 @@ std::vector<Variable> requested_outputs(const Scene& sc, const Topology& t) {
 
 void inputs_of(const Scene& sc, SpecializedSystem& sys) {
   for (const InputSpec& in : sc.inputs) {
-    if (identically_zero(in.signal)) continue;  // a zero input is not an input
-    sys.inputs.push_back({{VariableKind::torque, in.body}, in.signal});
+    if (identically_zero(in.signal, in.start)) continue;  // a zero input is not an input
+    sys.inputs.push_back({{VariableKind::torque, in.body}, in.signal, in.start});
   }
 }
 
@@ -61,8 +61,8 @@ void inputs_of(const Scene& sc, SpecializedSystem& sys) {
 // is zero at every time stays open and leaves no term).
 void friction_inputs_of(const Scene& sc, SpecializedSystem& sys) {
   for (const EngagementSpec& e : sc.engagement) {
-    if (identically_zero(e.command)) continue;
-    sys.inputs.push_back({{VariableKind::friction_torque, e.element}, std::nullopt});
+    if (identically_zero(e.command, e.start)) continue;
+    sys.inputs.push_back({{VariableKind::friction_torque, e.element}, std::nullopt, std::nullopt});
     sys.friction_elements.push_back(e.element);
   }
 }
@@ -158,7 +158,7 @@ void start_controllers_at_given_torques(const Scene& sc, const Derivation& d, co
                                                  numbers))) * x0[j];
       }
     }
-    x0[gear_states + c] = (given->second - k.kp * (rt::value(k.set_point, 0.0) - omega)) / k.ki;
+    x0[gear_states + c] = (given->second - k.kp * (value_at_start(k.set_point, k.set_point_start) - omega)) / k.ki;
   }
 }
 
@@ -421,10 +421,10 @@ SpecializedScene specialize(const Scene& scene) {
   if (scene.compare_rigid) model.rigid = specialize_system(scene, model.derivation, model.values, false);
   const Topology& t = model.derivation.topology;
   for (const EngagementSpec& e : scene.engagement) {
-    if (identically_zero(e.command)) continue;
+    if (identically_zero(e.command, e.start)) continue;
     const FrictionElement& f = t.friction_elements[static_cast<std::size_t>(e.element)];
     model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter),
-                                         static_friction_ratio(t, f), e.command, f.one_way});
+                                         static_friction_ratio(t, f), e.command, f.one_way, e.start});
   }
   if (const std::optional<StartState> start = start_state(model)) {
     set_initial_values(start->main, model.main);

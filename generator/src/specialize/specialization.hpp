@@ -59,6 +59,7 @@ struct StatePort {
 struct InputPort {
   Variable variable;
   std::optional<rt::Signal> signal;
+  std::optional<SignalStart> start;  // a signal that starts on an event
 };
 
 // An output: its value in the system's states and inputs (and dx/dt when the system says so).
@@ -121,6 +122,7 @@ struct FrictionRun {
   double capacity = 0, static_ratio = 1;
   rt::Signal command;
   bool one_way = false;
+  std::optional<SignalStart> start;  // a command that starts on an event
 };
 
 struct SpecializedScene {

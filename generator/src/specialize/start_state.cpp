@@ -23,7 +23,7 @@ GiNaC::matrix as_column(const std::vector<GiNaC::numeric>& v) {
 
 std::vector<GiNaC::numeric> torques_at_start(const Scene& sc, std::size_t bodies) {
   std::vector<GiNaC::numeric> tau(bodies, 0);
-  for (const InputSpec& in : sc.inputs) tau[static_cast<std::size_t>(in.body)] += exact_number(rt::value(in.signal, 0.0));
+  for (const InputSpec& in : sc.inputs) tau[static_cast<std::size_t>(in.body)] += exact_number(value_at_start(in.signal, in.start));
   return tau;
 }
 

@@ -29,7 +29,7 @@ void driveline_inputs_of(const Scene& sc, SpecializedSystem& sys) {
   if (sc.engine) sys.driveline.push_back({VariableKind::engine_torque, 0});
   if (sc.converter)
     for (const VariableKind kind : {VariableKind::pump_torque, VariableKind::turbine_torque}) sys.driveline.push_back({kind, 0});
-  for (const Variable v : sys.driveline) sys.inputs.push_back({v, std::nullopt});
+  for (const Variable v : sys.driveline) sys.inputs.push_back({v, std::nullopt, std::nullopt});
   if (!sys.driveline.empty()) sys.nonlinear = true;
 }
 

@@ -196,11 +196,11 @@ Scene response_scene(const Scene& scene, const std::vector<Variable>& inputs, co
   // exactly these (a zero input would not be an input).
   Scene s = scene;
   s.inputs.clear();
-  for (const Variable u : inputs) s.inputs.push_back(InputSpec{u.index, rt::Constant{1}, {}});
+  for (const Variable u : inputs) s.inputs.push_back(InputSpec{u.index, rt::Constant{1}, {}, std::nullopt});
   s.outputs = outputs;
   // The engaged elements stuck throughout, the others open (out of the equations).
   s.engagement.clear();
-  for (const int k : engaged) s.engagement.push_back(EngagementSpec{k, rt::Constant{1}, {}});
+  for (const int k : engaged) s.engagement.push_back(EngagementSpec{k, rt::Constant{1}, {}, std::nullopt});
   return s;
 }
 
