@@ -109,7 +109,7 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   d.triggers_live = true;
   switch (c.method.solver) {
     case Solver::exact: {
-      ExactStepper s(sys, d);
+      ExactStepper s(sys, d, c.method.options.max_steps);
       return run_modes(sys, d, s, grid, obs, on_event);
     }
     case Solver::dopri5:

@@ -20,7 +20,10 @@ class ExactStepper {
   static constexpr bool restarts_each_step = true;  // each step starts from the state as resolved
   static constexpr bool scans_for_dips = false;     // it halves a step instead
 
-  ExactStepper(const HybridSystem& sys, HybridData& d) : sys_(sys), d_(d) {
+  // max_steps bounds the run's steps: a mode whose event-check step is tiny (inertias far apart make
+  // its stuck torques stiff) would otherwise step for ever.
+  ExactStepper(const HybridSystem& sys, HybridData& d, long max_steps = 10000000)
+      : sys_(sys), d_(d), max_steps_(max_steps), steps_before_(d.steps) {
     const Eigen::Index na = d.nx + 2 * d.ne;
     for (Eigen::VectorXd* v : {&z_, &term_, &next_}) v->resize(na);
     for (Eigen::VectorXd* v : {&v0_, &w_, &dw_, &dv_}) v->resize(d.nw);
@@ -39,18 +42,31 @@ class ExactStepper {
     h_ = t_stop - t;
     if (h_ > d_.hold_step) h_ /= std::ceil(h_ / d_.hold_step - 1e-9);
     depth_ = 0;
+    needed_ = 0;
     try_whole_ = false;
     check_ = mode_of(sys_, d_.cache, d_.mask).event_step;
     if (h_ > check_ && any_watched(d_)) {
       if (t_stop != unproven_until_)
         try_whole_ = true;
       else
-        h_ /= std::ceil(h_ / check_ - 1e-9);
+        divide_into_checks(t);
     }
   }
 
-  bool step(double t, const Eigen::VectorXd& v0, EventPoint& end, StepEnd& e, std::string&) {
+  bool step(double t, const Eigen::VectorXd& v0, EventPoint& end, StepEnd& e, std::string& error) {
     const auto& m = mode_of(sys_, d_.cache, d_.mask);
+    if (needed_ > 0) {
+      error = "exact stepping cannot reach t = " + detail::num(t_stop_) + " from t = " + detail::num(t) +
+              ": the mode's event-check step of " + detail::num(check_) + " s needs " + detail::num(needed_) +
+              " steps, beyond max_steps = " + std::to_string(max_steps_) +
+              " (its stuck torques change that fast: check for inertias far apart); raise max_steps, or use "
+              "--solver implicit";
+      return false;
+    }
+    if (d_.steps - steps_before_ >= max_steps_) {
+      error = "exact stepping stopped at t = " + detail::num(t) + ": max_steps = " + std::to_string(max_steps_) + " reached";
+      return false;
+    }
     v0_ = v0;
     if (try_whole_) {
       try_whole_ = false;
@@ -67,7 +83,8 @@ class ExactStepper {
         return true;
       }
       unproven_until_ = t_stop_;
-      h_ /= std::ceil(h_ / check_ - 1e-9);
+      divide_into_checks(t);
+      if (needed_ > 0) return step(t, v0, end, e, error);
     }
     const double t1 = t + h_;
     const bool before = stop_is_break_ && t1 == t_stop_;
@@ -209,6 +226,16 @@ class ExactStepper {
 
   const HybridSystem& sys_;
   HybridData& d_;
+  // Equal steps of at most check_ to t_stop_, unless they exceed what is left of max_steps
+  // (needed_ is then their count, and the next step refuses).
+  void divide_into_checks(double t) {
+    const double n = std::ceil((t_stop_ - t) / check_ - 1e-9);
+    needed_ = static_cast<double>(d_.steps - steps_before_) + n > static_cast<double>(max_steps_) ? n : 0.0;
+    if (needed_ == 0) h_ /= std::ceil(h_ / check_ - 1e-9);
+  }
+
+  long max_steps_, steps_before_;  // the bound on this run's steps, and the workspace's count before it
+  double needed_ = 0;
   double t_stop_ = 0, h_ = 0, check_ = 0;
   double unproven_until_ = -1;  // the end of the sample period whose whole step was not clear
   bool stop_is_break_ = false, try_whole_ = false;

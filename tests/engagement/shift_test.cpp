@@ -234,5 +234,32 @@ TEST(Shift, SimpsonUpshiftIsAClutchToClutchShift) {
   EXPECT_NEAR(x(2), 0, 1e-12 * std::abs(x(0)));
 }
 
+// A carrier of 1e-30 kg m^2 makes the gear-shift scene's stuck torques change within femtoseconds:
+// exact stepping then checks for events every few 1e-7 s, millions of steps a second of the run.
+// max_steps bounds them (the run took minutes, with no bound): it stops with the reason, up front
+// where the rest of a sample period alone needs more steps than are left.
+TEST(Shift, ExactSteppingOfAStiffModeStopsAtMaxSteps) {
+  std::string text = read_text(source_path("models/scenes/gearshift_planetary.toml"));
+  text.replace(text.find("[inputs]"), 8, "[parameters]\nJ_c = \"1e-30*kg*m^2\"\n\n[inputs]");
+  const SpecializedScene model = specialize(parse_scene_text(text, source_path("models/scenes/gearshift_planetary.toml")));
+  const NumericSystem ns = numeric_system(model, model.main);
+  for (const long max_steps : {1000L, 20L}) {
+    SCOPED_TRACE(max_steps);
+    rt::HybridMethod method;
+    method.options.max_steps = max_steps;
+    const Recorded r = run(hybrid_system(model, model.main, ns), ns.x0, 0.1, 1e-3, method);
+    ASSERT_FALSE(r.status.ok);
+    EXPECT_NE(r.status.message.find("max_steps = " + std::to_string(max_steps)), std::string::npos) << r.status.message;
+    EXPECT_LT(r.t.back(), 0.1);
+  }
+  // Samples 50 ms apart: the first period alone needs thousands of event-check steps.
+  rt::HybridMethod method;
+  method.options.max_steps = 1000;
+  const Recorded r = run(hybrid_system(model, model.main, ns), ns.x0, 0.1, 0.05, method);
+  ASSERT_FALSE(r.status.ok);
+  EXPECT_NE(r.status.message.find("event-check step"), std::string::npos) << r.status.message;
+  EXPECT_NE(r.status.message.find("beyond max_steps = 1000"), std::string::npos) << r.status.message;
+}
+
 }  // namespace
 }  // namespace pogear::test
