@@ -130,12 +130,12 @@ TEST(ShiftMetrics, SimpsonUpshiftAgainstAnIndependentReference) {
 TEST(ShiftMetrics, SamplePeriodMovesOnlyTheSampledPeaks) {
   const fs::path dir = temp_dir("shift_metrics_sample");
   write_text(dir / "simpson_1_2_upshift.toml",
-             replaced(read_text(source_path("models/scenes/simpson_1_2_upshift.toml")),
-                      {{"../simpson_3speed.toml", source_path("models/simpson_3speed.toml")},
-                       {"simpson_B2_release.csv", source_path("models/scenes/simpson_B2_release.csv")},
-                       {"simpson_B1_apply.csv", source_path("models/scenes/simpson_B1_apply.csv")},
-                       {"horizon = \"2*s\"", "horizon = \"1.2*s\""},
-                       {"sample = \"1*ms\"", "sample = \"0.1*ms\""}}));
+             with_edits(read_text(source_path("models/scenes/simpson_1_2_upshift.toml")),
+                        {{"../simpson_3speed.toml", source_path("models/simpson_3speed.toml")},
+                         {"simpson_B2_release.csv", source_path("models/scenes/simpson_B2_release.csv")},
+                         {"simpson_B1_apply.csv", source_path("models/scenes/simpson_B1_apply.csv")},
+                         {"horizon = \"2*s\"", "horizon = \"1.2*s\""},
+                         {"sample = \"1*ms\"", "sample = \"0.1*ms\""}}));
   const Command fine = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / "simpson_1_2_upshift.toml").string() +
                                    " -o " + (dir / "fine").string());
   ASSERT_EQ(fine.status, 0) << fine.err;

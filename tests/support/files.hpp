@@ -29,7 +29,7 @@ inline std::string read_text(const std::filesystem::path& path) {
 
 // `text` with the first occurrence of each `from` replaced by its `to`, in order (a shipped scene
 // edited for a test); a `from` that is not there fails the test.
-inline std::string replaced(std::string text, const std::vector<std::pair<std::string, std::string>>& edits) {
+inline std::string with_edits(std::string text, const std::vector<std::pair<std::string, std::string>>& edits) {
   for (const auto& [from, to] : edits) {
     const auto at = text.find(from);
     if (at == std::string::npos) {
