@@ -83,12 +83,12 @@ TEST_P(SimulateCommand, FinalStateMatchesOneMatrixExponentialOfTheDerivedNumbers
 INSTANTIATE_TEST_SUITE_P(Paper, SimulateCommand, ::testing::Values("paper_one_stage", "paper_two_stage"));
 
 // Files of an earlier run of the scene that this run does not write (events of brakes since taken
-// out, a shift figure) are listed, and left alone: pogear cannot tell them from a user's file.
+// out, a shift figure and its metrics) are listed, and left alone: pogear cannot tell them from a user's file.
 TEST(SimulateOutputs, FilesOfAnEarlierRunAreListedNotRemoved) {
   const auto dir = temp_dir("stale_outputs");
   const auto an_hour_ago = std::filesystem::file_time_type::clock::now() - std::chrono::hours(1);
   for (const std::string f : {"paper_one_stage.csv", "paper_one_stage.events.csv", "paper_one_stage.shift.svg",
-                              "paper_one_stage.notes.txt"}) {
+                              "paper_one_stage.shift.json", "paper_one_stage.notes.txt"}) {
     write_text((dir / f).string(), "from an earlier run\n");
     std::filesystem::last_write_time(dir / f, an_hour_ago);
   }
@@ -96,7 +96,7 @@ TEST(SimulateOutputs, FilesOfAnEarlierRunAreListedNotRemoved) {
                                   source_path("models/scenes/paper_one_stage.toml") + " -o " + dir.string() +
                                   " --interpreted");
   ASSERT_EQ(sim.status, 0) << sim.out << sim.err;
-  for (const std::string f : {"paper_one_stage.events.csv", "paper_one_stage.shift.svg"}) {
+  for (const std::string f : {"paper_one_stage.events.csv", "paper_one_stage.shift.svg", "paper_one_stage.shift.json"}) {
     EXPECT_NE(sim.out.find("note: " + (dir / f).string() + " is from an earlier run; this run did not write it\n"),
               std::string::npos) << sim.out;
     EXPECT_EQ(read_text((dir / f).string()), "from an earlier run\n");

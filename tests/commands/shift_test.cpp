@@ -25,16 +25,11 @@ namespace {
 TEST(Shift, InlineCommandTablesRunAsTheirCsvFiles) {
   namespace fs = std::filesystem;
   const fs::path dir = temp_dir("inline_tables");
-  std::string text = read_text(source_path("models/scenes/simpson_1_2_upshift.toml"));
-  for (const auto& [from, to] :
-       {std::pair<std::string, std::string>{"\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
-        {"{ table = \"simpson_B2_release.csv\" }", "{ table = [[0, 1], [\"1000*ms\", 1], [1.15, 0]] }"},
-        {"{ table = \"simpson_B1_apply.csv\" }", "{ table = [[\"0*s\", 0], [1, 0], [\"1.15*s\", \"1\"]] }"}}) {
-    const auto at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  }
-  write_text(dir / "simpson_1_2_upshift.toml", text);
+  write_text(dir / "simpson_1_2_upshift.toml",
+             with_edits(read_text(source_path("models/scenes/simpson_1_2_upshift.toml")),
+                        {{"\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
+                         {"{ table = \"simpson_B2_release.csv\" }", "{ table = [[0, 1], [\"1000*ms\", 1], [1.15, 0]] }"},
+                         {"{ table = \"simpson_B1_apply.csv\" }", "{ table = [[\"0*s\", 0], [1, 0], [\"1.15*s\", \"1\"]] }"}}));
   for (const auto& [scene, out] : {std::pair<std::string, std::string>{source_path("models/scenes/simpson_1_2_upshift.toml"), "files"},
                                    {(dir / "simpson_1_2_upshift.toml").string(), "inline"}}) {
     const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + scene + " --interpreted -o " +

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -24,6 +25,20 @@ inline std::string read_text(const std::filesystem::path& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// `text` with the first occurrence of each `from` replaced by its `to`, in order (a shipped scene
+// edited for a test); a `from` that is not there fails the test.
+inline std::string with_edits(std::string text, const std::vector<std::pair<std::string, std::string>>& edits) {
+  for (const auto& [from, to] : edits) {
+    const auto at = text.find(from);
+    if (at == std::string::npos) {
+      ADD_FAILURE() << "no `" << from << "` to replace";
+      continue;
+    }
+    text.replace(at, from.size(), to);
+  }
+  return text;
 }
 
 inline void write_text(const std::filesystem::path& path, const std::string& text) {

@@ -3,7 +3,6 @@
 // the file is written, so a failed or cut-short drawing never replaces a good figure.
 #include "common/gnuplot.hpp"
 
-#include <charconv>
 #include <fstream>
 #include <stdexcept>
 
@@ -11,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "common/child_process.hpp"
+#include "common/csv_rows.hpp"
 #include "common/output_file.hpp"
 
 namespace pogear {
@@ -26,26 +26,6 @@ std::string gnuplot_label(const std::string& name) {
   return sub.empty() ? base : base + "_{" + escaped + "}";
 }
 
-namespace {
-
-// One CSV line of numbers, or nothing for the header, a comment or a row cut short.
-bool parse_row(const std::string& line, std::size_t width, std::vector<double>& row) {
-  row.clear();
-  const char* p = line.data();
-  const char* end = p + line.size();
-  while (p < end) {
-    double v = 0;
-    const auto [next, ec] = std::from_chars(p, end, v);
-    if (ec != std::errc()) return false;
-    row.push_back(v);
-    p = next;
-    if (p < end && *p != ',') return false;
-    if (p < end) ++p;
-  }
-  return width == 0 || row.size() == width;
-}
-
-}  // namespace
 
 std::string gnuplot_datablock(const std::string& name, const std::vector<std::vector<double>>& rows) {
   std::string s = "$" + name + " << EOD\n";
@@ -78,7 +58,7 @@ std::vector<std::vector<double>> thinned_csv_rows(const std::string& path, doubl
   std::vector<double> row;
   std::size_t width = 0;
   while (std::getline(in, line)) {
-    if (!parse_row(line, width, row) || row.empty()) continue;
+    if (!parse_csv_numbers(line, width, row) || row.empty()) continue;
     width = row.size();
     const long b = horizon > 0 ? static_cast<long>(row[0] / horizon * static_cast<double>(plot_buckets)) : 0;
     if (b != current) {

@@ -21,6 +21,7 @@
 #include "run/parameter_options.hpp"
 #include "common/output_file.hpp"
 #include "run/plot.hpp"
+#include "run/shift_metrics.hpp"
 #include "run/simulator_cache.hpp"
 
 namespace pogear {
@@ -71,7 +72,7 @@ void list_stale_outputs(const std::string& name, const std::string& dir, fs::fil
   started -= std::chrono::seconds(1);
   for (const char* suffix : {".csv", ".rigid.csv", ".events.csv", ".rigid.events.csv", ".velocities.svg",
                              ".forces.svg", ".shafts.svg", ".controllers.svg", ".vehicle.svg",
-                             ".shift.svg"}) {
+                             ".shift.svg", ".shift.json"}) {
     const fs::path path = fs::path(dir) / (name + suffix);
     std::error_code ec;
     if (!fs::is_regular_file(fs::symlink_status(path, ec))) continue;
@@ -130,6 +131,7 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   }
   if (status != 0) return status;
   for (const auto& svg : plot_scene(model, options.out_dir)) out << "wrote " << svg << "\n";
+  if (!model.friction.empty()) write_shift_metrics(model, options.out_dir, out);
   list_stale_outputs(model.scene.name, options.out_dir, started, out);
   return 0;
 }
