@@ -93,6 +93,14 @@ TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
     };
     EXPECT_TRUE(has("command_B1"));
     EXPECT_TRUE(has("tau_i"));
+    if (suffix.empty()) {
+      // The shift metrics read B1's command as the run applied it: its window ends 0.15 s after the start.
+      const std::string json = read_text(dir / "compiled" / "simpson_1_2_upshift.shift.json");
+      const auto key = json.find("\"commands_end_s\": ");
+      ASSERT_NE(key, std::string::npos) << json;
+      const auto start = std::find_if(a.begin(), a.end(), [](const auto& r) { return r.size() == 4 && r[1] == "command_B1"; });
+      EXPECT_NEAR(std::stod(json.substr(key + 18)), std::stod((*start)[0]) + 0.15, 1e-12);  // a sum in doubles
+    }
     for (std::size_t i = 1; i < a.size(); ++i) {
       EXPECT_EQ(std::vector<std::string>(a[i].begin() + 1, a[i].end()), std::vector<std::string>(b[i].begin() + 1, b[i].end()));
       // Event times: located to a few ulps on each path's own trajectory, which differ by rounding.

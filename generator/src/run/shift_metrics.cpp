@@ -17,6 +17,7 @@
 #include "common/csv_rows.hpp"
 #include "common/json_text.hpp"
 #include "common/output_file.hpp"
+#include "specialize/triggered_signals.hpp"
 
 namespace pogear {
 
@@ -406,10 +407,16 @@ std::vector<std::string> shift_summary_lines(const ShiftMetrics& m) {
 void write_shift_metrics(const SpecializedScene& model, const std::string& dir, std::ostream& out) {
   namespace fs = std::filesystem;
   const std::string name = model.scene.name;
+  const std::vector<RunEvent> events = read_run_events((fs::path(dir) / (name + ".events.csv")).string());
+  // A command that started on an event, as the run applied it (its start in the events file).
   std::vector<ShiftElement> elements;
-  for (const FrictionRun& f : model.friction) elements.push_back({f.name, f.command});
-  ShiftMetrics m = measure_shifts(read_run_table((fs::path(dir) / (name + ".csv")).string()),
-                                  read_run_events((fs::path(dir) / (name + ".events.csv")).string()), elements,
+  for (const FrictionRun& f : model.friction) {
+    double started = std::numeric_limits<double>::infinity();
+    for (const RunEvent& e : events)
+      if (e.element == "command_" + f.name && e.to == "started") started = e.t;
+    elements.push_back({f.name, signal_as_run(f.command, f.start, started, model.scene.horizon)});
+  }
+  ShiftMetrics m = measure_shifts(read_run_table((fs::path(dir) / (name + ".csv")).string()), events, elements,
                                   model.scene.horizon);
   m.scene = name;
   const std::string path = (fs::path(dir) / (name + ".shift.json")).string();

@@ -29,4 +29,32 @@ std::vector<rt::TriggeredSignal> triggered_signals(const SpecializedScene& model
   return out;
 }
 
+rt::Signal signal_as_run(const rt::Signal& signal, const std::optional<SignalStart>& start, double started, double horizon) {
+  if (!start) return signal;
+  const rt::Signal before = start->before ? *start->before : rt::Signal{rt::Constant{rt::value(rt::waiting(signal), 0.0)}};
+  if (!(started < horizon)) return before;
+  rt::Signal after = signal;
+  rt::move_times(after, signal, started);
+  rt::Table table;
+  auto add = [&](double t, double v) {
+    table.t.push_back(t);
+    table.v.push_back(v);
+  };
+  // Each piece through its ends: the left value at a breakpoint, then the right one where it jumps.
+  auto pieces = [&](const rt::Signal& s, double from, double to) {
+    for (const double b : rt::breakpoints(s, from, to)) {
+      const double left = rt::value(s, std::nextafter(b, from)), right = rt::value(s, b);
+      add(b, left);
+      if (right != left) add(b, right);
+    }
+  };
+  add(0, rt::value(before, 0.0));
+  pieces(before, 0, started);
+  if (started > 0) add(started, rt::value(before, std::nextafter(started, 0.0)));
+  add(started, rt::value(after, started));
+  pieces(after, started, horizon);
+  add(horizon, rt::value(after, horizon));
+  return table;
+}
+
 }  // namespace pogear

@@ -14,4 +14,11 @@ namespace pogear {
 // among model.friction too.
 std::vector<rt::TriggeredSignal> triggered_signals(const SpecializedScene& model, const SpecializedSystem& sys);
 
+// A signal as a run applied it, once its start is known (`started`, infinite when it never came): its
+// `before` until then, then its own times from there; a table through the pieces of both (a jump at
+// the start), or the signal itself when it does not wait for an event. For what the run's files
+// are read against (shift metrics); piecewise linear signals only (a started one is, and so is a
+// command's `before`).
+rt::Signal signal_as_run(const rt::Signal& signal, const std::optional<SignalStart>& start, double started, double horizon);
+
 }  // namespace pogear
