@@ -109,6 +109,76 @@ TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
   }
 }
 
+// The torque cut that ends at lock-up (issue 33: a cut on a clock ended 65 ms late and left a hole
+// in the output torque). The vehicle upshift with its input cut from 150 to 100 N m at 1.02 s, the
+// cut ending with a 20 ms ramp from the instant B1 locks, against the same shift without a cut: in
+// the 60 ms from 40 ms after lock-up the half-shafts' mean torque is the uncut run's to within the
+// half-shafts' own ringing there (their half peak-to-peak in the uncut run). A cut that ends on the
+// clock 100 ms after the lock-up leaves a hole deeper than that ringing, so the comparison fails
+// where the hole is.
+TEST(Shift, TorqueCutEndingAtLockUpLeavesNoHole) {
+  namespace fs = std::filesystem;
+  const fs::path dir = temp_dir("torque_cut");
+  std::string text = read_text(source_path("models/scenes/simpson_vehicle_upshift.toml"));
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{
+                                     "\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
+                                 {"\"simpson_B2_release.csv\"", "\"" + source_path("models/scenes/simpson_B2_release.csv") + "\""},
+                                 {"\"simpson_B1_apply.csv\"", "\"" + source_path("models/scenes/simpson_B1_apply.csv") + "\""}}) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  const std::string cut = "[0, \"150*Nm\"], [\"1.02*s\", \"150*Nm\"], [\"1.03*s\", \"100*Nm\"]";
+  const std::vector<std::pair<std::string, std::string>> scenes = {
+      {"uncut", "\"150*Nm\""},
+      {"at_lockup", "{ table = [[0, \"100*Nm\"], [\"20*ms\", \"150*Nm\"]], when = \"B1 stuck\", before = { table = [" + cut + "] } }"},
+      {"on_the_clock", "{ table = [" + cut + ", [\"1.176*s\", \"100*Nm\"], [\"1.196*s\", \"150*Nm\"]] }"}};
+  std::vector<Csv> runs;
+  double lockup = 0;
+  for (const auto& [name, tau] : scenes) {
+    std::string scene = text;
+    scene.replace(scene.find("\"150*Nm\""), 8, tau);
+    write_text(dir / (name + ".toml"), scene);
+    const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / (name + ".toml")).string() +
+                                  " --interpreted -o " + (dir / name).string());
+    ASSERT_EQ(c.status, 0) << c.err;
+    runs.push_back(read_csv((dir / name / "simpson_vehicle_upshift.csv").string()));
+    if (name == "at_lockup") {
+      const std::string events = read_text(dir / name / "simpson_vehicle_upshift.events.csv");
+      const auto at = events.find(",tau_i,waiting,started");
+      ASSERT_NE(at, std::string::npos) << events;
+      lockup = std::stod(events.substr(events.rfind('\n', at) + 1));
+      EXPECT_NE(events.find(events.substr(events.rfind('\n', at) + 1, at - events.rfind('\n', at) - 1) + ",B1,slipping,stuck"),
+                std::string::npos) << events;  // the cut ends at B1's lock-up itself
+    }
+  }
+  ASSERT_GT(lockup, 1.03);
+  ASSERT_LT(lockup + 0.1, 1.176);  // the clock's end comes after the window
+  struct Window {
+    double mean = 0, lo = 1e300, hi = -1e300;
+  };
+  auto window = [&](const Csv& csv) {
+    const std::size_t col = csv.column("T_half_shafts");
+    EXPECT_LT(col, csv.header.size());
+    Window w;
+    int n = 0;
+    for (const auto& row : csv.rows)
+      if (row[0] >= lockup + 0.04 && row[0] <= lockup + 0.1) {
+        w.mean += row[col];
+        w.lo = std::min(w.lo, row[col]);
+        w.hi = std::max(w.hi, row[col]);
+        ++n;
+      }
+    EXPECT_GT(n, 50);
+    w.mean /= n;
+    return w;
+  };
+  const Window uncut = window(runs[0]), at_lockup = window(runs[1]), on_the_clock = window(runs[2]);
+  const double ringing = (uncut.hi - uncut.lo) / 2;
+  EXPECT_LT(std::abs(at_lockup.mean - uncut.mean), ringing);
+  EXPECT_GT(uncut.mean - on_the_clock.mean, ringing);  // the hole the clock leaves
+}
+
 // `pogear simulate` compiles the scene's simulator; `--interpreted` runs the reference numeric
 // model instead. Both step the same modes, so events and samples agree to rounding.
 TEST(Shift, CompiledSimulatorAgreesWithTheInterpretedRunAcrossEvents) {
