@@ -60,6 +60,11 @@ TEST_F(VehicleErrors, GradeThatIsNeitherAnAngleNorATable) {
       R"~(scene.toml:19:9: error: grade is an angle, e.g. "3*deg", or { table = "file.csv" } with two columns: time [s], grade [deg])~");
 }
 
+TEST_F(VehicleErrors, GradeTableWrittenInTheScene) {
+  expect_scene_error(with(with_vehicle, {{"final_drive = 3.2\n", "final_drive = 3.2\ngrade = { table = [[0, \"2*deg\"]] }\n"}}),
+      R"~(scene.toml:19:19: error: a grade's table is a CSV file, { table = "grade.csv" } with two columns: time [s], grade [deg])~");
+}
+
 TEST_F(VehicleErrors, OutsideTheRange) {
   expect_scene_error(with(with_vehicle, {{"wheel_radius = \"0.3*m\"", "wheel_radius = \"1e120*m\""}}),
       R"~(scene.toml:14:1: error: [vehicle] makes J_vehicle = 1.46484e+242 (SI), outside the range pogear computes with, 1e-30 to 1e+30; check the vehicle's values and their units)~");

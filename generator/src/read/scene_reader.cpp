@@ -205,6 +205,8 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
     const toml::node* v = get("table");
     if (!v || t.size() != 1)
       r.fail(n, "grade is an angle, e.g. \"3*deg\", or { table = \"file.csv\" } with two columns: time [s], grade [deg]");
+    if (v->is_array())
+      r.fail(*v, "a grade's table is a CSV file, { table = \"grade.csv\" } with two columns: time [s], grade [deg]");
     const std::string file = r.string(*v, "table");
     const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : scene_dir / file;
     rt::Signal table = read_table_signal(r, *v, path.lexically_normal().string(),
