@@ -11,11 +11,9 @@
 #include "bench_common.hpp"
 #include "hybrid_modes_ref.hpp"
 
-// The scene's generated simulator, main renamed: its signals and friction elements are functions of
-// the generated main, and every method here must run exactly them.
-#define main simpson_generated_main
-#include "simpson_1_2_upshift_main.cpp"
-#undef main
+// The scene's generated header: its signals and friction elements as the scene writes them, which
+// every method here must run exactly.
+#include "simpson_1_2_upshift.hpp"
 
 #ifdef BENCH_WITH_CVODE
 #include <cvode/cvode.h>
@@ -191,8 +189,8 @@ EventsProblem make_problem() {
   ep.hs.M = M;
   ep.hs.N = N;
   sys.slip_matrix(p, ep.hs.S);
-  ep.hs.elements = friction_elements();
-  ep.hs.inputs = Elastic_signals();
+  ep.hs.elements = gen::friction_elements();
+  ep.hs.inputs = gen::Elastic_signals();
   ep.x0 = gen::Elastic::initial_state();
   std::vector<rt::Signal> all = ep.hs.inputs;
   for (const auto& e : ep.hs.elements) all.push_back(e.command);
@@ -589,7 +587,7 @@ int main(int argc, char** argv) {
   Checker chk{o.check};
   Results res(o.out + "/events_cpp.csv", kEventsHeader);
   std::printf("events: %s, elastic (%d states, %zu friction elements)\n", std::string(gen::scene_name).c_str(),
-              gen::Elastic::nx, friction_elements().size());
+              gen::Elastic::nx, gen::friction_elements().size());
   const auto t0 = std::chrono::steady_clock::now();
   const EventsProblem ep = make_problem();
   std::printf("  long-double reference: %zu events, %.2f s\n", ep.ref_events.size(), seconds_since(t0));

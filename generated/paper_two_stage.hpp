@@ -9,8 +9,11 @@
 
 #include <array>
 #include <string_view>
+#include <vector>
 
 #include <Eigen/Core>
+
+#include <pogear/signals.hpp>
 
 namespace pogear_generated::paper_two_stage {
 
@@ -390,5 +393,15 @@ struct Rigid {
     L(1, 1) = 1.0466460393924981;
   }
 };
+
+// Input signals of Elastic, in the order of its inputs.
+inline std::vector<pogear::rt::Signal> Elastic_signals() {
+  return {/* tau_s */ pogear::rt::Constant{100.0}};
+}
+
+// Input signals of Rigid, in the order of its inputs.
+inline std::vector<pogear::rt::Signal> Rigid_signals() {
+  return {/* tau_s */ pogear::rt::Constant{100.0}};
+}
 
 }  // namespace pogear_generated::paper_two_stage

@@ -6,7 +6,6 @@
 
 #include <pogear/parameters.hpp>
 #include <pogear/run_system.hpp>
-#include <pogear/signals.hpp>
 
 namespace scene = pogear_generated::paper_two_stage;
 
@@ -14,16 +13,6 @@ namespace {
 
 // The solvers compiled into this simulator (`pogear generate --solvers`): each costs compile time.
 using Solvers = pogear::rt::Solvers<pogear::rt::Solver::exact, pogear::rt::Solver::rk4, pogear::rt::Solver::dopri5, pogear::rt::Solver::implicit>;
-
-// Input signals of Elastic, in the order of its inputs.
-std::vector<pogear::rt::Signal> Elastic_signals() {
-  return {/* tau_s */ pogear::rt::Constant{100.0}};
-}
-
-// Input signals of Rigid, in the order of its inputs.
-std::vector<pogear::rt::Signal> Rigid_signals() {
-  return {/* tau_s */ pogear::rt::Constant{100.0}};
-}
 
 }  // namespace
 
@@ -40,9 +29,9 @@ int main(int argc, char** argv) {
   scene::Elastic::Params params;
   if (!pogear::rt::set_parameters(run.params, {}, argv[0])) return 1;
   const scene::Elastic system;
-  int status = pogear::rt::run_system<Solvers>(system, params, Elastic_signals(), scene::Elastic::initial_state(), run, "");
+  int status = pogear::rt::run_system<Solvers>(system, params, scene::Elastic_signals(), scene::Elastic::initial_state(), run, "");
   scene::Rigid::Params rigid_params;
   if (status == 0)
-    status = pogear::rt::run_system<Solvers>(scene::Rigid{}, rigid_params, Rigid_signals(), scene::Rigid::initial_state(), run, ".rigid");
+    status = pogear::rt::run_system<Solvers>(scene::Rigid{}, rigid_params, scene::Rigid_signals(), scene::Rigid::initial_state(), run, ".rigid");
   return status;
 }

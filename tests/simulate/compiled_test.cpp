@@ -101,7 +101,12 @@ TEST(GeneratedHeader, ListsEveryParameterWithItsOriginAndTheProvenance) {
   EXPECT_NE(h.find("model_digest = \"" + m.derivation.topology.digest + "\";"), npos);
   ASSERT_EQ(m.scene.digest.size(), 16u);
   EXPECT_NE(h.find("scene_digest = \"" + m.scene.digest + "\";"), npos);
-  EXPECT_EQ(h.find("#include <pogear/"), npos) << "the header needs Eigen alone";
+  // Eigen and the runtime's signals alone (the scene's signals are in the header): no other runtime header.
+  const auto include = h.find("#include <pogear/");
+  ASSERT_NE(include, npos);
+  EXPECT_EQ(h.substr(include, 31), "#include <pogear/signals.hpp>\n\n");
+  EXPECT_EQ(h.find("#include <pogear/", include + 1), npos) << "the header needs Eigen and pogear/signals.hpp alone";
+  EXPECT_NE(h.find("inline std::vector<pogear::rt::Signal> Elastic_signals() {"), npos);
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ CppText effects_list(const Effects& e) {
 
 CppText signals_function(const SpecializedSystem& sys, const SymbolTable& symbols, const CppText& name) {
   CppText s = code("// Input signals of {}, in the order of its inputs.\n", name);
-  s += code("std::vector<pogear::rt::Signal> {}_signals() {{\n  return {{", name);
+  s += code("inline std::vector<pogear::rt::Signal> {}_signals() {{\n  return {{", name);
   bool first = true;
   for (const InputPort& u : sys.inputs) {
     if (!u.signal) continue;  // the inputs with signals come first
@@ -54,7 +54,7 @@ CppText signals_function(const SpecializedSystem& sys, const SymbolTable& symbol
 CppText friction_function(const SpecializedScene& model) {
   CppText s = code("// Brakes and clutches engaged by the scene, in the order of the systems' friction torque inputs:\n"
                    "// name, kinetic torque capacity [N m], static / kinetic friction, engagement command p(t), one-way.\n");
-  s += code("std::vector<pogear::rt::FrictionElementData> friction_elements() {{\n  return {{");
+  s += code("inline std::vector<pogear::rt::FrictionElementData> friction_elements() {{\n  return {{");
   for (std::size_t i = 0; i < model.friction.size(); ++i) {
     const FrictionRun& f = model.friction[i];
     s += (i ? code(",\n          ") : CppText{}) +
@@ -76,7 +76,7 @@ CppText limit_code(double v) {
 CppText torque_limits_function(const SpecializedScene& model, const SpecializedSystem& sys, const CppText& name) {
   CppText s = code("// Controllers with torque limits of {}, in the order of its last inputs: name, torque_min and\n"
                    "// torque_max [N m].\n", name);
-  s += code("std::vector<pogear::rt::TorqueLimitData> {}_torque_limits() {{\n  return {{", name);
+  s += code("inline std::vector<pogear::rt::TorqueLimitData> {}_torque_limits() {{\n  return {{", name);
   for (std::size_t i = 0; i < sys.limited_controllers.size(); ++i) {
     const ControllerSpec& k = model.scene.controllers[static_cast<std::size_t>(sys.limited_controllers[i])];
     s += (i ? code(",\n          ") : CppText{}) +
@@ -92,7 +92,7 @@ CppText torque_limits_function(const SpecializedScene& model, const SpecializedS
 CppText triggered_function(const std::vector<rt::TriggeredSignal>& triggered, const CppText& name) {
   CppText s = code("// Signals of {} that start on an event: command?, index, trigger's element, state, delay [s], name,\n"
                    "// what the signal is until then (none: the value before its own times).\n", name);
-  s += code("std::vector<pogear::rt::TriggeredSignal> {}_triggered_signals() {{\n  return {{", name);
+  s += code("inline std::vector<pogear::rt::TriggeredSignal> {}_triggered_signals() {{\n  return {{", name);
   for (std::size_t i = 0; i < triggered.size(); ++i) {
     const rt::TriggeredSignal& t = triggered[i];
     s += (i ? code(",\n          ") : CppText{}) +
@@ -191,9 +191,13 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   }
   if (model.rigid) h += code("//   {} (for comparison)\n", comment_text(model.rigid->equations));
   h += code("// Units are SI: rad/s, N, N m. Parameters are literals (see namespace parameters) unless listed in Params.\n");
-  h += code("#pragma once\n\n#include <array>\n#include <string_view>\n\n#include <Eigen/Core>\n");
+  const bool limits = !model.main.limited_controllers.empty();
+  const bool hybrid = !model.friction.empty() || limits || !model.main.driveline.empty();
+  h += code("#pragma once\n\n#include <array>\n{}#include <string_view>\n#include <vector>\n\n#include <Eigen/Core>\n",
+            limits ? code("#include <limits>\n") : CppText{});
   if (needs_solve) h += code("#include <Eigen/Cholesky>\n");
-  if (!model.main.driveline.empty()) h += code("\n#include <pogear/driveline.hpp>\n");
+  h += code("\n{}{}#include <pogear/signals.hpp>\n", !model.main.driveline.empty() ? code("#include <pogear/driveline.hpp>\n") : CppText{},
+            hybrid ? code("#include <pogear/hybrid_modes.hpp>\n") : CppText{});
   h += code("\nnamespace pogear_generated::{} {{\n\n", name);
   h += provenance(model);
   h += code("inline constexpr std::string_view scene_name = {};\n", string_literal(sc.name));
@@ -207,7 +211,21 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   const CppText main_struct = model.main.kind == SystemKind::elastic ? code("Elastic") : code("Rigid");
   h += system_struct(model.main, model.scene, d, main_struct) + code("\n");
   if (model.rigid) h += system_struct(*model.rigid, model.scene, d, code("Rigid")) + code("\n");
-  h += code("}}  // namespace pogear_generated::{}\n", name);
+  // The scene's signals and commands as written, so that a program of its own runs the scene as the
+  // generated main does and changes only what it studies.
+  h += signals_function(model.main, d.symbols, main_struct);
+  if (model.rigid) h += code("\n") + signals_function(*model.rigid, d.symbols, code("Rigid"));
+  if (hybrid) h += code("\n") + friction_function(model);
+  if (limits) {
+    h += code("\n") + torque_limits_function(model, model.main, main_struct);
+    if (model.rigid) h += code("\n") + torque_limits_function(model, *model.rigid, code("Rigid"));
+  }
+  const std::vector<rt::TriggeredSignal> triggered = triggered_signals(model, model.main);
+  if (!triggered.empty()) {
+    h += code("\n") + triggered_function(triggered, main_struct);
+    if (model.rigid) h += code("\n") + triggered_function(triggered_signals(model, *model.rigid), code("Rigid"));
+  }
+  h += code("\n}}  // namespace pogear_generated::{}\n", name);
   g.header = h.str();
 
   CppText m;
@@ -217,31 +235,16 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
             model.rigid ? code(" and DIR/{}.rigid.csv", name) : CppText{},
             model.friction.empty() ? CppText{} : code(", with its brakes' and clutches' events in .events.csv files"));
   for (const std::string& line : rt::usage_lines("PROGRAM", 100, solvers)) m += code("// {}\n", comment_text(line));
-  const bool limits = !model.main.limited_controllers.empty();
-  const bool hybrid = !model.friction.empty() || limits || !model.main.driveline.empty();
-  m += code("#include \"{}\"\n\n{}{}#include <pogear/parameters.hpp>\n#include <pogear/run_system.hpp>\n#include <pogear/signals.hpp>\n\n",
-            header_name, limits ? code("#include <limits>\n\n") : CppText{},
-            hybrid ? code("#include <pogear/hybrid_run.hpp>\n") : CppText{});
+  m += code("#include \"{}\"\n\n{}#include <pogear/parameters.hpp>\n#include <pogear/run_system.hpp>\n\n",
+            header_name, hybrid ? code("#include <pogear/hybrid_run.hpp>\n") : CppText{});
   m += code("namespace scene = pogear_generated::{};\n\n", name);
   std::vector<CppText> solver_codes;
   for (rt::Solver s : solvers) solver_codes.push_back(code("pogear::rt::Solver::{}", identifier(std::string(rt::solver_name(s)))));
   m += code("namespace {{\n\n");
   m += code("// The solvers compiled into this simulator (`pogear generate --solvers`): each costs compile time.\n");
-  m += code("using Solvers = pogear::rt::Solvers<{}>;\n\n", join(solver_codes, code(", ")));
-  m += signals_function(model.main, d.symbols, main_struct);
-  if (model.rigid) m += code("\n") + signals_function(*model.rigid, d.symbols, code("Rigid"));
-  if (hybrid) m += code("\n") + friction_function(model);
-  if (limits) {
-    m += code("\n") + torque_limits_function(model, model.main, main_struct);
-    if (model.rigid) m += code("\n") + torque_limits_function(model, *model.rigid, code("Rigid"));
-  }
-  const std::vector<rt::TriggeredSignal> triggered = triggered_signals(model, model.main);
-  if (!triggered.empty()) {
-    m += code("\n") + triggered_function(triggered, main_struct);
-    if (model.rigid) m += code("\n") + triggered_function(triggered_signals(model, *model.rigid), code("Rigid"));
-  }
-  const CppText main_triggers = triggered.empty() ? CppText{} : code(", {}_triggered_signals()", main_struct);
-  const CppText rigid_triggers = triggered.empty() ? CppText{} : code(", Rigid_triggered_signals()");
+  m += code("using Solvers = pogear::rt::Solvers<{}>;\n", join(solver_codes, code(", ")));
+  const CppText main_triggers = triggered.empty() ? CppText{} : code(", scene::{}_triggered_signals()", main_struct);
+  const CppText rigid_triggers = triggered.empty() ? CppText{} : code(", scene::Rigid_triggered_signals()");
   m += code("\n}}  // namespace\n\n");
   m += code("int main(int argc, char** argv) {{\n");
   m += code("  pogear::rt::SceneRun run;\n");
@@ -256,22 +259,22 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
             parameter_fields(model.main, code("params")));
   m += code("  const scene::{} system;\n", main_struct);
   if (hybrid)
-    m += code("  int status = pogear::rt::run_hybrid_system(system, params, {}_signals(), friction_elements(), {}"
+    m += code("  int status = pogear::rt::run_hybrid_system(system, params, scene::{}_signals(), scene::friction_elements(), {}"
               "scene::{}::initial_state(), run, \"\"{});\n", main_struct,
-              limits ? code("{}_torque_limits(), ", main_struct) : CppText{}, main_struct, main_triggers);
+              limits ? code("scene::{}_torque_limits(), ", main_struct) : CppText{}, main_struct, main_triggers);
   else
-    m += code("  int status = pogear::rt::run_system<Solvers>(system, params, {}_signals(), scene::{}::initial_state(), run, \"\");\n",
+    m += code("  int status = pogear::rt::run_system<Solvers>(system, params, scene::{}_signals(), scene::{}::initial_state(), run, \"\");\n",
               main_struct, main_struct);
   if (model.rigid) {
     m += code("  scene::Rigid::Params rigid_params;\n");
     for (const auto& p : model.rigid->params)
       m += code("  rigid_params.{} = params.{};\n", identifier(p.name), identifier(p.name));
     if (hybrid)
-      m += code("  if (status == 0)\n    status = pogear::rt::run_hybrid_system(scene::Rigid{{}}, rigid_params, Rigid_signals(), "
-                "friction_elements(), {}scene::Rigid::initial_state(), run, \".rigid\"{});\n",
-                limits ? code("Rigid_torque_limits(), ") : CppText{}, rigid_triggers);
+      m += code("  if (status == 0)\n    status = pogear::rt::run_hybrid_system(scene::Rigid{{}}, rigid_params, scene::Rigid_signals(), "
+                "scene::friction_elements(), {}scene::Rigid::initial_state(), run, \".rigid\"{});\n",
+                limits ? code("scene::Rigid_torque_limits(), ") : CppText{}, rigid_triggers);
     else
-      m += code("  if (status == 0)\n    status = pogear::rt::run_system<Solvers>(scene::Rigid{{}}, rigid_params, Rigid_signals(), "
+      m += code("  if (status == 0)\n    status = pogear::rt::run_system<Solvers>(scene::Rigid{{}}, rigid_params, scene::Rigid_signals(), "
                 "scene::Rigid::initial_state(), run, \".rigid\");\n");
   }
   m += code("  return status;\n}}\n");
