@@ -101,8 +101,10 @@ struct Run {
     // llround is undefined beyond a long long; far fewer samples than that could ever be written.
     if (!(n < 0x1p62)) return refuse("too many samples: (t_end - t0) / dt = " + num(n));
     grid = sample_grid(t0, t_end, dt);
+    // A breakpoint at t_end itself too: the last step then ends on the input's value before it,
+    // not on the jump's (which would smear a step at t_end over the last step).
     for (double b : bps)
-      if (b > t0 && b < t_end) breaks.push_back(b);
+      if (b > t0 && b <= t_end) breaks.push_back(b);
     std::sort(breaks.begin(), breaks.end());
     breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
     return true;

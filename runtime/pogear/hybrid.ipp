@@ -83,7 +83,8 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
     if (d.command_trigger[k] < 0) all.push_back(d.commands[k]);
   for (const auto& q : sys.state_torques)  // an engine's throttle steps end steps as an input's do
     if (q.kind == StateTorqueKind::engine) all.push_back(q.throttle);
-  d.breaks = breakpoints(all, 0.0, d.horizon);
+  // The horizon itself may be one: the last step then ends on the inputs' values before it.
+  d.breaks = breakpoints(all, 0.0, std::nextafter(d.horizon, std::numeric_limits<double>::infinity()));
   d.breaks.reserve(d.breaks.size() + start_breaks);
   d.sine_period = shortest_sine_period(all);
   d.hold_step = std::numeric_limits<double>::infinity();

@@ -21,7 +21,7 @@ inline void start_signal(const HybridSystem& sys, HybridData& d, std::size_t i, 
   if (s.command) move_times(d.commands[j], sys.elements[j].command, t0);
   else move_times(d.inputs[j], sys.inputs[j], t0);
   auto add = [&](double b) {
-    if (!(b >= t0) || !(b < d.horizon)) return;
+    if (!(b >= t0) || !(b <= d.horizon)) return;
     const auto at = std::lower_bound(d.breaks.begin(), d.breaks.end(), b);
     if ((at == d.breaks.end() || *at != b) && d.breaks.size() < d.breaks.capacity()) d.breaks.insert(at, b);
   };
@@ -39,7 +39,7 @@ inline void record(const HybridSystem& sys, HybridData& d, double t, int k, Elem
     const TriggeredSignal& s = sys.triggered[i];
     if (s.element != k || s.state != to || std::isfinite(d.start[i])) continue;
     start_signal(sys, d, i, t + s.delay);
-    if (s.delay == 0) d.started_now = true;  // its value may jump at this very instant
+    if (d.start[i] <= t) d.started_now = true;  // its value may jump at this very instant (a delay below an ulp of t too)
   }
 }
 

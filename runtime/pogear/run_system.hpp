@@ -55,7 +55,9 @@ void input_values(const std::vector<Signal>& signals, double t, Input& u) {
 template <class Compiled = AllSolvers, class StateMatrix, class InputMatrix, class Rhs, class State, class Obs>
 RunStatus simulate_system(const SceneRun& run, const std::vector<Signal>& signals, const StateMatrix& M,
                           const InputMatrix& N, Rhs&& rhs, const State& x0, Obs&& obs) {
-  const std::vector<double> breaks = breakpoints(signals, 0.0, run.horizon);
+  // The horizon itself among them: a step there must not be smeared over the last step.
+  const std::vector<double> breaks =
+      breakpoints(signals, 0.0, std::nextafter(run.horizon, std::numeric_limits<double>::infinity()));
   SolverOptions opt = run.options;
   if constexpr (Compiled::has(Solver::exact)) {
     if (run.solver == Solver::exact) {

@@ -28,7 +28,7 @@ std::string triggered_simpson_scene(const std::string& tau_i, const std::string&
 
 struct TriggeredRun {
   std::vector<double> t;
-  std::vector<Eigen::VectorXd> w;
+  std::vector<Eigen::VectorXd> x, w;
   std::vector<rt::HybridEvent> events;
   rt::RunStatus status;
 };
@@ -45,6 +45,7 @@ TriggeredRun run_triggered(const std::string& text, rt::Solver solver = rt::Solv
       ns.x0, model.scene.sample,
       [&](double t, const rt::HybridSample& s) {
         r.t.push_back(t);
+        r.x.push_back(s.x);
         r.w.push_back(s.w);
         return true;
       },
@@ -141,6 +142,47 @@ TEST(TriggeredSignals, SignalWaitingForAnEventThatNeverComesIsItsBefore) {
   for (std::size_t i = 0; i < plain.t.size(); ++i) ASSERT_EQ(waiting.w[i], plain.w[i]) << plain.t[i];
   ASSERT_EQ(waiting.events.size(), plain.events.size());
   for (std::size_t i = 0; i < plain.events.size(); ++i) EXPECT_EQ(waiting.events[i].t, plain.events[i].t);
+}
+
+// A delay below an ulp of the event's time starts the signal at the event's instant, as no delay
+// does: the same run to the bit, events and all (it used to wait for the next event to resolve).
+TEST(TriggeredSignals, DelayBelowAnUlpIsNoDelay) {
+  const std::string b1 = "{ step = \"1\", at = \"0*s\", when = \"B2 slipping\"";
+  const TriggeredRun tiny = run_triggered(triggered_simpson_scene("\"150*Nm\"", b1 + ", delay = \"1e-300*s\" }"));
+  const TriggeredRun none = run_triggered(triggered_simpson_scene("\"150*Nm\"", b1 + " }"));
+  ASSERT_TRUE(tiny.status.ok) << tiny.status.message;
+  ASSERT_TRUE(none.status.ok) << none.status.message;
+  ASSERT_EQ(tiny.events.size(), none.events.size());
+  for (std::size_t i = 0; i < none.events.size(); ++i) {
+    EXPECT_EQ(tiny.events[i].t, none.events[i].t) << i;
+    EXPECT_EQ(tiny.events[i].to, none.events[i].to) << i;
+  }
+  ASSERT_EQ(tiny.t.size(), none.t.size());
+  for (std::size_t i = 0; i < none.t.size(); ++i) ASSERT_EQ(tiny.x[i], none.x[i]) << none.t[i];
+}
+
+// A step at the horizon itself is a breakpoint too: the last step ends on the value before it, so
+// the state at the horizon is that of the run without the step, to rounding (the exact method
+// smeared it over the last sample period: 643 J of heat in B1 from a command that steps at 2 s).
+// The last sample shows the inputs after the step, as at every breakpoint.
+TEST(TriggeredSignals, StepAtTheHorizonLeavesTheStateAlone) {
+  for (const rt::Solver solver : {rt::Solver::exact, rt::Solver::dopri5}) {
+    SCOPED_TRACE(rt::solver_name(solver));
+    const TriggeredRun stepped = run_triggered(
+        triggered_simpson_scene("{ step = \"300*Nm\", at = \"2*s\", before = \"150*Nm\" }", "{ table = \"simpson_B1_apply.csv\" }"),
+        solver);
+    const TriggeredRun plain = run_triggered(triggered_simpson_scene("\"150*Nm\"", "{ table = \"simpson_B1_apply.csv\" }"), solver);
+    ASSERT_TRUE(stepped.status.ok) << stepped.status.message;
+    ASSERT_TRUE(plain.status.ok) << plain.status.message;
+    ASSERT_EQ(stepped.t.size(), plain.t.size());
+    // The resolution at the breakpoint projects the state onto the stuck elements' constraints:
+    // a rounding of the speeds (1e-13 rad/s on 120 rad/s), where smearing the step moved them by
+    // its 150 N m over the last millisecond.
+    const double scale = plain.x.back().cwiseAbs().maxCoeff();
+    for (Eigen::Index j = 0; j < plain.x.back().size(); ++j)
+      EXPECT_NEAR(stepped.x.back()(j), plain.x.back()(j), 1e-14 * scale) << j;
+    EXPECT_EQ(stepped.w.back()(kTauI), 300.0);
+  }
 }
 
 }  // namespace

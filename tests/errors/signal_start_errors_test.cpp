@@ -50,6 +50,14 @@ TEST_F(EngagementCommands, BeforeOutOfRange) {
   expect_error(release + "C1 = { table = [[0, 1]], when = \"B1 slipping\", before = { ramp = \"100/s\" } }\n",
                R"~(scene.toml:23:6: error: the command of C1 is 10 at t = 0.1 s; an engagement command is from 0 (open) to 1 (fully engaged) over the whole run)~");
 }
+TEST_F(EngagementCommands, BeforeWithItsOwnDelay) {
+  expect_error(release + "C1 = { table = [[0, 1]], when = \"B1 slipping\", before = { table = [[0, 0]], delay = \"1*ms\" } }\n",
+               R"~(scene.toml:23:85: error: what a signal is before its event is a signal of time; give it without delay)~");
+}
+TEST_F(EngagementCommands, StartedCommandOutsideZeroToOne) {
+  expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 3]], when = \"B1 slipping\" }\n",
+               R"~(scene.toml:23:6: error: the command of C1 is 3 at 0.01 s after its start; an engagement command is from 0 (open) to 1 (fully engaged) over the whole run)~");
+}
 TEST_F(EngagementCommands, StartedSine) {
   expect_documented(scene_error(edited(base_scene(), {{R"(tau_c = { constant = "100*Nm" })",
                                                        R"(tau_c = { sine = "10*Nm", frequency = "5*Hz", when = "B1 slipping" })"}}) +

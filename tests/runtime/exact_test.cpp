@@ -116,6 +116,23 @@ TEST(Exact, DriverLandsOnBreakpointsAndSampleGrid) {
   }
 }
 
+// A step at t_end itself: the last step ends on the input's left limit, so the final state is the
+// run's without the step (a smeared step would move it by O(dt)).
+TEST(Exact, StepAtTheEndIsNotSmearedOverTheLastStep) {
+  const Eigen::Matrix<double, 1, 1> M(-1.0), N(1.0);
+  const double dt = 0.1, t_end = 2.0, x0 = 0.3;
+  rt::SolverOptions opt;
+  opt.h = dt;
+  double last = 0;
+  const rt::Signal step = rt::Step{0.0, 1.0, t_end};
+  auto u = [&](double t, Eigen::Matrix<double, 1, 1>& out) { out(0) = rt::value(step, t); };
+  auto obs = [&](double, const Eigen::Matrix<double, 1, 1>& x) { last = x(0); };
+  const rt::RunStatus st = rt::simulate_exact(M, N, u, Eigen::Matrix<double, 1, 1>(x0), 0.0, t_end, dt, opt, obs,
+                                              rt::breakpoints(step, 0.0, std::nextafter(t_end, 3.0)));
+  ASSERT_TRUE(st.ok) << st.message;
+  EXPECT_NEAR(last, decay(1, 1, 0, 0, x0, t_end), kExactTol);
+}
+
 TEST(Exact, DriverWithDynamicTypesAndPartialLastInterval) {
   Eigen::MatrixXd M(2, 2);
   M << 0, 1, -9, 0;

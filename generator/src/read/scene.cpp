@@ -429,10 +429,11 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
       for (double t : times)
         for (double p : {rt::value(*command, t), rt::value(*command, std::nextafter(t, 0.0))})
           if (!(p >= 0 && p <= 1))
-            throw InputError(e.where, fmt::format("the command of {} is {} at t = {} s; an engagement command is from 0 "
+            throw InputError(e.where, fmt::format("the command of {} is {} at {}; an engagement command is from 0 "
                                                   "(open) to 1 (fully engaged) over the whole run",
                                                   topology.friction_elements[static_cast<std::size_t>(e.element)].name,
-                                                  p, t));
+                                                  p, e.start && command == &e.command ? fmt::format("{} s after its start", t)
+                                                                                      : fmt::format("t = {} s", t)));
     }
   return s;
 }

@@ -311,9 +311,12 @@ std::optional<SignalStart> read_signal_start(const SceneReader& r, const toml::n
     if (!(start.delay >= 0)) r.fail(*d, "a delay is not negative; the signal starts at the event or after it");
   }
   if (const toml::node* b = t->get("before")) {
-    if (b->is_table() && b->as_table()->get("when"))
-      r.fail(*b->as_table()->get("when"), "what a signal is before its event is a signal of time; give it without when");
     start.before = read_signal(r, *b, scene_dir, what);
+    // A signal of time: none of a started signal's keys (a step's own `before` is its own).
+    for (const char* key : {"when", "delay", "before"})
+      if (const toml::node* k = b->is_table() ? b->as_table()->get(key) : nullptr;
+          k && !(std::string_view(key) == "before" && std::holds_alternative<rt::Step>(*start.before)))
+        r.fail(*k, fmt::format("what a signal is before its event is a signal of time; give it without {}", key));
   }
   double first = 0;
   rt::for_each_break(signal, [&](double b) { first = std::min(first, b); });
