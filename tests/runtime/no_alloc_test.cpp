@@ -164,6 +164,7 @@ enum class Drive {
   inputs,     // the signals alone
   fan,        // a quadratic torque (an input of the state) brakes body 3
   driveline,  // an engine on body 1 and a converter from it to body 2, the clutch its lock-up
+  triggered,  // the signals, the load's step starting 0.5 s after the clutch locks
 };
 
 // Body 1 spins against bodies 2 and 3 (an elastic shaft between them) through a clutch that engages,
@@ -191,6 +192,10 @@ rt::HybridSystem clutch_and_shaft(Drive drive) {
   sys.S << 1, -1, 0, 0;
   sys.elements.push_back({"C", 5, 1.2, rt::Table{{0.125, 0.375}, {0, 1}}});
   sys.inputs = {rt::Constant{0.5}, rt::Step{0, 30, 2}};
+  if (drive == Drive::triggered) {  // a jump to 30 N m at its start: the table's repeated first time
+    sys.inputs[1] = rt::Table{{0, 0}, {0, 30}};
+    sys.triggered = {{false, 1, 0, rt::ElementState::stuck, 0.5, "load", std::nullopt}};
+  }
   if (drive == Drive::fan) sys.state_torques.push_back(rt::quadratic_torque_data(Eigen::RowVector4d(0, 0, 0, 1), 0.002));
   if (drive == Drive::driveline) {
     rt::DrivelineData d;
@@ -221,6 +226,7 @@ void expect_later_periods_allocate_nothing(Drive drive, rt::HybridMethod method)
   mode.reserve(n);
   events.reserve(1000);
   rt::RunStatus status;
+  int started = 0;
   {
     HeapCount count;
     status = engine.run(
@@ -231,11 +237,15 @@ void expect_later_periods_allocate_nothing(Drive drive, rt::HybridMethod method)
           mode.push_back(s.mode);
           return true;
         },
-        [&](const rt::HybridEvent& e) { events.push_back(e.t); });
+        [&](const rt::HybridEvent& e) {
+          events.push_back(e.t);
+          started += e.started >= 0;
+        });
   }
   ASSERT_TRUE(status.ok) << status.message;
   ASSERT_EQ(t.size() + 1, n);
   ASSERT_GE(events.size(), 3u);  // engages, locks, breaks away
+  EXPECT_EQ(started, drive == Drive::triggered ? 1 : 0);
   auto has_event = [&](std::size_t i) {  // in the sample period (t[i-1], t[i]]
     for (const double e : events)
       if (e > t[i - 1] && e <= t[i]) return true;
@@ -270,6 +280,15 @@ TEST(NoAlloc, HybridAdaptiveSteppingOfNonlinearModes) {
   for (const rt::Solver solver : {rt::Solver::dopri5, rt::Solver::implicit}) {
     SCOPED_TRACE(std::string(rt::solver_name(solver)));
     expect_later_periods_allocate_nothing(Drive::fan, rt::HybridMethod{solver, {}});
+  }
+}
+
+// The same clutch with its load step started by its lock-up (a triggered signal: its copy in the
+// workspace, its breakpoints in capacity reserved before the run), stepped exactly and by dopri5.
+TEST(NoAlloc, HybridSteppingWithATriggeredSignal) {
+  for (const rt::Solver solver : {rt::Solver::exact, rt::Solver::dopri5}) {
+    SCOPED_TRACE(std::string(rt::solver_name(solver)));
+    expect_later_periods_allocate_nothing(Drive::triggered, rt::HybridMethod{solver, {}});
   }
 }
 
