@@ -69,7 +69,7 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
     const auto j = static_cast<std::size_t>(s.index);
     (s.command ? d.command_trigger[j] : d.input_trigger[j]) = static_cast<int>(i);
     const Signal& after = s.command ? d.commands[j] : d.inputs[j];
-    d.before[i] = s.before ? *s.before : Signal{Constant{value(waiting(after), 0.0)}};
+    d.before[i] = held_until_start(after, s.before);
     all.push_back(d.before[i]);
     for_each_break(after, [&](double) { ++start_breaks; });
     ++start_breaks;  // the start itself

@@ -128,7 +128,7 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   for (Eigen::VectorXd* w : {&d.v0, &d.dv, &d.v, &d.sample_w}) w->resize(d.nw);
   for (Eigen::VectorXd* x : {&d.dx, &d.sample_x, &d.projected}) x->resize(d.nx);
   d.end = d.mid = d.side = make_event_point(d);
-  d.inputs = sys.inputs;
+  d.inputs = sys.inputs;  // each run copies them again: the system may change between runs
   for (const FrictionElementData& e : sys.elements) d.commands.push_back(e.command);
   d.input_trigger.assign(sys.inputs.size(), -1);
   d.command_trigger.assign(sys.elements.size(), -1);
@@ -166,8 +166,7 @@ inline const Signal& command_signal(const HybridData& d, std::size_t k, double t
 }
 
 // An element's command: a controller's is 1 throughout (it is never open).
-inline double command(const HybridSystem& sys, const HybridData& d, int k, double t) {
-  (void)sys;
+inline double command(const HybridSystem&, const HybridData& d, int k, double t) {
   return is_limit(d, k) ? 1.0 : value(command_signal(d, static_cast<std::size_t>(k), t), t);
 }
 // The torque per unit command of element k while it slips: its capacity, or zero for a one-way

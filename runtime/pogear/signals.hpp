@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -114,9 +115,9 @@ inline double shortest_sine_period(const std::vector<Signal>& signals) {
 }
 
 // Signals that start on an event (a triggered command, HybridSystem::triggered): the times of
-// `original` moved by t0 into `live`, in place (no allocation: live is a copy of original). With t0
-// infinite every time is infinite, and the signal holds the value it has before its own times (a
-// table's first row, a ramp's initial value, a step's `before`): it waits. A sine has no such value
+// `original` moved by t0 into `live`, in place (no allocation: live is a copy of original). Until it
+// starts such a signal is its `before`, or the value it has before its own times (a table's first
+// row, a ramp's initial value, a step's `before`: its value at -infinity). A sine has no such value
 // (it is refused as a triggered signal: startable).
 inline bool startable(const Signal& s) { return !std::holds_alternative<Sine>(s); }
 inline void move_times(Signal& live, const Signal& original, double t0) {
@@ -128,11 +129,9 @@ inline void move_times(Signal& live, const Signal& original, double t0) {
   if (auto* tab = std::get_if<Table>(&live)) move_table(*tab, std::get<Table>(original));
   if (auto* g = std::get_if<GradeLoad>(&live)) move_table(g->angle, std::get<GradeLoad>(original).angle);
 }
-// The signal as it holds until it starts (every time infinite): what a start at t = 0 reads.
-inline Signal waiting(const Signal& s) {
-  Signal w = s;
-  move_times(w, s, std::numeric_limits<double>::infinity());
-  return w;
+// What a signal that starts on an event is until then.
+inline Signal held_until_start(const Signal& s, const std::optional<Signal>& before) {
+  return before ? *before : Signal{Constant{value(s, -std::numeric_limits<double>::infinity())}};
 }
 // Calls f(t) for every time of the signal where it or its slope may jump, unsorted (breakpoints
 // without their vector).

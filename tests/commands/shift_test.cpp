@@ -49,20 +49,15 @@ TEST(Shift, InlineCommandTablesRunAsTheirCsvFiles) {
 TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
   namespace fs = std::filesystem;
   const fs::path dir = temp_dir("triggered_compiled");
-  std::string text = read_text(source_path("models/scenes/simpson_1_2_upshift.toml"));
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{
-                                     "\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
-                                 {"{ table = \"simpson_B2_release.csv\" }",
-                                  "{ table = \"" + source_path("models/scenes/simpson_B2_release.csv") + "\" }"},
-                                 {"{ table = \"simpson_B1_apply.csv\" }",
-                                  "{ table = [[0, 0], [\"0.15*s\", 1]], when = \"B2 slipping\", delay = \"20*ms\" }"},
-                                 {"tau_i = \"150*Nm\"",
-                                  "tau_i = { table = [[0, \"100*Nm\"], [\"20*ms\", \"150*Nm\"]], when = \"B1 stuck\", "
-                                  "before = { table = [[0, \"150*Nm\"], [\"1*s\", \"150*Nm\"], [\"1.02*s\", \"100*Nm\"]] } }"}}) {
-    const auto at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  }
+  const std::string text = with_edits(
+      read_text(source_path("models/scenes/simpson_1_2_upshift.toml")),
+      {{"\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
+       {"{ table = \"simpson_B2_release.csv\" }", "{ table = \"" + source_path("models/scenes/simpson_B2_release.csv") + "\" }"},
+       {"{ table = \"simpson_B1_apply.csv\" }",
+        "{ table = [[0, 0], [\"0.15*s\", 1]], when = \"B2 slipping\", delay = \"20*ms\" }"},
+       {"tau_i = \"150*Nm\"",
+        "tau_i = { table = [[0, \"100*Nm\"], [\"20*ms\", \"150*Nm\"]], when = \"B1 stuck\", "
+        "before = { table = [[0, \"150*Nm\"], [\"1*s\", \"150*Nm\"], [\"1.02*s\", \"100*Nm\"]] } }"}});
   write_text(dir / "triggered.toml", text);
   for (const std::string how : {"", " --interpreted"}) {
     const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / "triggered.toml").string() + how +
@@ -119,15 +114,11 @@ TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
 TEST(Shift, TorqueCutEndingAtLockUpLeavesNoHole) {
   namespace fs = std::filesystem;
   const fs::path dir = temp_dir("torque_cut");
-  std::string text = read_text(source_path("models/scenes/simpson_vehicle_upshift.toml"));
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{
-                                     "\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
-                                 {"\"simpson_B2_release.csv\"", "\"" + source_path("models/scenes/simpson_B2_release.csv") + "\""},
-                                 {"\"simpson_B1_apply.csv\"", "\"" + source_path("models/scenes/simpson_B1_apply.csv") + "\""}}) {
-    const auto at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  }
+  const std::string text = with_edits(
+      read_text(source_path("models/scenes/simpson_vehicle_upshift.toml")),
+      {{"\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
+       {"\"simpson_B2_release.csv\"", "\"" + source_path("models/scenes/simpson_B2_release.csv") + "\""},
+       {"\"simpson_B1_apply.csv\"", "\"" + source_path("models/scenes/simpson_B1_apply.csv") + "\""}});
   const std::string cut = "[0, \"150*Nm\"], [\"1.02*s\", \"150*Nm\"], [\"1.03*s\", \"100*Nm\"]";
   const std::vector<std::pair<std::string, std::string>> scenes = {
       {"uncut", "\"150*Nm\""},

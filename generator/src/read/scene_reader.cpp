@@ -331,8 +331,7 @@ bool identically_zero(const rt::Signal& signal, const std::optional<SignalStart>
 }
 
 double value_at_start(const rt::Signal& signal, const std::optional<SignalStart>& start) {
-  if (start && start->before) return rt::value(*start->before, 0.0);
-  return rt::value(start ? rt::waiting(signal) : signal, 0.0);
+  return rt::value(start ? rt::held_until_start(signal, start->before) : signal, 0.0);
 }
 
 // A signal waits for an element the scene engages: an open one never slips or sticks.

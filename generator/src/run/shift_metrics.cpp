@@ -413,7 +413,7 @@ void write_shift_metrics(const SpecializedScene& model, const std::string& dir, 
   for (const FrictionRun& f : model.friction) {
     double started = std::numeric_limits<double>::infinity();
     for (const RunEvent& e : events)
-      if (e.element == "command_" + f.name && e.to == "started") started = e.t;
+      if (e.element == started_command_name(f.name) && e.to == "started") started = e.t;
     elements.push_back({f.name, signal_as_run(f.command, f.start, started, model.scene.horizon)});
   }
   ShiftMetrics m = measure_shifts(read_run_table((fs::path(dir) / (name + ".csv")).string()), events, elements,

@@ -25,13 +25,15 @@ std::vector<rt::TriggeredSignal> triggered_signals(const SpecializedScene& model
     ++signal;
   }
   for (std::size_t i = 0; i < model.friction.size(); ++i)
-    if (model.friction[i].start) add(true, i, *model.friction[i].start, "command_" + model.friction[i].name);
+    if (model.friction[i].start) add(true, i, *model.friction[i].start, started_command_name(model.friction[i].name));
   return out;
 }
 
+std::string started_command_name(const std::string& element) { return "command_" + element; }
+
 rt::Signal signal_as_run(const rt::Signal& signal, const std::optional<SignalStart>& start, double started, double horizon) {
   if (!start) return signal;
-  const rt::Signal before = start->before ? *start->before : rt::Signal{rt::Constant{rt::value(rt::waiting(signal), 0.0)}};
+  const rt::Signal before = rt::held_until_start(signal, start->before);
   if (!(started < horizon)) return before;
   rt::Signal after = signal;
   rt::move_times(after, signal, started);

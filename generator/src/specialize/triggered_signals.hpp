@@ -2,6 +2,8 @@
 // "Triggered signals"), as the hybrid engine takes them.
 #pragma once
 
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "pogear/hybrid_modes.hpp"
@@ -13,6 +15,9 @@ namespace pogear {
 // input's index among the system's signals, a command's among model.friction, the trigger's element
 // among model.friction too.
 std::vector<rt::TriggeredSignal> triggered_signals(const SpecializedScene& model, const SpecializedSystem& sys);
+
+// The name an element's triggered command has in the events file.
+std::string started_command_name(const std::string& element);
 
 // A signal as a run applied it, once its start is known (`started`, infinite when it never came): its
 // `before` until then, then its own times from there; a table through the pieces of both (a jump at
