@@ -9,6 +9,7 @@
 
 #include "pogear/hybrid.hpp"
 #include "pogear/hybrid_adaptive.hpp"
+#include "pogear/hybrid_crossings.hpp"
 #include "pogear/hybrid_data_check.hpp"
 #include "pogear/hybrid_driver.hpp"
 #include "pogear/hybrid_exact.hpp"
@@ -18,12 +19,17 @@ namespace pogear::rt {
 POGEAR_RT_ABI_BEGIN
 
 // What a HybridEngine holds: the model, the workspace (kept from run to run with its mode cache),
-// the method.
+// the method. A model with crossings runs as its copy with their monitors (hybrid_crossings.hpp),
+// made again at every run: the engine reads the user's system at every run.
 class HybridEngineCore {
  public:
-  HybridEngineCore(const HybridSystem& sys, double horizon, HybridMethod method)
-      : sys(sys), data(hybrid::make_hybrid_data(sys, horizon)), method(std::move(method)) {}
+  HybridEngineCore(const HybridSystem& user, double horizon, HybridMethod method)
+      : user(user), monitored(hybrid::with_crossing_monitors(user)),
+        sys(hybrid::crossing_count(user) ? monitored : user), data(hybrid::make_hybrid_data(sys, horizon)),
+        method(std::move(method)) {}
 
+  const HybridSystem& user;
+  HybridSystem monitored;
   const HybridSystem& sys;
   hybrid::HybridData data;
   HybridMethod method;
@@ -49,6 +55,8 @@ RunStatus run_adaptive_modes(HybridEngineCore& c, const char* name, const detail
 // driver loop with the method's stepper.
 inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double sample, const SampleObserver& obs,
                      const EventObserver& on_event) {
+  if (const char* why = crossing_mismatch(c.user)) return RunStatus{false, why, 0.0};
+  if (&c.sys == &c.monitored) c.monitored = with_crossing_monitors(c.user);
   const HybridSystem& sys = c.sys;
   HybridData& d = c.data;
   if (const char* why = data_mismatch(sys, d)) return RunStatus{false, why, 0.0};

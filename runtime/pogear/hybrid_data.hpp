@@ -41,9 +41,10 @@ struct EventPoint {
   Eigen::VectorXd x, z, v, g;
 };
 
-// Elements 0..nf-1 are the brakes and clutches, nf..ne-1 the controllers' torque limits.
+// Elements 0..nf-1 are the brakes and clutches, nf..ne-1 the controllers' torque limits, the last nm
+// of them the monitors of crossings (hybrid_crossings.hpp), which no event, sample or mode reports.
 struct HybridData {
-  int ne = 0, nf = 0;
+  int ne = 0, nf = 0, nm = 0;
   // States; the scene's signals u; the known inputs [u; q], q the state torques (of the state);
   // all inputs w = [u; q; T].
   Eigen::Index nx = 0, ns = 0, nu = 0, nw = 0;
@@ -86,6 +87,8 @@ struct HybridData {
       slip, projected;
   EventPoint end, mid, side;
   std::vector<ElementState> old_state;
+  // A sample's w, slips and energy without the monitors' entries (observe_sample).
+  Eigen::VectorXd shown_w, shown_slip, shown_energy;
 };
 
 inline EventPoint make_event_point(const HybridData& d) {
@@ -101,6 +104,7 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   HybridData d;
   d.nf = static_cast<int>(sys.S.rows());
   d.ne = d.nf + static_cast<int>(sys.limits.size());
+  for (const TriggeredSignal& s : sys.triggered) d.nm += s.crossing.has_value();
   d.nx = sys.M.rows();
   d.ns = static_cast<Eigen::Index>(sys.inputs.size());
   d.nu = d.ns + static_cast<Eigen::Index>(sys.state_torques.size());
@@ -128,6 +132,9 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   for (Eigen::VectorXd* w : {&d.v0, &d.dv, &d.v, &d.sample_w}) w->resize(d.nw);
   for (Eigen::VectorXd* x : {&d.dx, &d.sample_x, &d.projected}) x->resize(d.nx);
   d.end = d.mid = d.side = make_event_point(d);
+  d.shown_w.resize(d.nw - d.nm);
+  d.shown_slip.resize(d.ne - d.nm);
+  d.shown_energy.resize(d.energy.size() - d.nm);
   d.inputs = sys.inputs;  // each run copies them again: the system may change between runs
   for (const FrictionElementData& e : sys.elements) d.commands.push_back(e.command);
   d.input_trigger.assign(sys.inputs.size(), -1);

@@ -39,8 +39,10 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
   if (ne > 32) return "more than 32 brakes, clutches and torque limits (a mode is a 32-bit set)";
   for (const TriggeredSignal& s : sys.triggered) {
     const std::size_t n = s.command ? sys.elements.size() : sys.inputs.size();
-    if (s.index < 0 || static_cast<std::size_t>(s.index) >= n || s.element < 0 ||
-        static_cast<std::size_t>(s.element) >= sys.elements.size())
+    // A crossing's trigger is its monitor, one of the last d.nm elements (with_crossing_monitors).
+    const bool trigger_fits = s.crossing ? s.element >= ne - d.nm && s.element < ne
+                                         : s.element >= 0 && static_cast<std::size_t>(s.element) < sys.elements.size();
+    if (s.index < 0 || static_cast<std::size_t>(s.index) >= n || !trigger_fits)
       return "a triggered signal names no signal or no brake or clutch of the system";
     if (s.state == ElementState::open || !(s.delay >= 0) || !std::isfinite(s.delay))
       return "a triggered signal waits for an element to open, or for a negative or infinite delay";
@@ -59,7 +61,9 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
       d.dir.size() != d.state.size() || d.g0.size() != ne || d.v.size() != d.nw || d.dx.size() != nx ||
       d.nu != d.ns + static_cast<Eigen::Index>(sys.state_torques.size()) ||
       d.inputs.size() != sys.inputs.size() || d.commands.size() != sys.elements.size() ||
-      d.start.size() != sys.triggered.size() || d.before.size() != sys.triggered.size())
+      d.start.size() != sys.triggered.size() || d.before.size() != sys.triggered.size() ||
+      d.nm != std::count_if(sys.triggered.begin(), sys.triggered.end(), [](const TriggeredSignal& s) { return s.crossing.has_value(); }) ||
+      d.shown_w.size() != d.nw - d.nm || d.shown_slip.size() != ne - d.nm)
     return "the hybrid workspace was sized for another system";
   return nullptr;
 }

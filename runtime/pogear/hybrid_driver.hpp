@@ -25,7 +25,15 @@ inline bool observe_sample(const HybridSystem& sys, HybridData& d, double t, con
   }
   d.sample_slip.setZero();
   detail::small_matvec_add(d.S, d.nx, x.data(), d.sample_slip.data());
-  return obs(t, HybridSample{x, d.sample_w, d.sample_slip, energy, d.mask});
+  if (d.nm == 0) return obs(t, HybridSample{x, d.sample_w, d.sample_slip, energy, d.mask});
+  // The monitors of crossings are the last elements: their torques end w, their heat (none) ends
+  // the elements' part of the energy.
+  const Eigen::Index shown = d.ne - d.nm, rest = energy.size() - d.ne;
+  d.shown_w = d.sample_w.head(d.nw - d.nm);
+  d.shown_slip = d.sample_slip.head(shown);
+  d.shown_energy.head(shown) = energy.head(shown);
+  d.shown_energy.tail(rest) = energy.tail(rest);
+  return obs(t, HybridSample{x, d.shown_w, d.shown_slip, d.shown_energy, d.mask & ((1u << shown) - 1u)});
 }
 
 // Why the run cannot go on from state x (an untrusted exponential, a state not finite), or false.

@@ -42,11 +42,24 @@ struct TorqueLimitData {
   Eigen::RowVectorXd law_x, law_w;  // over the states and over w (its entries on the known inputs only)
 };
 
+// A speed or a slip crossing a value, the event a triggered signal may wait for instead of an
+// element's change of state: |S_k x| of friction element `slip_of` (value > 0), or the speed
+// `speed` x (a row over the states; run_hybrid_system fills it from the system's output `output`),
+// crossing `value` [rad/s] upward or downward. It fires at the first crossing after t = 0: a
+// quantity beyond the value at the start must come back first.
+struct CrossingTrigger {
+  int slip_of = -1;
+  Eigen::RowVectorXd speed;
+  std::string output;
+  double value = 0;
+  bool upward = false;
+};
+
 // A signal of the system that starts on an event (docs/scene-format.md, "Triggered signals"): an
 // input's (index into HybridSystem::inputs) or an element's command (into elements). Its times count
-// from the instant `element` first enters `state` (slipping or stuck) after the start, plus `delay`;
-// until then the signal is `before`, a signal of time (without one: the value the signal has before
-// its own times, waiting in signals.hpp).
+// from the instant `element` first enters `state` (slipping or stuck) after the start, or `crossing`
+// first happens (then `element` is unused), plus `delay`; until then the signal is `before`, a
+// signal of time (without one: the value the signal has before its own times, held_until_start).
 struct TriggeredSignal {
   bool command = false;
   int index = -1;
@@ -55,6 +68,7 @@ struct TriggeredSignal {
   double delay = 0;
   std::string name;  // in the events file
   std::optional<Signal> before;
+  std::optional<CrossingTrigger> crossing;
 };
 
 // The system with its friction elements and torque limits: dx/dt = M x + N w, w = [u; q; T], the

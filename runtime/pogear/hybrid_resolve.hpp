@@ -33,7 +33,7 @@ inline void start_signal(const HybridSystem& sys, HybridData& d, std::size_t i, 
 inline void record(const HybridSystem& sys, HybridData& d, double t, int k, ElementState from, ElementState to,
                    const EventObserver& on_event) {
   if (from == to) return;
-  on_event(HybridEvent{t, k, from, to, -1});
+  if (k < d.ne - d.nm) on_event(HybridEvent{t, k, from, to, -1});  // a monitor's change is no event of the gear
   if (!d.triggers_live) return;
   for (std::size_t i = 0; i < sys.triggered.size(); ++i) {
     const TriggeredSignal& s = sys.triggered[i];
@@ -49,8 +49,8 @@ inline void report_starts(const HybridSystem& sys, HybridData& d, double t, cons
   for (std::size_t i = 0; i < sys.triggered.size(); ++i)
     if (!d.reported[i] && d.start[i] <= t) {
       d.reported[i] = 1;
-      on_event(HybridEvent{d.start[i], sys.triggered[i].element, ElementState::open, ElementState::open,
-                           static_cast<int>(i)});
+      on_event(HybridEvent{d.start[i], sys.triggered[i].crossing ? -1 : sys.triggered[i].element, ElementState::open,
+                           ElementState::open, static_cast<int>(i)});
     }
 }
 

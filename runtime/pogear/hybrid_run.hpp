@@ -2,6 +2,7 @@
 // its last inputs, run by the hybrid engine (hybrid.hpp), its CSV and its events file written.
 #pragma once
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <numbers>
@@ -110,6 +111,29 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
 
   std::vector<std::string> names(std::begin(sys.output_names), std::end(sys.output_names));
   std::vector<std::string> units(std::begin(sys.output_units), std::end(sys.output_units));
+  // A crossing of a speed output: its row over the states, read off the outputs (a speed is linear
+  // in the state alone), in rad/s.
+  for (TriggeredSignal& s : hs.triggered) {
+    if (!s.crossing || s.crossing->output.empty()) continue;
+    const auto j = static_cast<Eigen::Index>(std::find(names.begin(), names.end(), s.crossing->output) - names.begin());
+    if (j == ny || (units[static_cast<std::size_t>(j)] != "rad/s" && units[static_cast<std::size_t>(j)] != "rpm")) {
+      std::fprintf(stderr, "%s%s: error: %s waits for %s, which is no speed output of the system\n", run.name.c_str(),
+                   suffix.c_str(), s.name.c_str(), s.crossing->output.c_str());
+      return 3;
+    }
+    typename System::State e = x0;
+    typename System::Input w0(nu + nd + ne + nl);
+    typename System::Output y(ny);
+    w0.setZero();
+    s.crossing->speed.resize(nx);
+    const double to_rad_s = units[static_cast<std::size_t>(j)] == "rpm" ? std::numbers::pi / 30 : 1.0;
+    for (Eigen::Index c = 0; c < nx; ++c) {
+      e.setZero();
+      e(c) = 1;
+      sys.outputs(p, e, w0, y);
+      s.crossing->speed(c) = to_rad_s * y(j);
+    }
+  }
   for (const char* prefix : {"T_", "slip_", "E_"})
     for (const auto& e : elements) {
       names.push_back(prefix + e.name);

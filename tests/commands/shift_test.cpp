@@ -43,8 +43,9 @@ TEST(Shift, InlineCommandTablesRunAsTheirCsvFiles) {
   }
 }
 
-// Signals that start on events, compiled: B1's apply ramp starts 20 ms after B2 breaks away, and a
-// torque cut of tau_i ends when B1 locks. The generated simulator's elastic and rigid runs and the
+// Signals that start on events, compiled: B1's apply ramp starts 20 ms after B2 breaks away, a
+// torque cut of tau_i ends when B1 locks, and the road load grows once the output passes 30 rad/s
+// (a speed the simulator reads off its outputs). The generated simulator's elastic and rigid runs and the
 // interpreted ones report the same events and starts, at times that differ by rounding.
 TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
   namespace fs = std::filesystem;
@@ -57,7 +58,9 @@ TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
         "{ table = [[0, 0], [\"0.15*s\", 1]], when = \"B2 slipping\", delay = \"20*ms\" }"},
        {"tau_i = \"150*Nm\"",
         "tau_i = { table = [[0, \"100*Nm\"], [\"20*ms\", \"150*Nm\"]], when = \"B1 stuck\", "
-        "before = { table = [[0, \"150*Nm\"], [\"1*s\", \"150*Nm\"], [\"1.02*s\", \"100*Nm\"]] } }"}});
+        "before = { table = [[0, \"150*Nm\"], [\"1*s\", \"150*Nm\"], [\"1.02*s\", \"100*Nm\"]] } }"},
+       {"tau_o = \"-200*Nm\"",
+        "tau_o = { table = [[0, \"-200*Nm\"], [\"50*ms\", \"-220*Nm\"]], when = \"omega_o > 30*rad/s\", before = \"-200*Nm\" }"}});
   write_text(dir / "triggered.toml", text);
   for (const std::string how : {"", " --interpreted"}) {
     const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / "triggered.toml").string() + how +
@@ -79,8 +82,9 @@ TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
     };
     const auto a = rows("compiled"), b = rows("interpreted");
     ASSERT_EQ(a.size(), b.size());
-    // B2 breaks away, B1's ramp starts, B1 slips, B2 opens, B1 locks and the cut's end starts.
-    ASSERT_GE(a.size(), 7u);
+    // The load grows, B2 breaks away, B1's ramp starts, B1 slips, B2 opens, B1 locks and the cut's
+    // end starts.
+    ASSERT_GE(a.size(), 8u);
     auto has = [&](const std::string& name) {
       return std::any_of(a.begin(), a.end(), [&](const auto& r) {
         return r.size() == 4 && r[1] == name && r[2] == "waiting" && r[3] == "started";
@@ -88,6 +92,7 @@ TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
     };
     EXPECT_TRUE(has("command_B1"));
     EXPECT_TRUE(has("tau_i"));
+    EXPECT_TRUE(has("tau_o"));
     if (suffix.empty()) {
       // The shift metrics read B1's command as the run applied it: its window ends 0.15 s after the start.
       const std::string json = read_text(dir / "compiled" / "simpson_1_2_upshift.shift.json");

@@ -81,5 +81,10 @@ TEST_F(Fixed, SceneNamesAFixedBody) {
       R"~(scene.toml:12:5: error: the load's body 'r' is fixed (the housing holds it), so it has no speed and takes no torque; name a body that turns: c, p, s, g)~");
 }
 
+TEST_F(Fixed, TriggerOnTheSpeedOfAFixedBody) {
+  expect_fixed_scene_error({{R"(tau_c = { constant = "100*Nm" })", R"(tau_c = { table = [[0, "100*Nm"]], when = "omega_r > 5*rad/s" })"}}, 
+      R"~(scene.toml:9:43: error: 'r' is fixed to the housing: its speed is zero and crosses nothing; give a body that turns)~");
+}
+
 }  // namespace
 }  // namespace pogear::test

@@ -12,11 +12,11 @@ const std::string release = "B1 = { table = [[0, 1], [\"0.05*s\", 1], [\"0.06*s\
 
 TEST_F(EngagementCommands, StartOnNoElement) {
   expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"B9 slipping\" }\n",
-               R"~(scene.toml:23:48: error: 'B9' is no brake or clutch of the model (it has B1, C1); when = "<element> slipping" or "<element> stuck", e.g. when = "C stuck")~");
+               R"~(scene.toml:23:48: error: 'B9' is no brake or clutch of the model (it has B1, C1); when = "<element> slipping", "<element> stuck", "|slip_<element>| < <speed>" or "omega_<body> > <speed>" (< or >), e.g. when = "C stuck" or when = "|slip_C| < 50*rpm")~");
 }
 TEST_F(EngagementCommands, StartOnNoState) {
   expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"B1 open\" }\n",
-               R"~(scene.toml:23:48: error: 'B1 open' is no event a signal can wait for; give when = "<element> slipping" or "<element> stuck", e.g. when = "C stuck")~");
+               R"~(scene.toml:23:48: error: 'B1 open' is no event a signal can wait for; give when = "<element> slipping", "<element> stuck", "|slip_<element>| < <speed>" or "omega_<body> > <speed>" (< or >), e.g. when = "C stuck" or when = "|slip_C| < 50*rpm")~");
 }
 TEST_F(EngagementCommands, StartOnAnOpenElement) {
   expect_error("C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"B1 slipping\" }\n",
@@ -28,7 +28,7 @@ TEST_F(EngagementCommands, StartDelayNegative) {
 }
 TEST_F(EngagementCommands, StartDelayWithoutWhen) {
   expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 1]], delay = \"1*ms\" }\n",
-               R"~(scene.toml:23:49: error: delay needs when = "<element> slipping" or "<element> stuck")~");
+               R"~(scene.toml:23:49: error: delay needs when = "<element> slipping", "<element> stuck", "|slip_<element>| < <speed>" or "omega_<body> > <speed>" (< or >), e.g. when = "C stuck" or when = "|slip_C| < 50*rpm")~");
 }
 TEST_F(EngagementCommands, StartedTableBeforeItsEvent) {
   expect_error(release + "C1 = { table = [[\"-0.01*s\", 0], [\"0.01*s\", 1]], when = \"B1 slipping\" }\n",
@@ -64,6 +64,41 @@ TEST_F(EngagementCommands, StartedSine) {
                                     "\n[engagement]\n" + release,
                                 shift_model()),
                     R"~(scene.toml:9:54: error: a sine has no value to hold until an event; start a table of its points instead)~");
+}
+
+// Crossings: a speed or a slip passing a value.
+TEST_F(EngagementCommands, StartOnNoSpeed) {
+  expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"tau_c > 5*rad/s\" }\n", 
+               R"~(scene.toml:23:48: error: 'tau_c' is no speed a signal can wait for; give when = "<element> slipping", "<element> stuck", "|slip_<element>| < <speed>" or "omega_<body> > <speed>" (< or >), e.g. when = "C stuck" or when = "|slip_C| < 50*rpm")~");
+}
+TEST_F(EngagementCommands, StartOnSpeedOfNoBody) {
+  expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"omega_x > 5*rad/s\" }\n", 
+               R"~(scene.toml:23:48: error: 'x' is no body of the model (it has c, p, s, r, g); when = "<element> slipping", "<element> stuck", "|slip_<element>| < <speed>" or "omega_<body> > <speed>" (< or >), e.g. when = "C stuck" or when = "|slip_C| < 50*rpm")~");
+}
+TEST_F(EngagementCommands, StartOnSlipOfNoElement) {
+  expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"|slip_B9| < 5*rad/s\" }\n", 
+               R"~(scene.toml:23:48: error: 'B9' is no brake or clutch of the model (it has B1, C1); when = "<element> slipping", "<element> stuck", "|slip_<element>| < <speed>" or "omega_<body> > <speed>" (< or >), e.g. when = "C stuck" or when = "|slip_C| < 50*rpm")~");
+}
+TEST_F(EngagementCommands, StartOnSpeedWithoutUnit) {
+  expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"omega_c > 5\" }\n", 
+               R"~(scene.toml:23:48: error: the speed '5' needs a unit of angular speed, e.g. "50*rpm" or "5*rad/s")~");
+}
+TEST_F(EngagementCommands, StartOnSpeedWithoutValue) {
+  expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"omega_c >\" }\n", 
+               R"~(scene.toml:23:48: error: 'omega_c >' gives no speed to cross; give when = "<element> slipping", "<element> stuck", "|slip_<element>| < <speed>" or "omega_<body> > <speed>" (< or >), e.g. when = "C stuck" or when = "|slip_C| < 50*rpm")~");
+}
+TEST_F(EngagementCommands, StartOnSlipNotAboveZero) {
+  expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"|slip_B1| < 0*rpm\" }\n", 
+               R"~(scene.toml:23:48: error: a slip's magnitude crosses a speed above 0, not 0 rad/s; for the element's lock-up give when = "B1 stuck")~");
+}
+TEST_F(EngagementCommands, StartOnSlipOfAnOpenElement) {
+  expect_error("C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"|slip_B1| < 5*rpm\" }\n", 
+               R"~(scene.toml:22:48: error: the signal waits for the slip of B1, which the scene does not engage, so its runs have no slip of it; give B1 a command in [engagement], or wait for a body's speed (omega_<body>))~");
+}
+TEST_F(EngagementCommands, StartOnSpeedLeftOutOfOutputs) {
+  expect_error(release + "C1 = { table = [[0, 0], [\"0.01*s\", 1]], when = \"omega_s > 5*rad/s\" }\n", 
+               R"~(scene.toml:24:48: error: the signal waits for omega_s, which the scene's outputs leave out; add "omega_s" to outputs)~",
+               {{"compare_rigid = true", "compare_rigid = true\noutputs = [\"omega_c\"]"}});
 }
 
 }  // namespace

@@ -194,7 +194,7 @@ rt::HybridSystem clutch_and_shaft(Drive drive) {
   sys.inputs = {rt::Constant{0.5}, rt::Step{0, 30, 2}};
   if (drive == Drive::triggered) {  // a jump to 30 N m at its start: the table's repeated first time
     sys.inputs[1] = rt::Table{{0, 0}, {0, 30}};
-    sys.triggered = {{false, 1, 0, rt::ElementState::stuck, 0.5, "load", std::nullopt}};
+    sys.triggered = {{false, 1, 0, rt::ElementState::stuck, 0.5, "load", std::nullopt, std::nullopt}};
   }
   if (drive == Drive::fan) sys.state_torques.push_back(rt::quadratic_torque_data(Eigen::RowVector4d(0, 0, 0, 1), 0.002));
   if (drive == Drive::driveline) {

@@ -88,18 +88,25 @@ CppText torque_limits_function(const SpecializedScene& model, const SpecializedS
 
 // The signals and commands of `sys` that start on an event, as the hybrid engine takes them: input
 // or command, its index, the trigger's element (among the friction elements), state and delay [s],
-// and the name the events file gives its start.
+// the name the events file gives its start, its `before`, and a crossing instead of the element.
 CppText triggered_function(const std::vector<rt::TriggeredSignal>& triggered, const CppText& name) {
   CppText s = code("// Signals of {} that start on an event: command?, index, trigger's element, state, delay [s], name,\n"
-                   "// what the signal is until then (none: the value before its own times).\n", name);
+                   "// what the signal is until then (none: the value before its own times), and a crossing instead of\n"
+                   "// the element's change of state (the slip of an element or a speed output, the value [rad/s], upward?).\n",
+                   name);
   s += code("inline std::vector<pogear::rt::TriggeredSignal> {}_triggered_signals() {{\n  return {{", name);
   for (std::size_t i = 0; i < triggered.size(); ++i) {
     const rt::TriggeredSignal& t = triggered[i];
+    const CppText crossing =
+        t.crossing ? code(", pogear::rt::CrossingTrigger{{{}, {{}}, {}, {}, {}}}", integer_code(t.crossing->slip_of),
+                          string_literal(t.crossing->output), number_code(t.crossing->value),
+                          t.crossing->upward ? code("true") : code("false"))
+                   : code(", std::nullopt");
     s += (i ? code(",\n          ") : CppText{}) +
-         code("{{{}, {}, {}, pogear::rt::ElementState::{}, {}, {}, {}}}", t.command ? code("true") : code("false"),
+         code("{{{}, {}, {}, pogear::rt::ElementState::{}, {}, {}, {}{}}}", t.command ? code("true") : code("false"),
               integer_code(t.index), integer_code(t.element), identifier(rt::state_name(t.state)),
               number_code(t.delay), string_literal(t.name),
-              t.before ? code("pogear::rt::Signal{{{}}}", signal_code(*t.before)) : code("std::nullopt"));
+              t.before ? code("pogear::rt::Signal{{{}}}", signal_code(*t.before)) : code("std::nullopt"), crossing);
   }
   s += code("}};\n}}\n");
   return s;

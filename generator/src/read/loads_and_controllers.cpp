@@ -9,6 +9,7 @@
 #include "pogear/parameters.hpp"
 
 #include "read/model_parameters.hpp"
+#include "read/signal_start.hpp"
 #include "names/model_variables.hpp"
 
 namespace pogear {

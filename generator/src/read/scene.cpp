@@ -25,6 +25,7 @@
 #include "read/driveline_table.hpp"
 #include "read/vehicle_table.hpp"
 #include "read/scene_reader.hpp"
+#include "read/signal_start.hpp"
 #include "read/simulation_table.hpp"
 #include "read/toml_reader.hpp"
 #include "read/tooth_counts.hpp"

@@ -30,19 +30,29 @@ struct Effects {
   bool elastic() const { return mesh_compliance || shaft_compliance; }
 };
 
+// A speed or a slip crossing a value: the magnitude of brake or clutch `slip_of`'s slip, or the
+// speed of body `body` (signed, in its arrow's sense), crossing `value` [rad/s] upward or downward.
+struct CrossingStart {
+  int slip_of = -1;  // index into Topology::friction_elements
+  int body = -1;     // index into Topology::bodies
+  double value = 0;
+  bool upward = false;
+};
+
 // A signal that starts on an event (docs/scene-format.md, "Triggered signals"): its times count from
-// the instant brake or clutch `element` first slips or sticks after the start, plus `delay` [s].
-// Until then it is `before`, a signal of time (without one: the value the signal has before its
-// own times).
+// the instant brake or clutch `element` first slips or sticks after the start, or `crossing` first
+// happens, plus `delay` [s]. Until then it is `before`, a signal of time (without one: the value the
+// signal has before its own times).
 struct SignalStart {
-  int element = -1;  // index into Topology::friction_elements
+  int element = -1;  // index into Topology::friction_elements; -1 with a crossing
   rt::ElementState state = rt::ElementState::stuck;
+  std::optional<CrossingStart> crossing;
   double delay = 0;
   SourceLocation where;
   std::optional<rt::Signal> before;
 };
 
-// The signal's value at t = 0: a triggered one's before it starts (rt::waiting).
+// The signal's value at t = 0: a triggered one's before it starts (rt::held_until_start).
 double value_at_start(const rt::Signal& signal, const std::optional<SignalStart>& start);
 
 // An input torque of the scene, in SI units, as the runtime evaluates it.

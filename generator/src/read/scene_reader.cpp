@@ -276,82 +276,12 @@ rt::Signal read_signal(const SceneReader& r, const toml::node& n, const fs::path
             "frequency = ... }, { table = \"file.csv\" } or { table = [[time, value], ...] }");
 }
 
-// `when = "<element> slipping"` (or stuck) and `delay`: the signal's times then count from that
-// event plus the delay, so they may not be negative (the signal would have changed before it).
-std::optional<SignalStart> read_signal_start(const SceneReader& r, const toml::node& n, const rt::Signal& signal,
-                                             const fs::path& scene_dir, SignalQuantity what) {
-  const toml::table* t = n.as_table();
-  const toml::node* when = t ? t->get("when") : nullptr;
-  if (!when) {
-    for (const char* key : {"delay", "before"})  // a step's own `before` is its value until `at`
-      if (t && t->get(key) && !(std::string_view(key) == "before" && std::holds_alternative<rt::Step>(signal)))
-        r.fail(*t->get(key), fmt::format("{} needs when = \"<element> slipping\" or \"<element> stuck\"", key));
-    return std::nullopt;
-  }
-  const std::string text = r.string(*when, "when");
-  const std::size_t space = text.find(' ');
-  const std::string element = text.substr(0, space), state = space == std::string::npos ? "" : text.substr(space + 1);
-  const std::string form = "when = \"<element> slipping\" or \"<element> stuck\", e.g. when = \"C stuck\"";
-  if (state != "slipping" && state != "stuck")
-    r.fail(*when, fmt::format("'{}' is no event a signal can wait for; give {}", text, form));
-  SignalStart start;
-  start.where = r.loc(*when);
-  start.state = state == "stuck" ? rt::ElementState::stuck : rt::ElementState::slipping;
-  const std::vector<FrictionElement>& elements = r.model->friction_elements;
-  for (std::size_t k = 0; k < elements.size(); ++k)
-    if (elements[k].name == element) start.element = static_cast<int>(k);
-  if (start.element < 0) {
-    std::string names;
-    for (const FrictionElement& e : elements) names += (names.empty() ? "" : ", ") + e.name;
-    r.fail(*when, fmt::format("'{}' is no brake or clutch of the model{}; {}", element,
-                              names.empty() ? std::string(", which has none") : " (it has " + names + ")", form));
-  }
-  if (const toml::node* d = t->get("delay")) {
-    start.delay = r.quantity(*d, time_dimension(), "delay");
-    if (!(start.delay >= 0)) r.fail(*d, "a delay is not negative; the signal starts at the event or after it");
-  }
-  if (const toml::node* b = t->get("before")) {
-    start.before = read_signal(r, *b, scene_dir, what);
-    // A signal of time: none of a started signal's keys (a step's own `before` is its own).
-    for (const char* key : {"when", "delay", "before"})
-      if (const toml::node* k = b->is_table() ? b->as_table()->get(key) : nullptr;
-          k && !(std::string_view(key) == "before" && std::holds_alternative<rt::Step>(*start.before)))
-        r.fail(*k, fmt::format("what a signal is before its event is a signal of time; give it without {}", key));
-  }
-  double first = 0;
-  rt::for_each_break(signal, [&](double b) { first = std::min(first, b); });
-  if (first < 0)
-    r.fail(n, fmt::format("a signal that starts on an event counts its times from it, but this one changes at {} s; "
-                          "give its times from 0", first));
-  return start;
-}
-
 bool identically_zero(const rt::Signal& signal, const std::optional<SignalStart>& start) {
   return identically_zero(signal) && !(start && start->before && !identically_zero(*start->before));
 }
 
 double value_at_start(const rt::Signal& signal, const std::optional<SignalStart>& start) {
   return rt::value(start ? rt::held_until_start(signal, start->before) : signal, 0.0);
-}
-
-// A signal waits for an element the scene engages: an open one never slips or sticks.
-void check_signal_starts(const Scene& s) {
-  std::vector<const SignalStart*> starts;
-  for (const InputSpec& in : s.inputs) starts.push_back(in.start ? &*in.start : nullptr);
-  for (const EngagementSpec& e : s.engagement) starts.push_back(e.start ? &*e.start : nullptr);
-  for (const ControllerSpec& c : s.controllers) starts.push_back(c.set_point_start ? &*c.set_point_start : nullptr);
-  for (const SignalStart* start : starts) {
-    if (!start) continue;
-    const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(), [&](const EngagementSpec& e) {
-      return e.element == start->element && !identically_zero(e.command, e.start);
-    });
-    if (!engaged)
-      throw InputError(start->where,
-                       fmt::format("the signal waits for {}, which the scene does not engage, so it never slips or "
-                                   "sticks; give {} a command in [engagement]",
-                                   s.model.friction_elements[static_cast<std::size_t>(start->element)].name,
-                                   s.model.friction_elements[static_cast<std::size_t>(start->element)].name));
-  }
 }
 
 }  // namespace pogear

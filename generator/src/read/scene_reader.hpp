@@ -55,14 +55,6 @@ enum class SignalQuantity { torque, engagement, speed, angle, throttle };
 rt::Signal read_signal(const SceneReader& r, const toml::node& n, const std::filesystem::path& scene_dir,
                        SignalQuantity what = SignalQuantity::torque);
 
-// The start on an event that a signal's table gives with `when` and `delay` (scene-format.md,
-// "Triggered signals"), or none; `signal` is what read_signal read from it.
-std::optional<SignalStart> read_signal_start(const SceneReader& r, const toml::node& n, const rt::Signal& signal,
-                                             const std::filesystem::path& scene_dir, SignalQuantity what);
-
-// Refuses a signal that waits for an element the scene does not engage.
-void check_signal_starts(const Scene& s);
-
 // Adds a parameter a scene table defines (`table` names it in messages), its text the SI value with
 // its unit, refused when the model has one of that name or the value leaves pogear's range.
 void add_scene_parameter(const SceneReader& r, const toml::node& where, std::string_view table, Topology& t,
