@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "pogear/element_thermal.hpp"
 #include "pogear/hybrid.hpp"
 #include "pogear/output_file.hpp"
 #include "pogear/run_system.hpp"
@@ -61,12 +63,13 @@ inline bool write_events(const SceneRun& run, const std::string& suffix, const s
 // from its quadratic_loads, a converter's and an engine's torques from its driveline (exact
 // stepping then refused; the CSV then has E_converter [J], the converter's loss, and W_engine [J],
 // the engine's work, before the mode). `triggered`: the signals and commands that start on an
-// event (HybridSystem::triggered). Returns 0, or 3 when the run failed.
+// event (HybridSystem::triggered). `thermal`: the elements whose temperature temp_<element> [degC]
+// the CSV has, after the E_ columns. Returns 0, or 3 when the run failed.
 template <class System>
 int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
                       const std::vector<FrictionElementData>& elements, std::vector<TorqueLimitData> limits,
                       const typename System::State& x0, const SceneRun& run, const std::string& suffix,
-                      std::vector<TriggeredSignal> triggered = {}) {
+                      std::vector<TriggeredSignal> triggered = {}, const std::vector<ElementThermal>& thermal = {}) {
   const Eigen::Index nx = x0.size();
   const auto nu = static_cast<Eigen::Index>(signals.size()), ne = static_cast<Eigen::Index>(elements.size()),
              nl = static_cast<Eigen::Index>(limits.size());
@@ -139,6 +142,17 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
       names.push_back(prefix + e.name);
       units.emplace_back(prefix[0] == 'T' ? "N m" : prefix[0] == 's' ? (run.speeds_in_rpm ? "rpm" : "rad/s") : "J");
     }
+  for (const ElementThermal& th : thermal) {
+    if (th.element < 0 || th.element >= ne || !(th.heat_capacity > 0) || !(th.conductance >= 0) ||
+        !std::isfinite(th.conductance) || !std::isfinite(th.ambient) || !std::isfinite(th.initial)) {
+      std::fprintf(stderr, "%s%s: error: a temperature is of no brake or clutch, or its heat capacity, conductance "
+                   "or temperatures are not finite and positive\n", run.name.c_str(), suffix.c_str());
+      return 3;
+    }
+    names.push_back("temp_" + elements[static_cast<std::size_t>(th.element)].name);
+    units.emplace_back("degC");
+  }
+  const auto nt = static_cast<Eigen::Index>(thermal.size());
   // A converter's loss and an engine's work, integrated by the run (the state torques' work, HybridSample).
   const auto driveline_work = [&](bool converter) {
     std::vector<Eigen::Index> columns;
@@ -186,7 +200,10 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   const double slip_scale = run.speeds_in_rpm ? 30 / std::numbers::pi : 1.0;
   typename System::Input w(nu + nd + ne + nl);
   typename System::Output y(ny);
-  Eigen::VectorXd row(ny + 3 * ne + nwork + 1);
+  Eigen::VectorXd row(ny + 3 * ne + nt + nwork + 1);
+  // The temperatures and, at the last sample, the time and the elements' heat.
+  Eigen::VectorXd temperature(nt), heat_then(ne);
+  double t_then = 0;
   RunStatus st;
   std::vector<HybridEvent> events;
   int modes = 0;
@@ -206,7 +223,15 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
       row.segment(ny, ne) = s.w.segment(nu + nq, ne);
       row.segment(ny + ne, ne) = slip_scale * s.slip.head(ne);
       row.segment(ny + 2 * ne, ne) = s.energy.head(ne);
-      Eigen::Index at = ny + 3 * ne;
+      for (Eigen::Index i = 0; i < nt; ++i) {
+        const ElementThermal& th = thermal[static_cast<std::size_t>(i)];
+        const double heat = s.energy(th.element);
+        temperature(i) = t == 0 ? th.initial : next_temperature(th, temperature(i), heat - heat_then(th.element), t - t_then);
+        row(ny + 3 * ne + i) = temperature(i);
+      }
+      heat_then = s.energy.head(ne);
+      t_then = t;
+      Eigen::Index at = ny + 3 * ne + nt;
       for (const auto* columns : {&converter_columns, &engine_columns}) {
         if (columns->empty()) continue;
         double work = 0;
@@ -234,9 +259,10 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
 template <class System>
 int run_hybrid_system(const System& sys, const typename System::Params& p, const std::vector<Signal>& signals,
                       const std::vector<FrictionElementData>& elements, const typename System::State& x0,
-                      const SceneRun& run, const std::string& suffix, std::vector<TriggeredSignal> triggered = {}) {
+                      const SceneRun& run, const std::string& suffix, std::vector<TriggeredSignal> triggered = {},
+                      const std::vector<ElementThermal>& thermal = {}) {
   return run_hybrid_system(sys, p, signals, elements, std::vector<TorqueLimitData>{}, x0, run, suffix,
-                           std::move(triggered));
+                           std::move(triggered), thermal);
 }
 
 }  // namespace pogear::rt

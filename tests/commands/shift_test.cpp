@@ -45,7 +45,7 @@ TEST(Shift, InlineCommandTablesRunAsTheirCsvFiles) {
 
 // Signals that start on events, compiled: B1's apply ramp starts 20 ms after B2 breaks away, a
 // torque cut of tau_i ends when B1 locks, and the road load grows once the output passes 30 rad/s
-// (a speed the simulator reads off its outputs). The generated simulator's elastic and rigid runs and the
+// (a speed the simulator reads off its outputs); B1's temperature is in both CSV files. The generated simulator's elastic and rigid runs and the
 // interpreted ones report the same events and starts, at times that differ by rounding.
 TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
   namespace fs = std::filesystem;
@@ -60,7 +60,8 @@ TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
         "tau_i = { table = [[0, \"100*Nm\"], [\"20*ms\", \"150*Nm\"]], when = \"B1 stuck\", "
         "before = { table = [[0, \"150*Nm\"], [\"1*s\", \"150*Nm\"], [\"1.02*s\", \"100*Nm\"]] } }"},
        {"tau_o = \"-200*Nm\"",
-        "tau_o = { table = [[0, \"-200*Nm\"], [\"50*ms\", \"-220*Nm\"]], when = \"omega_o > 30*rad/s\", before = \"-200*Nm\" }"}});
+        "tau_o = { table = [[0, \"-200*Nm\"], [\"50*ms\", \"-220*Nm\"]], when = \"omega_o > 30*rad/s\", before = \"-200*Nm\" }"}}) +
+      "\n[thermal]\nB1 = { heat_capacity = \"500*J/K\", conductance = \"5*W/K\", ambient = \"90*degC\" }\n";
   write_text(dir / "triggered.toml", text);
   for (const std::string how : {"", " --interpreted"}) {
     const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / "triggered.toml").string() + how +
@@ -80,6 +81,14 @@ TEST(Shift, TriggeredSignalsRunCompiledAsInterpreted) {
       }
       return out;
     };
+    // B1's temperature, compiled as interpreted: the same heat to rounding on each path's trajectory.
+    const Csv ca = read_csv((dir / "compiled" / ("simpson_1_2_upshift" + suffix + ".csv")).string()),
+              cb = read_csv((dir / "interpreted" / ("simpson_1_2_upshift" + suffix + ".csv")).string());
+    const std::size_t temp = ca.column("temp_B1");
+    ASSERT_LT(temp, ca.header.size());
+    ASSERT_EQ(ca.rows.size(), cb.rows.size());
+    EXPECT_GT(ca.rows.back()[temp], 91.0);  // B1 heats by its kJ of slip work
+    for (std::size_t i = 0; i < ca.rows.size(); ++i) EXPECT_NEAR(ca.rows[i][temp], cb.rows[i][temp], 1e-9 * 100) << i;
     const auto a = rows("compiled"), b = rows("interpreted");
     ASSERT_EQ(a.size(), b.size());
     // The load grows, B2 breaks away, B1's ramp starts, B1 slips, B2 opens, B1 locks and the cut's

@@ -497,7 +497,7 @@ TEST_F(Expressions, UnexpectedCharacter) { expect_expression_error("4.8*%",
 TEST_F(Expressions, NotANumber) { expect_expression_error("4.8.1*cm",
     R"~(gear.toml:39:8: error: '4.8.1' is not a number)~"); }
 TEST_F(Expressions, UnknownName) { expect_expression_error("4.8*cn",
-    R"~(gear.toml:39:12: error: unknown unit or parameter 'cn'; units are m, meter, meters, metre, cm, mm, kg, gram, s, ms, minute, Hz, kHz, N, Newton, kN, Nm, rad, deg, rev, rpm, pi, J, or name a parameter of this model)~"); }
+    R"~(gear.toml:39:12: error: unknown unit or parameter 'cn'; units are m, meter, meters, metre, cm, mm, kg, gram, s, ms, minute, Hz, kHz, N, Newton, kN, Nm, rad, deg, rev, rpm, pi, J, W, K, degC, or name a parameter of this model)~"); }
 TEST_F(Expressions, TooLong) {
   std::string text = "4.8*cm";
   while (text.size() <= max_expression_length) text += "+0";
@@ -688,7 +688,7 @@ TEST_F(SceneFiles, TomlSyntax) {
 
 TEST_F(SceneFiles, UnknownKey) {
   expect_scene_error({{"compare_rigid = true", "compare_rigid = true\nduration = 2"}},
-      R"~(scene.toml:7:1: error: unknown key 'duration' in the scene file; the keys are name, model, effects, keep, compare_rigid, tunable, outputs, inputs, initial, parameters, simulation, engagement, speed_unit, loads, controllers, vehicle, engine, converter)~");
+      R"~(scene.toml:7:1: error: unknown key 'duration' in the scene file; the keys are name, model, effects, keep, compare_rigid, tunable, outputs, inputs, initial, parameters, simulation, engagement, speed_unit, loads, controllers, vehicle, engine, converter, thermal)~");
 }
 
 TEST_F(SceneFiles, ModelError) {
@@ -771,7 +771,7 @@ TEST_F(Scenes, OverrideWrongType) {
 }
 TEST_F(Scenes, OverrideExpression) {
   expect_documented(scene_error(base_scene() + "\n[parameters]\nK_ps = \"2000*Newton/mn\"\n"),
-      R"~(scene.toml:22:21: error: unknown unit or parameter 'mn'; units are m, meter, meters, metre, cm, mm, kg, gram, s, ms, minute, Hz, kHz, N, Newton, kN, Nm, rad, deg, rev, rpm, pi, J, or name a parameter of this model)~");
+      R"~(scene.toml:22:21: error: unknown unit or parameter 'mn'; units are m, meter, meters, metre, cm, mm, kg, gram, s, ms, minute, Hz, kHz, N, Newton, kN, Nm, rad, deg, rev, rpm, pi, J, W, K, degC, or name a parameter of this model)~");
 }
 TEST_F(Scenes, OverrideWrongUnit) {
   expect_documented(scene_error(base_scene() + "\n[parameters]\nK_ps = \"2000*Newton\"\n"),

@@ -17,6 +17,7 @@
 #include "codegen/codegen_system.hpp"
 #include "common/cpp_text.hpp"
 #include "specialize/initial_state.hpp"
+#include "specialize/element_thermal.hpp"
 #include "specialize/triggered_signals.hpp"
 #include "pogear/command_line.hpp"
 #include "common/printer.hpp"
@@ -60,6 +61,22 @@ CppText friction_function(const SpecializedScene& model) {
     s += (i ? code(",\n          ") : CppText{}) +
          code("{{{}, {}, {}, {}, {}}}", string_literal(f.name), number_code(f.capacity), number_code(f.static_ratio),
               signal_code(f.command), f.one_way ? code("true") : code("false"));
+  }
+  s += code("}};\n}}\n");
+  return s;
+}
+
+// The elements whose temperature the runs give: element index, heat capacity [J/K], conductance
+// [W/K], ambient and initial temperatures [degC].
+CppText thermal_function(const std::vector<rt::ElementThermal>& thermal) {
+  CppText s = code("// Temperatures of brakes and clutches: element (in friction_elements()), heat capacity [J/K],\n"
+                   "// conductance to the ambient [W/K], ambient and initial temperatures [degC].\n");
+  s += code("inline std::vector<pogear::rt::ElementThermal> friction_thermal() {{\n  return {{");
+  for (std::size_t i = 0; i < thermal.size(); ++i) {
+    const rt::ElementThermal& t = thermal[i];
+    s += (i ? code(",\n          ") : CppText{}) +
+         code("{{{}, {}, {}, {}, {}}}", integer_code(t.element), number_code(t.heat_capacity), number_code(t.conductance),
+              number_code(t.ambient), number_code(t.initial));
   }
   s += code("}};\n}}\n");
   return s;
@@ -203,7 +220,8 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   h += code("#pragma once\n\n#include <array>\n{}#include <string_view>\n#include <vector>\n\n#include <Eigen/Core>\n",
             limits ? code("#include <limits>\n") : CppText{});
   if (needs_solve) h += code("#include <Eigen/Cholesky>\n");
-  h += code("\n{}{}#include <pogear/signals.hpp>\n", !model.main.driveline.empty() ? code("#include <pogear/driveline.hpp>\n") : CppText{},
+  h += code("\n{}{}{}#include <pogear/signals.hpp>\n", !model.main.driveline.empty() ? code("#include <pogear/driveline.hpp>\n") : CppText{},
+            model.scene.thermal.empty() ? CppText{} : code("#include <pogear/element_thermal.hpp>\n"),
             hybrid ? code("#include <pogear/hybrid_modes.hpp>\n") : CppText{});
   h += code("\nnamespace pogear_generated::{} {{\n\n", name);
   h += provenance(model);
@@ -227,6 +245,8 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
     h += code("\n") + torque_limits_function(model, model.main, main_struct);
     if (model.rigid) h += code("\n") + torque_limits_function(model, *model.rigid, code("Rigid"));
   }
+  const std::vector<rt::ElementThermal> thermal = element_thermal(model);
+  if (!thermal.empty()) h += code("\n") + thermal_function(thermal);
   const std::vector<rt::TriggeredSignal> triggered = triggered_signals(model, model.main);
   if (!triggered.empty()) {
     h += code("\n") + triggered_function(triggered, main_struct);
@@ -250,8 +270,12 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   m += code("namespace {{\n\n");
   m += code("// The solvers compiled into this simulator (`pogear generate --solvers`): each costs compile time.\n");
   m += code("using Solvers = pogear::rt::Solvers<{}>;\n", join(solver_codes, code(", ")));
-  const CppText main_triggers = triggered.empty() ? CppText{} : code(", scene::{}_triggered_signals()", main_struct);
-  const CppText rigid_triggers = triggered.empty() ? CppText{} : code(", scene::Rigid_triggered_signals()");
+  // The optional last arguments of run_hybrid_system: the triggered signals, then the temperatures.
+  const CppText thermal_arg = thermal.empty() ? CppText{} : code(", scene::friction_thermal()");
+  const CppText main_triggers = triggered.empty() ? (thermal.empty() ? CppText{} : code(", {{}}") + thermal_arg)
+                                                  : code(", scene::{}_triggered_signals()", main_struct) + thermal_arg;
+  const CppText rigid_triggers = triggered.empty() ? (thermal.empty() ? CppText{} : code(", {{}}") + thermal_arg)
+                                                   : code(", scene::Rigid_triggered_signals()") + thermal_arg;
   m += code("\n}}  // namespace\n\n");
   m += code("int main(int argc, char** argv) {{\n");
   m += code("  pogear::rt::SceneRun run;\n");

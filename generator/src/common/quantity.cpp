@@ -12,7 +12,7 @@
 namespace pogear {
 namespace {
 
-constexpr Dimension dim(int m, int kg, int s) { return Dimension{{m, kg, s}}; }
+constexpr Dimension dim(int m, int kg, int s, int K = 0) { return Dimension{{m, kg, s, K}}; }
 
 struct Unit {
   std::string_view name;
@@ -21,7 +21,7 @@ struct Unit {
 };
 
 constexpr double pi = std::numbers::pi;
-constexpr std::array<Unit, 23> units{{
+constexpr std::array<Unit, 26> units{{
     {"m", 1.0, dim(1, 0, 0)},         {"meter", 1.0, dim(1, 0, 0)},
     {"meters", 1.0, dim(1, 0, 0)},    {"metre", 1.0, dim(1, 0, 0)},
     {"cm", 1e-2, dim(1, 0, 0)},       {"mm", 1e-3, dim(1, 0, 0)},
@@ -34,6 +34,10 @@ constexpr std::array<Unit, 23> units{{
     {"rad", 1.0, dim(0, 0, 0)},       {"deg", pi / 180.0, dim(0, 0, 0)},
     {"rev", 2.0 * pi, dim(0, 0, 0)},  {"rpm", 2.0 * pi / 60.0, dim(0, 0, -1)},
     {"pi", pi, dim(0, 0, 0)},         {"J", 1.0, dim(2, 1, -2)},
+    {"W", 1.0, dim(2, 1, -3)},
+    // Temperature differences; an absolute temperature in K or degC is told apart by its unit's name
+    // (read/thermal_table.cpp).
+    {"K", 1.0, dim(0, 0, 0, 1)},      {"degC", 1.0, dim(0, 0, 0, 1)},
 }};
 
 const Unit* find_unit(std::string_view name) {
@@ -43,11 +47,11 @@ const Unit* find_unit(std::string_view name) {
 }
 
 Dimension operator+(Dimension a, const Dimension& b) {
-  for (int i = 0; i < 3; ++i) a.exponent[i] += b.exponent[i];
+  for (std::size_t i = 0; i < a.exponent.size(); ++i) a.exponent[i] += b.exponent[i];
   return a;
 }
 Dimension operator-(Dimension a, const Dimension& b) {
-  for (int i = 0; i < 3; ++i) a.exponent[i] -= b.exponent[i];
+  for (std::size_t i = 0; i < a.exponent.size(); ++i) a.exponent[i] -= b.exponent[i];
   return a;
 }
 Dimension scaled(Dimension a, int k) {
@@ -275,10 +279,10 @@ class Parser {
 }  // namespace
 
 std::string describe(const Dimension& d) {
-  static constexpr std::array<const char*, 3> names{"m", "kg", "s"};
+  static constexpr std::array<const char*, 4> names{"m", "kg", "s", "K"};
   std::string num, den;
   // kg first reads like the usual "kg*m^2"
-  for (int i : {1, 0, 2}) {
+  for (int i : {1, 0, 2, 3}) {
     const int e = d.exponent[i];
     if (e == 0) continue;
     std::string& side = e > 0 ? num : den;
@@ -286,6 +290,7 @@ std::string describe(const Dimension& d) {
     if (std::abs(e) != 1) side += fmt::format("^{}", std::abs(e));
   }
   if (num.empty() && den.empty()) return "no unit";
+  if (den.find('*') != std::string::npos) den = "(" + den + ")";  // J/K: kg*m^2/(s^2*K)
   return den.empty() ? num : fmt::format("{}/{}", num.empty() ? "1" : num, den);
 }
 
@@ -298,6 +303,9 @@ Dimension torque_dimension() { return dim(2, 1, -2); }
 Dimension angular_velocity_dimension() { return dim(0, 0, -1); }
 Dimension force_dimension() { return dim(1, 1, -2); }
 Dimension time_dimension() { return dim(0, 0, 1); }
+Dimension temperature_dimension() { return dim(0, 0, 0, 1); }
+Dimension heat_capacity_dimension() { return dim(2, 1, -2, -1); }
+Dimension thermal_conductance_dimension() { return dim(2, 1, -3, -1); }
 
 Quantity evaluate_quantity(std::string_view text, const std::map<std::string, Quantity>& known,
                            const SourceLocation& where, int column_offset) {

@@ -13,9 +13,9 @@
 
 namespace pogear {
 
-// Exponents of metre, kilogram and second; radians count as dimensionless.
+// Exponents of metre, kilogram, second and kelvin; radians count as dimensionless.
 struct Dimension {
-  std::array<int, 3> exponent{0, 0, 0};
+  std::array<int, 4> exponent{0, 0, 0, 0};
   bool operator==(const Dimension&) const = default;
 };
 
@@ -29,6 +29,9 @@ Dimension torque_dimension();              // N m
 Dimension angular_velocity_dimension();    // rad / s
 Dimension force_dimension();               // N
 Dimension time_dimension();                // s
+Dimension temperature_dimension();         // K (a difference: K or degC)
+Dimension heat_capacity_dimension();       // J / K
+Dimension thermal_conductance_dimension(); // W / K
 
 struct Quantity {
   double si = 0.0;         // value in SI units

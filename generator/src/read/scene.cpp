@@ -26,6 +26,7 @@
 #include "read/vehicle_table.hpp"
 #include "read/scene_reader.hpp"
 #include "read/signal_start.hpp"
+#include "read/thermal_table.hpp"
 #include "read/simulation_table.hpp"
 #include "read/toml_reader.hpp"
 #include "read/tooth_counts.hpp"
@@ -142,7 +143,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                   max_model_file_bytes));
   r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
                      "parameters", "simulation", "engagement", "speed_unit", "loads", "controllers", "vehicle", "engine",
-                     "converter"},
+                     "converter", "thermal"},
               "the scene file");
   Scene s;
   s.file = path;
@@ -282,6 +283,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
     std::sort(s.engagement.begin(), s.engagement.end(),
               [](const EngagementSpec& a, const EngagementSpec& b) { return a.element < b.element; });
   }
+  if (const toml::node* n = root.get("thermal")) s.thermal = read_thermal(r, *n);
 
   if (const toml::node* n = root.get("initial")) {
     if (!n->is_table()) r.fail(*n, "[initial] must be a table of omega_<body> and F_<mesh> values");
@@ -394,6 +396,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                                    [](const EngagementSpec& e) { return !identically_zero(e.command, e.start); });
   check_loads_and_controllers(s);
   check_signal_starts(s);
+  check_thermal(s);
   check_driveline(s);
   check_solver(s, engaged);
   check_vehicle_jerk(s);

@@ -71,6 +71,14 @@ struct EngagementSpec {
   std::optional<SignalStart> start;
 };
 
+// A brake's or clutch's lumped temperature (scene-format.md, "Temperatures"): heat capacity [J/K],
+// conductance to the ambient [W/K] (0: adiabatic), ambient and initial temperatures [degC].
+struct ThermalSpec {
+  int element = -1;  // index into Topology::friction_elements
+  double heat_capacity = 0, conductance = 0, ambient = 0, initial = 0;
+  SourceLocation where;
+};
+
 // A load on a body (scene-format.md, "Loads"): the torque -(constant + linear omega + quadratic
 // omega |omega|) in SI units. The constant part is a constant input, the linear one a damping that
 // keeps the scene linear, the quadratic one makes it nonlinear.
@@ -176,6 +184,7 @@ struct Scene {
   std::string initial_gear;  // the gear's name in the model's [gears]; empty for engaged = [...]
   SourceLocation initial_engaged_where;
   std::vector<std::string> tunable;
+  std::vector<ThermalSpec> thermal;  // in element order
   std::vector<Variable> outputs;  // velocities and forces; empty: every velocity, and every force with mesh_forces
   double horizon = 1.0;
   double sample = 1e-3;

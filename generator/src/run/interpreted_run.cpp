@@ -12,6 +12,7 @@
 
 #include "pogear/hybrid_run.hpp"
 #include "specialize/reference_model.hpp"
+#include "specialize/element_thermal.hpp"
 #include "specialize/triggered_signals.hpp"
 
 namespace pogear {
@@ -107,7 +108,7 @@ int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& 
   is.driveline_data = driveline_data(model.scene, sys, is.ns.driveline_speeds);
   if (!sys.friction_elements.empty() || !sys.limited_controllers.empty() || !sys.driveline.empty())
     return rt::run_hybrid_system(is, {}, input_signals(sys), friction_data(model), torque_limits(model, sys), is.ns.x0,
-                                 run, suffix, triggered_signals(model, sys));
+                                 run, suffix, triggered_signals(model, sys), element_thermal(model));
   return rt::run_system(is, {}, input_signals(sys), is.ns.x0, run, suffix);
 }
 
