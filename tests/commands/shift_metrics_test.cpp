@@ -22,16 +22,17 @@ struct Measured {
   std::string text, summary;
 };
 
-Measured measure(const std::string& scene, const std::string& options = "") {
+// `suffix` "" for the scene's model, ".rigid" for its rigid comparison run.
+Measured measure(const std::string& scene, const std::string& options = "", const std::string& suffix = "") {
   const fs::path dir = temp_dir("shift_metrics_" + scene);
   const std::string toml = source_path("models/scenes/" + scene + ".toml");
   const Command run = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + toml + " " + options + " -o " + dir.string());
   EXPECT_EQ(run.status, 0) << run.err;
   const Command ref = run_command("python3 " + source_path("tests/scripts/shift_metrics_reference.py") + " " + toml + " " +
-                                  dir.string());
+                                  dir.string() + (suffix.empty() ? "" : " " + suffix));
   EXPECT_EQ(ref.status, 0) << ref.err;
   Measured m;
-  m.text = read_text(dir / (scene + ".shift.json"));
+  m.text = read_text(dir / (scene + suffix + ".shift.json"));
   m.summary = run.out;
   m.pogear = parse_json(m.text);
   m.reference = parse_json(ref.out);
@@ -119,6 +120,18 @@ TEST(ShiftMetrics, SimpsonUpshiftAgainstAnIndependentReference) {
     ASSERT_NE(next, std::string::npos) << key << " after " << at;
     at = next + key.size();
   }
+}
+
+// The same upshift's rigid comparison run has metrics of its own, DIR/<scene>.rigid.shift.json:
+// without the meshes' ringing B2 breaks away once, and the summary prints its line after "rigid: ".
+TEST(ShiftMetrics, RigidRunOfTheSimpsonUpshiftAgainstTheReference) {
+  const Measured m = measure("simpson_1_2_upshift", "--interpreted", ".rigid");
+  expect_matches_reference(m);
+  const Json& s = m.pogear["shifts"][0];
+  EXPECT_EQ(s["offgoing"][0].str, "B2");
+  EXPECT_EQ(s["oncoming"][0].str, "B1");
+  EXPECT_NEAR(s["lockup_s"].num, 1.1112, 1e-4);  // the rigid gear's lock-up, within 1e-5 s of the elastic one's
+  EXPECT_NE(m.summary.find("rigid: shift 1 at 1 s: B2 -> B1"), std::string::npos) << m.summary;
 }
 
 // What the events give (phases, slip times) and the heat (E is constant where the ends fall) do not

@@ -2,10 +2,11 @@
 """Shift metrics of a pogear run computed from its files alone, for the tests: an independent
 reading of docs/friction-elements.md's "Shift metrics", sharing no code with pogear.
 
-    shift_metrics_reference.py SCENE.toml RUN_DIR
+    shift_metrics_reference.py SCENE.toml RUN_DIR [SUFFIX]
 
-reads the scene (its [engagement] commands: constants and tables), RUN_DIR/<name>.csv and
-RUN_DIR/<name>.events.csv, and prints the metrics as JSON on standard output.
+reads the scene (its [engagement] commands: constants and tables), RUN_DIR/<name><SUFFIX>.csv and
+RUN_DIR/<name><SUFFIX>.events.csv (SUFFIX "" or ".rigid"), and prints the metrics as JSON on
+standard output.
 """
 import bisect
 import csv
@@ -71,10 +72,11 @@ def interpolate(times, values, t):
 
 def main():
     scene_path, run_dir = sys.argv[1], sys.argv[2]
+    suffix = sys.argv[3] if len(sys.argv) > 3 else ""
     with open(scene_path, "rb") as f:
         scene = tomllib.load(f)
     name = scene.get("name", os.path.splitext(os.path.basename(scene_path))[0])
-    with open(os.path.join(run_dir, name + ".csv"), newline="") as f:
+    with open(os.path.join(run_dir, name + suffix + ".csv"), newline="") as f:
         rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
     header = [h.split(" [")[0] for h in rows[0]]
     units = [h.split(" [")[1].rstrip("]") if " [" in h else "" for h in rows[0]]
@@ -85,7 +87,7 @@ def main():
     elements = [h[2:] for h in header if h.startswith("T_") and "slip_" + h[2:] in col]
     scene_dir = os.path.dirname(scene_path)
     commands = {e: command_points(scene["engagement"][e], scene_dir) for e in elements}
-    with open(os.path.join(run_dir, name + ".events.csv"), newline="") as f:
+    with open(os.path.join(run_dir, name + suffix + ".events.csv"), newline="") as f:
         events = [(float(r[0]), r[1], r[2], r[3]) for r in list(csv.reader(f))[1:] if r and not r[0].startswith("#")]
     horizon = times[-1]
 

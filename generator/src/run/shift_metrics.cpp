@@ -404,10 +404,11 @@ std::vector<std::string> shift_summary_lines(const ShiftMetrics& m) {
   return lines;
 }
 
-void write_shift_metrics(const SpecializedScene& model, const std::string& dir, std::ostream& out) {
+void write_shift_metrics(const SpecializedScene& model, const std::string& dir, const std::string& suffix,
+                         std::ostream& out) {
   namespace fs = std::filesystem;
   const std::string name = model.scene.name;
-  const std::vector<RunEvent> events = read_run_events((fs::path(dir) / (name + ".events.csv")).string());
+  const std::vector<RunEvent> events = read_run_events((fs::path(dir) / (name + suffix + ".events.csv")).string());
   // A command that started on an event, as the run applied it (its start in the events file).
   std::vector<ShiftElement> elements;
   for (const FrictionRun& f : model.friction) {
@@ -416,12 +417,12 @@ void write_shift_metrics(const SpecializedScene& model, const std::string& dir, 
       if (e.element == started_command_name(f.name) && e.to == "started") started = e.t;
     elements.push_back({f.name, signal_as_run(f.command, f.start, started, model.scene.horizon)});
   }
-  ShiftMetrics m = measure_shifts(read_run_table((fs::path(dir) / (name + ".csv")).string()), events, elements,
+  ShiftMetrics m = measure_shifts(read_run_table((fs::path(dir) / (name + suffix + ".csv")).string()), events, elements,
                                   model.scene.horizon);
   m.scene = name;
-  const std::string path = (fs::path(dir) / (name + ".shift.json")).string();
+  const std::string path = (fs::path(dir) / (name + suffix + ".shift.json")).string();
   write_file_atomically(path, shift_metrics_json(m));
-  for (const std::string& line : shift_summary_lines(m)) out << line << "\n";
+  for (const std::string& line : shift_summary_lines(m)) out << (suffix.empty() ? "" : "rigid: ") << line << "\n";
   out << "wrote " << path << "\n";
 }
 

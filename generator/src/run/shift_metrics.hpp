@@ -96,8 +96,10 @@ std::string shift_metrics_json(const ShiftMetrics& m);
 // One line per shift for the summary of `pogear simulate`.
 std::vector<std::string> shift_summary_lines(const ShiftMetrics& m);
 
-// For a scene with brakes or clutches: reads DIR/<scene>.csv and .events.csv, writes
-// DIR/<scene>.shift.json (atomically), prints its summary lines and `wrote PATH` on `out`.
-void write_shift_metrics(const SpecializedScene& model, const std::string& dir, std::ostream& out);
+// For a scene with brakes or clutches: reads DIR/<scene><suffix>.csv and .events.csv (suffix ""
+// or ".rigid"), writes DIR/<scene><suffix>.shift.json (atomically), prints its summary lines (the
+// rigid run's after "rigid: ") and `wrote PATH` on `out`.
+void write_shift_metrics(const SpecializedScene& model, const std::string& dir, const std::string& suffix,
+                         std::ostream& out);
 
 }  // namespace pogear

@@ -72,7 +72,7 @@ void list_stale_outputs(const std::string& name, const std::string& dir, fs::fil
   started -= std::chrono::seconds(1);
   for (const char* suffix : {".csv", ".rigid.csv", ".events.csv", ".rigid.events.csv", ".velocities.svg",
                              ".forces.svg", ".shafts.svg", ".controllers.svg", ".vehicle.svg",
-                             ".shift.svg", ".shift.json"}) {
+                             ".shift.svg", ".shift.json", ".rigid.shift.json"}) {
     const fs::path path = fs::path(dir) / (name + suffix);
     std::error_code ec;
     if (!fs::is_regular_file(fs::symlink_status(path, ec))) continue;
@@ -131,7 +131,10 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   }
   if (status != 0) return status;
   for (const auto& svg : plot_scene(model, options.out_dir)) out << "wrote " << svg << "\n";
-  if (!model.friction.empty()) write_shift_metrics(model, options.out_dir, out);
+  if (!model.friction.empty()) {
+    write_shift_metrics(model, options.out_dir, "", out);
+    if (model.rigid) write_shift_metrics(model, options.out_dir, ".rigid", out);
+  }
   list_stale_outputs(model.scene.name, options.out_dir, started, out);
   return 0;
 }
