@@ -133,6 +133,24 @@ TEST(TinyStep, Rk4WithA1e30SecondStepFailsInsteadOfTakingOneStepPerSample) {
   for (const auto& x : tr.x) EXPECT_LT(x.norm(), 1e3);
 }
 
+// The shipped elastic Simpson upshift is stiff (its meshes ring 1e3 times faster than the sample
+// period): without its brakes and clutches the advice among adaptive methods is implicit. With them
+// it is dopri5: every step is then held to the event-check step, which resolves the fastest mode, and
+// dopri5 was measured more accurate than implicit at each tolerance on every shipped shift
+// (bench/shift_solvers.py, docs/accuracy-vs-time.md "Which solver for a shift").
+TEST(Diagnostics, ShiftsAdviseDopri5AmongAdaptiveMethods) {
+  const std::string text = scene_text("simpson_1_2_upshift");
+  const SpecializedScene shift = scene_model(text);
+  const Diagnostics with = system_diagnostics(shift, shift.main);
+  EXPECT_EQ(with.suggested_solver, "exact");
+  EXPECT_EQ(with.adaptive_solver, "dopri5") << with.reason;
+  EXPECT_NE(with.reason.find("among adaptive methods use dopri5 (brakes and clutches"), std::string::npos) << with.reason;
+  const std::string engagement = text.substr(text.find("[engagement]"), text.find("[simulation]") - text.find("[engagement]"));
+  const SpecializedScene gear = scene_model(with_line(text, engagement, ""));
+  const Diagnostics without = system_diagnostics(gear, gear.main);
+  EXPECT_EQ(without.adaptive_solver, "implicit") << without.reason;
+}
+
 TEST(Diagnostics, UndampedFastModesAreStiff) {
   // No damping at all and mesh modes of ~1e-29 s: the stiffness ratio sees no decaying mode (1),
   // and the verdict was "dopri5 (not stiff)", which then stalls. An explicit method's step is
