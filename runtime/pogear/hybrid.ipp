@@ -1,7 +1,9 @@
 // The definitions of hybrid.hpp's HybridEngine: compiled into libpogear_runtime
 // (runtime/src/hybrid.cpp), or included inline by hybrid.hpp under POGEAR_RT_HEADER_ONLY. The engine
 // does not depend on a model's size, so no simulator compiles it again.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <utility>
@@ -148,7 +150,16 @@ POGEAR_RT_API RunStatus HybridEngine::run(const Eigen::VectorXd& x0, double samp
   return hybrid::run(*core_, x0, sample, obs, on_event);
 }
 
-POGEAR_RT_API int HybridEngine::modes_met() const { return static_cast<int>(core_->data.cache.modes.size()); }
+// The sets of stuck elements met, the crossings' monitors left out (their regimes are no modes of the gear).
+POGEAR_RT_API int HybridEngine::modes_met() const {
+  const hybrid::HybridData& d = core_->data;
+  if (d.nm == 0) return static_cast<int>(d.cache.modes.size());
+  const std::uint32_t shown = (1u << (d.ne - d.nm)) - 1u;
+  std::vector<std::uint32_t> masks;
+  for (const auto& [mask, m] : d.cache.modes) masks.push_back(mask & shown);
+  std::sort(masks.begin(), masks.end());
+  return static_cast<int>(std::unique(masks.begin(), masks.end()) - masks.begin());
+}
 
 POGEAR_RT_API long HybridEngine::steps() const { return core_->data.steps; }
 

@@ -205,6 +205,15 @@ inline constexpr double kZeroSlipUlps = 256;
 inline bool slip_is_zero(const HybridData& d, int k, double slip, double speed) {
   return std::abs(slip) <= kZeroSlipUlps * std::numeric_limits<double>::epsilon() * d.slip_norm(k) * speed;
 }
+// The same rule for a crossing's monitor (hybrid_crossings.hpp): its quantity leaves the range of
+// its regime only by more than the rounding of the speeds it is computed from, so a speed held at
+// its threshold (a brake holding a carrier at the 0 of "omega_c2 > 0") never crosses it by noise.
+// Zero for every other element.
+inline double monitor_band(const HybridSystem& sys, const HybridData& d, int k, const Eigen::VectorXd& x) {
+  if (k < d.ne - d.nm) return 0.0;
+  return kZeroSlipUlps * std::numeric_limits<double>::epsilon() * sys.limits[static_cast<std::size_t>(k - d.nf)].law_x.lpNorm<1>() *
+         speed_scale(d, x);
+}
 
 // v = w at time t and state x: the inputs, the state torques, slipping torques c p(t) dir, held
 // controller torques, stuck torques left at zero. `before` asks for the left limit (a step that ends

@@ -209,8 +209,9 @@ class ExactStepper {
     const double t1 = t + h, at1 = before ? std::nextafter(t1, t) : t1;
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
       const int k = m.stuck[j];
-      if (is_limit(d_, k)) {  // torque_max - T and T - torque_min
-        const double hi = limit(sys_, d_, k).torque_max, lo = limit(sys_, d_, k).torque_min;
+      if (is_limit(d_, k)) {  // torque_max - T and T - torque_min (a monitor's widened by its band)
+        const double band = monitor_band(sys_, d_, k, x0);
+        const double hi = limit(sys_, d_, k).torque_max + band, lo = limit(sys_, d_, k).torque_min - band;
         if (!stays_positive(p, slow_, k, -1, hi, hi, h) || !stays_positive(p, slow_, k, 1, -lo, -lo, h)) return false;
         continue;
       }

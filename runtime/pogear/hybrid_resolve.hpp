@@ -57,9 +57,9 @@ inline void report_starts(const HybridSystem& sys, HybridData& d, double t, cons
 // How far element k's torque Tk lies beyond what it can hold, as a ratio above 1 (at most 1 when it
 // holds): a friction element's |T| over its static capacity at its command (infinite for a one-way
 // element pulled forward), a controller's excess over its range.
-inline double overload(const HybridSystem& sys, const HybridData& d, int k, double Tk, double t) {
+inline double overload(const HybridSystem& sys, const HybridData& d, int k, double Tk, double t, double band = 0) {
   if (is_limit(d, k)) {
-    const double lo = limit(sys, d, k).torque_min, hi = limit(sys, d, k).torque_max;
+    const double lo = limit(sys, d, k).torque_min - band, hi = limit(sys, d, k).torque_max + band;
     const double range = std::isfinite(hi - lo) ? hi - lo : std::max({1.0, std::abs(std::isfinite(hi) ? hi : lo)});
     return Tk > hi ? 1 + (Tk - hi) / range : Tk < lo ? 1 + (lo - Tk) / range : 0.0;
   }
@@ -122,7 +122,7 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
     int worst = -1;
     double worst_ratio = 1;
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
-      const double ratio = overload(sys, d, m.stuck[j], d.T(static_cast<Eigen::Index>(j)), t);
+      const double ratio = overload(sys, d, m.stuck[j], d.T(static_cast<Eigen::Index>(j)), t, monitor_band(sys, d, m.stuck[j], *x));
       if (ratio > worst_ratio) {
         worst_ratio = ratio;
         worst = m.stuck[j];

@@ -3,12 +3,16 @@
 // speeds, and on the rigid Simpson upshift against the slip a plain run reaches at the start.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "../support/commands.hpp"
 #include "../support/files.hpp"
 #include "pogear/hybrid.hpp"
 #include "specialize/reference_model.hpp"
@@ -254,6 +258,47 @@ TEST(CrossingTriggers, SceneSlipCrossingStartsWhereThePlainRunReachesTheValue) {
   // The located time is within 4 ulps (1e-15 s) of the crossing; B2's slip grows there at some
   // 1e3 rad/s^2, and the plain run's last step rounds it: 1e-9 relative covers both.
   EXPECT_NEAR(std::abs(plain.last_slip(2)), 20.0, 20 * 1e-9);
+}
+
+// A speed held at its threshold by a stuck brake sits there within rounding (c2 held by B2 at 0 in
+// 1st gear, -7.7e-13 rad/s of noise before the breakaway): the trigger on "omega_c2 < 0" must not
+// fire on that noise (such a trigger chattered: 500 events at t = 3e-13 s), but once c2 turns
+// backwards, just after B2 breaks away.
+TEST(CrossingTriggers, SpeedHeldAtItsThresholdStartsWhenItTurns) {
+  // Through `pogear simulate`, which reads the speed off the system's outputs.
+  const std::filesystem::path dir = temp_dir("crossing_held");
+  std::string text = crossing_simpson_scene("{ table = [[0, 0], [\"0.15*s\", 1]], when = \"omega_c2 < 0*rad/s\" }", "2*s");
+  text = with_edits(text, {{"\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
+                           {"\"simpson_B2_release.csv\"", "\"" + source_path("models/scenes/simpson_B2_release.csv") + "\""}});
+  write_text(dir / "held.toml", text);
+  const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + (dir / "held.toml").string() +
+                                " --interpreted -o " + dir.string());
+  ASSERT_EQ(c.status, 0) << c.err;
+  double breakaway = -1, started = -1;
+  std::stringstream in(read_text(dir / "crossing.events.csv"));
+  for (std::string line; std::getline(in, line);) {
+    const double t = std::atof(line.c_str());
+    if (line.find(",command_B1,waiting,started") != std::string::npos) started = t;
+    if (breakaway < 0 && line.find(",B2,stuck,slipping") != std::string::npos) breakaway = t;
+  }
+  ASSERT_GT(breakaway, 1.0);
+  // c2 leaves the rounding of the speeds (256 ulps of some 100 rad/s: 6e-12 rad/s) within
+  // microseconds of the breakaway, accelerating at hundreds of rad/s^2.
+  EXPECT_GE(started, breakaway);
+  EXPECT_LT(started - breakaway, 1e-6);
+}
+
+// The monitors' regimes are no modes of the gear: the pair slips, then locks (two modes met).
+TEST(CrossingTriggers, ModesMetLeaveTheMonitorsOut) {
+  rt::HybridSystem sys = slipping_pair();
+  sys.inputs = {rt::Step{0.0, 1.0, 0.0}, rt::Step{0.0, 1.0, 0.0}};
+  sys.triggered = {on_crossing(0, speed_crossing({1, 0}, 50, false), "tau_1"),
+                   on_crossing(1, speed_crossing({0, 1}, 20, true), "tau_2")};
+  rt::HybridEngine engine(sys, 4.0, {rt::Solver::exact, {}});
+  const rt::RunStatus st = engine.run(Eigen::Vector2d{kOmega10, 0.0}, 1e-3, [](double, const rt::HybridSample&) { return true; },
+                                      [](const rt::HybridEvent&) {});
+  ASSERT_TRUE(st.ok) << st.message;
+  EXPECT_EQ(engine.modes_met(), 2);
 }
 
 }  // namespace
