@@ -63,7 +63,8 @@ std::optional<CrossingStart> read_crossing(const SceneReader& r, const toml::nod
   c.upward = text[op] == '>';
   const std::string_view q = quantity;
   if (q.size() > 7 && q.starts_with("|slip_") && q.ends_with("|")) {
-    const std::string_view name = q.substr(6, q.size() - 7);
+    std::string_view name = q.substr(6, q.size() - 7);
+    while (!name.empty() && name.back() == ' ') name.remove_suffix(1);  // "|slip_B2 |"
     c.slip_of = friction_index(*r.model, name);
     if (c.slip_of < 0) fail_no_element(r, when, name);
   } else if (q.size() > 6 && q.starts_with("omega_")) {
@@ -103,7 +104,10 @@ std::optional<SignalStart> read_signal_start(const SceneReader& r, const toml::n
         r.fail(*t->get(key), fmt::format("{} needs {}", key, kWhenForms));
     return std::nullopt;
   }
-  const std::string text = r.string(*when, "when");
+  std::string text = r.string(*when, "when");
+  // Spaces around the whole are no part of it (the column of a message then counts from the first word).
+  text.erase(0, std::min(text.size(), text.find_first_not_of(' ')));
+  while (!text.empty() && text.back() == ' ') text.pop_back();
   SignalStart start;
   start.where = r.loc(*when);
   start.crossing = read_crossing(r, *when, text);
