@@ -27,7 +27,7 @@ class HybridEngineCore {
  public:
   HybridEngineCore(const HybridSystem& user, double horizon, HybridMethod method)
       : user(user), monitored(hybrid::with_crossing_monitors(user)),
-        sys(hybrid::crossing_count(user) ? monitored : user), data(hybrid::make_hybrid_data(sys, horizon)),
+        sys(crossing_count(user) ? monitored : user), data(hybrid::make_hybrid_data(sys, horizon)),
         method(std::move(method)) {}
 
   const HybridSystem& user;

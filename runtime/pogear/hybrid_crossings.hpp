@@ -11,12 +11,6 @@
 
 namespace pogear::rt::hybrid {
 
-inline int crossing_count(const HybridSystem& sys) {
-  int n = 0;
-  for (const TriggeredSignal& s : sys.triggered) n += s.crossing.has_value();
-  return n;
-}
-
 // Why the system's crossings cannot run, or nullptr.
 inline const char* crossing_mismatch(const HybridSystem& sys) {
   for (const TriggeredSignal& s : sys.triggered) {

@@ -50,7 +50,7 @@ struct HybridData {
   Eigen::Index nx = 0, ns = 0, nu = 0, nw = 0;
   double horizon = 0;
   Eigen::MatrixXd S;  // the slips of all elements (a controller's row zero: it has no slip)
-  Eigen::VectorXd slip_norm;  // ||S_k||_1, the zero-slip rule's scale (slip_is_zero)
+  Eigen::VectorXd slip_norm;  // ||S_k||_1, the zero-slip rule's scale (slip_is_zero); a monitor's ||law_x||_1
   std::vector<Eigen::Index> speed_states;  // the system's speeds, or the states some slip reads
   std::vector<double> breaks;  // of the inputs and commands
   // The signals as the run reads them: the system's, a triggered one's times moved to its start;
@@ -104,7 +104,7 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   HybridData d;
   d.nf = static_cast<int>(sys.S.rows());
   d.ne = d.nf + static_cast<int>(sys.limits.size());
-  for (const TriggeredSignal& s : sys.triggered) d.nm += s.crossing.has_value();
+  d.nm = std::min(crossing_count(sys), static_cast<int>(sys.limits.size()));  // data_mismatch refuses a difference
   d.nx = sys.M.rows();
   d.ns = static_cast<Eigen::Index>(sys.inputs.size());
   d.nu = d.ns + static_cast<Eigen::Index>(sys.state_torques.size());
@@ -114,6 +114,8 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   d.S = Eigen::MatrixXd::Zero(d.ne, d.nx);
   d.S.topRows(d.nf) = sys.S;
   d.slip_norm = d.S.cwiseAbs().rowwise().sum();
+  for (int k = d.ne - d.nm; k < d.ne; ++k)  // a monitor's quantity, for its band (monitor_band)
+    d.slip_norm(k) = sys.limits[static_cast<std::size_t>(k - d.nf)].law_x.lpNorm<1>();
   d.speed_states = sys.speed_states;
   if (d.speed_states.empty())
     for (Eigen::Index j = 0; j < d.nx; ++j)
@@ -209,10 +211,9 @@ inline bool slip_is_zero(const HybridData& d, int k, double slip, double speed) 
 // its regime only by more than the rounding of the speeds it is computed from, so a speed held at
 // its threshold (a brake holding a carrier at the 0 of "omega_c2 > 0") never crosses it by noise.
 // Zero for every other element.
-inline double monitor_band(const HybridSystem& sys, const HybridData& d, int k, const Eigen::VectorXd& x) {
+inline double monitor_band(const HybridData& d, int k, const Eigen::VectorXd& x) {
   if (k < d.ne - d.nm) return 0.0;
-  return kZeroSlipUlps * std::numeric_limits<double>::epsilon() * sys.limits[static_cast<std::size_t>(k - d.nf)].law_x.lpNorm<1>() *
-         speed_scale(d, x);
+  return kZeroSlipUlps * std::numeric_limits<double>::epsilon() * d.slip_norm(k) * speed_scale(d, x);
 }
 
 // v = w at time t and state x: the inputs, the state torques, slipping torques c p(t) dir, held

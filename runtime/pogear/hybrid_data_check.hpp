@@ -62,7 +62,7 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
       d.nu != d.ns + static_cast<Eigen::Index>(sys.state_torques.size()) ||
       d.inputs.size() != sys.inputs.size() || d.commands.size() != sys.elements.size() ||
       d.start.size() != sys.triggered.size() || d.before.size() != sys.triggered.size() ||
-      d.nm != std::count_if(sys.triggered.begin(), sys.triggered.end(), [](const TriggeredSignal& s) { return s.crossing.has_value(); }) ||
+      d.nm != crossing_count(sys) ||
       d.shown_w.size() != d.nw - d.nm || d.shown_slip.size() != ne - d.nm)
     return "the hybrid workspace was sized for another system";
   return nullptr;

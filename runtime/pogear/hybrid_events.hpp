@@ -27,7 +27,7 @@ inline void event_values(const HybridSystem& sys, HybridData& d, const ModeMatri
     const int k = m.stuck[j];
     const double Tk = d.T(static_cast<Eigen::Index>(j));
     if (is_limit(d, k)) {
-      const double band = monitor_band(sys, d, k, x);
+      const double band = monitor_band(d, k, x);
       g(k) = std::min(limit(sys, d, k).torque_max + band - Tk, Tk - limit(sys, d, k).torque_min + band);
       continue;
     }

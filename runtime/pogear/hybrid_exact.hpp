@@ -210,7 +210,7 @@ class ExactStepper {
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
       const int k = m.stuck[j];
       if (is_limit(d_, k)) {  // torque_max - T and T - torque_min (a monitor's widened by its band)
-        const double band = monitor_band(sys_, d_, k, x0);
+        const double band = monitor_band(d_, k, x0);
         const double hi = limit(sys_, d_, k).torque_max + band, lo = limit(sys_, d_, k).torque_min - band;
         if (!stays_positive(p, slow_, k, -1, hi, hi, h) || !stays_positive(p, slow_, k, 1, -lo, -lo, h)) return false;
         continue;

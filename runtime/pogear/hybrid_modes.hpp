@@ -89,6 +89,13 @@ struct HybridSystem {
   std::vector<Eigen::Index> speed_states;
 };
 
+// The triggered signals that wait for a crossing (each runs as a monitor: hybrid_crossings.hpp).
+inline int crossing_count(const HybridSystem& sys) {
+  int n = 0;
+  for (const TriggeredSignal& s : sys.triggered) n += s.crossing.has_value();
+  return n;
+}
+
 // A system's own input columns N (its signals', the driveline's state torques', then its elements'
 // and limits') with the quadratic loads' columns Nq inserted after the first `head`, as HybridSystem::N
 // orders them (w = [u; q; T]); and a controller's law over the system's inputs padded to that order

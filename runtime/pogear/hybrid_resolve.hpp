@@ -122,7 +122,7 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
     int worst = -1;
     double worst_ratio = 1;
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
-      const double ratio = overload(sys, d, m.stuck[j], d.T(static_cast<Eigen::Index>(j)), t, monitor_band(sys, d, m.stuck[j], *x));
+      const double ratio = overload(sys, d, m.stuck[j], d.T(static_cast<Eigen::Index>(j)), t, monitor_band(d, m.stuck[j], *x));
       if (ratio > worst_ratio) {
         worst_ratio = ratio;
         worst = m.stuck[j];

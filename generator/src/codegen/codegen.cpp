@@ -271,11 +271,12 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   m += code("// The solvers compiled into this simulator (`pogear generate --solvers`): each costs compile time.\n");
   m += code("using Solvers = pogear::rt::Solvers<{}>;\n", join(solver_codes, code(", ")));
   // The optional last arguments of run_hybrid_system: the triggered signals, then the temperatures.
-  const CppText thermal_arg = thermal.empty() ? CppText{} : code(", scene::friction_thermal()");
-  const CppText main_triggers = triggered.empty() ? (thermal.empty() ? CppText{} : code(", {{}}") + thermal_arg)
-                                                  : code(", scene::{}_triggered_signals()", main_struct) + thermal_arg;
-  const CppText rigid_triggers = triggered.empty() ? (thermal.empty() ? CppText{} : code(", {{}}") + thermal_arg)
-                                                   : code(", scene::Rigid_triggered_signals()") + thermal_arg;
+  auto last_arguments = [&](const CppText& system) {
+    if (thermal.empty()) return triggered.empty() ? CppText{} : code(", scene::{}_triggered_signals()", system);
+    return (triggered.empty() ? code(", {{}}") : code(", scene::{}_triggered_signals()", system)) +
+           code(", scene::friction_thermal()");
+  };
+  const CppText main_triggers = last_arguments(main_struct), rigid_triggers = last_arguments(code("Rigid"));
   m += code("\n}}  // namespace\n\n");
   m += code("int main(int argc, char** argv) {{\n");
   m += code("  pogear::rt::SceneRun run;\n");

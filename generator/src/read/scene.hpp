@@ -198,6 +198,10 @@ struct Scene {
 
 // Reads a scene and its model, applies the scene's parameter overrides to the model, and checks
 // the scene against the result (bodies, meshes, parameter names, units).
+// Whether the scene engages brake or clutch `element` (an index into Topology::friction_elements):
+// gives it a command that is not zero throughout. Only such an element slips, sticks or heats.
+bool engages(const Scene& s, int element);
+
 Scene parse_scene(const std::string& path);
 // Whether a load of the scene is quadratic in speed.
 bool has_quadratic_load(const Scene& scene);

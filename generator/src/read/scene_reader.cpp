@@ -280,6 +280,12 @@ bool identically_zero(const rt::Signal& signal, const std::optional<SignalStart>
   return identically_zero(signal) && !(start && start->before && !identically_zero(*start->before));
 }
 
+bool engages(const Scene& s, int element) {
+  return std::any_of(s.engagement.begin(), s.engagement.end(), [&](const EngagementSpec& e) {
+    return e.element == element && !identically_zero(e.command, e.start);
+  });
+}
+
 double value_at_start(const rt::Signal& signal, const std::optional<SignalStart>& start) {
   return rt::value(start ? rt::held_until_start(signal, start->before) : signal, 0.0);
 }

@@ -22,12 +22,6 @@ constexpr std::string_view kWhenForms =
     "when = \"<element> slipping\", \"<element> stuck\", \"|slip_<element>| < <speed>\" or \"omega_<body> > <speed>\" "
     "(< or >), e.g. when = \"C stuck\" or when = \"|slip_C| < 50*rpm\"";
 
-int friction_index(const Topology& t, std::string_view name) {
-  for (std::size_t k = 0; k < t.friction_elements.size(); ++k)
-    if (t.friction_elements[k].name == name) return static_cast<int>(k);
-  return -1;
-}
-
 [[noreturn]] void fail_no_element(const SceneReader& r, const toml::node& when, std::string_view name) {
   std::string names;
   for (const FrictionElement& e : r.model->friction_elements) names += (names.empty() ? "" : ", ") + e.name;
@@ -65,7 +59,7 @@ std::optional<CrossingStart> read_crossing(const SceneReader& r, const toml::nod
   if (q.size() > 7 && q.starts_with("|slip_") && q.ends_with("|")) {
     std::string_view name = q.substr(6, q.size() - 7);
     while (!name.empty() && name.back() == ' ') name.remove_suffix(1);  // "|slip_B2 |"
-    c.slip_of = friction_index(*r.model, name);
+    c.slip_of = find_friction_element(*r.model, std::string(name));
     if (c.slip_of < 0) fail_no_element(r, when, name);
   } else if (q.size() > 6 && q.starts_with("omega_")) {
     const std::string_view name = q.substr(6);
@@ -117,7 +111,7 @@ std::optional<SignalStart> read_signal_start(const SceneReader& r, const toml::n
     if (state != "slipping" && state != "stuck")
       r.fail(*when, fmt::format("'{}' is no event a signal can wait for; give {}", text, kWhenForms));
     start.state = state == "stuck" ? rt::ElementState::stuck : rt::ElementState::slipping;
-    start.element = friction_index(*r.model, element);
+    start.element = find_friction_element(*r.model, element);
     if (start.element < 0) fail_no_element(r, *when, element);
   }
   if (const toml::node* d = t->get("delay")) {
@@ -159,11 +153,8 @@ void check_signal_starts(const Scene& s) {
       continue;
     }
     const int element = start->crossing ? start->crossing->slip_of : start->element;
-    const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(), [&](const EngagementSpec& e) {
-      return e.element == element && !identically_zero(e.command, e.start);
-    });
     const std::string& name = s.model.friction_elements[static_cast<std::size_t>(element)].name;
-    if (!engaged)
+    if (!engages(s, element))
       throw InputError(start->where, start->crossing
                                          ? fmt::format("the signal waits for the slip of {}, which the scene does not "
                                                        "engage, so its runs have no slip of it; give {} a command in "

@@ -35,8 +35,7 @@ std::vector<ThermalSpec> read_thermal(const SceneReader& r, const toml::node& n)
   for (const auto& [key, value] : t) {
     const std::string name(key.str());
     ThermalSpec th;
-    for (std::size_t k = 0; k < r.model->friction_elements.size(); ++k)
-      if (r.model->friction_elements[k].name == name) th.element = static_cast<int>(k);
+    th.element = find_friction_element(*r.model, name);
     if (th.element < 0) {
       std::string names;
       for (const auto& e : r.model->friction_elements) names += (names.empty() ? "" : ", ") + e.name;
@@ -68,11 +67,8 @@ std::vector<ThermalSpec> read_thermal(const SceneReader& r, const toml::node& n)
 
 void check_thermal(const Scene& s) {
   for (const ThermalSpec& th : s.thermal) {
-    const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(), [&](const EngagementSpec& e) {
-      return e.element == th.element && !identically_zero(e.command, e.start);
-    });
     const std::string& name = s.model.friction_elements[static_cast<std::size_t>(th.element)].name;
-    if (!engaged)
+    if (!engages(s, th.element))
       throw InputError(th.where, fmt::format("the scene does not engage {}, so it never heats; give {} a command in "
                                              "[engagement], or drop it from [thermal]", name, name));
   }

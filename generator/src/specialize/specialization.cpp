@@ -433,4 +433,10 @@ SpecializedScene specialize(const Scene& scene) {
   return model;
 }
 
+int friction_run_index(const SpecializedScene& model, int element) {
+  const auto k = std::find_if(model.friction.begin(), model.friction.end(),
+                              [&](const FrictionRun& f) { return f.element == element; });
+  return static_cast<int>(k - model.friction.begin());
+}
+
 }  // namespace pogear

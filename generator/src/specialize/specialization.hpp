@@ -139,6 +139,10 @@ inline constexpr double rpm_per_rad_per_s = 9.5492965855137201;
 
 SpecializedScene specialize(const Scene& scene);
 
+// Brake or clutch `element`'s index among model.friction (the engaged elements), or
+// model.friction.size() when the scene does not engage it.
+int friction_run_index(const SpecializedScene& model, int element);
+
 // What the scene's systems hold that some solvers cannot run, for rt::solver_refusal.
 rt::SystemTraits solver_traits(const SpecializedScene& model);
 

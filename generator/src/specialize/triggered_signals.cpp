@@ -13,21 +13,16 @@ std::vector<rt::TriggeredSignal> triggered_signals(const SpecializedScene& model
   std::vector<rt::TriggeredSignal> out;
   // The trigger's element, or the element whose slip crosses, among the engaged ones
   // (check_signal_starts: it is one of them); a body's speed by its output.
-  auto engaged = [&](int element) {
-    const auto k = std::find_if(model.friction.begin(), model.friction.end(),
-                                [&](const FrictionRun& f) { return f.element == element; });
-    return static_cast<int>(k - model.friction.begin());
-  };
   auto add = [&](bool command, std::size_t index, const SignalStart& start, std::string name) {
     std::optional<rt::CrossingTrigger> crossing;
     if (const auto& c = start.crossing) {
       crossing = rt::CrossingTrigger{};
       crossing->value = c->value;
       crossing->upward = c->upward;
-      if (c->slip_of >= 0) crossing->slip_of = engaged(c->slip_of);
+      if (c->slip_of >= 0) crossing->slip_of = friction_run_index(model, c->slip_of);
       else crossing->output = "omega_" + model.scene.model.bodies[static_cast<std::size_t>(c->body)].name;
     }
-    out.push_back({command, static_cast<int>(index), crossing ? -1 : engaged(start.element), start.state, start.delay,
+    out.push_back({command, static_cast<int>(index), crossing ? -1 : friction_run_index(model, start.element), start.state, start.delay,
                    std::move(name), start.before, std::move(crossing)});
   };
   std::size_t signal = 0;
