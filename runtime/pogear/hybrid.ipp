@@ -67,6 +67,10 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   if (c.method.solver == Solver::exact && !sys.state_torques.empty())
     return RunStatus{false, "a quadratic load, a converter or an engine makes the modes nonlinear, which exact "
                             "stepping does not integrate", 0.0};
+  const bool slip_control = std::any_of(sys.limits.begin(), sys.limits.end(), [](const TorqueLimitData& l) { return l.supplies >= 0; });
+  if (c.method.solver == Solver::exact && slip_control)
+    return RunStatus{false, "a slip controller makes its element's heat quadratic in the state, which exact stepping "
+                            "does not integrate", 0.0};
   // The signals as the run reads them: a triggered one is its `before` until it starts.
   d.inputs = sys.inputs;
   for (std::size_t k = 0; k < sys.elements.size(); ++k) d.commands[k] = sys.elements[k].command;
@@ -95,6 +99,10 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
     if (q.kind == StateTorqueKind::engine) all.push_back(q.throttle);
   // The horizon itself may be one: the last step then ends on the inputs' values before it.
   d.breaks = breakpoints(all, 0.0, std::nextafter(d.horizon, std::numeric_limits<double>::infinity()));
+  for (const TorqueLimitData& l : sys.limits)  // a slip controller's start in time: its mode is resolved there
+    if (l.supplies >= 0 && l.started_by < 0 && l.starts_at > 0 && l.starts_at <= d.horizon)
+      d.breaks.insert(std::lower_bound(d.breaks.begin(), d.breaks.end(), l.starts_at), l.starts_at);
+  d.breaks.erase(std::unique(d.breaks.begin(), d.breaks.end()), d.breaks.end());
   d.breaks.reserve(d.breaks.size() + start_breaks);
   d.sine_period = shortest_sine_period(all);
   d.hold_step = std::numeric_limits<double>::infinity();
@@ -105,6 +113,7 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   d.x = x0;
   d.energy.setZero();
   std::fill(d.dir.begin(), d.dir.end(), 0);
+  std::fill(d.phase.begin(), d.phase.end(), hybrid::kWaiting);
   std::fill(d.state.begin(), d.state.end(), ElementState::open);
   d.mask = 0;
   if (!(sample > 0) || !(d.horizon / sample < 0x1p62)) return RunStatus{false, "invalid sample period", 0.0};

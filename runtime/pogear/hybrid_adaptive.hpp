@@ -154,7 +154,8 @@ class AdaptiveStepper {
  private:
   // The energy each slipping element dissipates over [ta, tb] of the last step: its power T_k s_k, a
   // polynomial of degree 5 at most on the dense output (degree 4 for dopri5, 3 for TR-BDF2, times a
-  // command linear between breakpoints), by 3-point Gauss-Legendre, exact for it. With it the work
+  // command linear between breakpoints), by 3-point Gauss-Legendre, exact for it (a slip controller's
+  // law times the slip, of degree 8, to the order 6 of the rule). With it the work
   // each state torque does on its body, q_i times that body's speed (exact for a quadratic load's
   // power only where it keeps its sign; a converter's and an engine's to the order 6 of the rule).
   void add_dissipation(double ta, double tb, Eigen::VectorXd& energy) {
@@ -167,7 +168,7 @@ class AdaptiveStepper {
       known_inputs(sys_, d_, ti, false, dense_x_, dense_v_);
       for (int k = 0; k < d_.nf; ++k)
         if (d_.state[static_cast<std::size_t>(k)] != ElementState::stuck)
-          energy(k) += weight[i] * half * dense_v_(d_.nu + k) * d_.S.row(k).dot(dense_x_);
+          energy(k) += weight[i] * half * carried_torque(sys_, d_, k, dense_x_, dense_v_) * d_.S.row(k).dot(dense_x_);
       for (Eigen::Index q = d_.ns; q < d_.nu; ++q)
         energy(d_.ne + q - d_.ns) +=
             weight[i] * half * dense_v_(q) * acted_speed(sys_.state_torques[static_cast<std::size_t>(q - d_.ns)]).dot(dense_x_);

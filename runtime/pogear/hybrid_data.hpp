@@ -72,6 +72,10 @@ struct HybridData {
   Eigen::VectorXd x, energy;
   std::vector<ElementState> state;
   std::vector<int> dir;  // the direction of a slipping element's slip (of a controller: of its limit)
+  // Slip control (TorqueLimitData::supplies): for each friction element the slip controller that
+  // supplies it (-1: none); for each slip controller its phase, waiting, controlling or done.
+  std::vector<int> supplier;
+  std::vector<signed char> phase;
   std::uint32_t mask = 0;  // bit k set when element k is stuck
   std::vector<char> watched;  // the elements with an event function over the current step
   std::vector<int> events_in_sample;  // the chattering guard (max_events_per_sample)
@@ -126,6 +130,10 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   d.state.assign(ne, ElementState::open);
   d.old_state.assign(ne, ElementState::open);
   d.dir.assign(ne, 0);
+  d.supplier.assign(ne, -1);
+  d.phase.assign(ne, 0);
+  for (std::size_t l = 0; l < sys.limits.size(); ++l)
+    if (const int k = sys.limits[l].supplies; k >= 0 && k < d.nf) d.supplier[static_cast<std::size_t>(k)] = d.nf + static_cast<int>(l);
   d.watched.assign(ne, 0);
   d.events_in_sample.assign(ne, 0);
   for (Eigen::VectorXd* e : {&d.g0, &d.g_a, &d.p0, &d.p1, &d.dp, &d.r0, &d.r1, &d.T, &d.dT, &d.sample_slip, &d.slip})
@@ -155,6 +163,24 @@ inline const TorqueLimitData& limit(const HybridSystem& sys, const HybridData& d
 inline const std::string& element_name(const HybridSystem& sys, const HybridData& d, int k) {
   return is_limit(d, k) ? limit(sys, d, k).name : sys.elements[static_cast<std::size_t>(k)].name;
 }
+// Slip control: whether element k is a slip controller; whether friction element k's torque is its
+// slip controller's now (it is controlling); whether slip controller k is off (waiting or done: open,
+// its torque 0); when it starts (infinite until its trigger).
+enum : signed char { kWaiting = 0, kControlling = 1, kDone = 2 };
+inline bool is_slip_controller(const HybridSystem& sys, const HybridData& d, int k) {
+  return is_limit(d, k) && limit(sys, d, k).supplies >= 0;
+}
+inline bool controlled(const HybridData& d, int k) {
+  const int l = d.supplier[static_cast<std::size_t>(k)];
+  return l >= 0 && d.phase[static_cast<std::size_t>(l)] == kControlling;
+}
+inline bool off(const HybridSystem& sys, const HybridData& d, int k) {
+  return is_slip_controller(sys, d, k) && d.phase[static_cast<std::size_t>(k)] != kControlling;
+}
+inline double control_start(const HybridSystem& sys, const HybridData& d, int k) {
+  const TorqueLimitData& c = limit(sys, d, k);
+  return c.started_by >= 0 ? d.start[static_cast<std::size_t>(c.started_by)] : c.starts_at;
+}
 // A controller's torque at the limit it reached in direction dir.
 inline double held_torque(const HybridSystem& sys, const HybridData& d, int k) {
   return d.dir[static_cast<std::size_t>(k)] > 0 ? limit(sys, d, k).torque_max : limit(sys, d, k).torque_min;
@@ -174,9 +200,12 @@ inline const Signal& command_signal(const HybridData& d, std::size_t k, double t
   return i >= 0 && t < d.start[static_cast<std::size_t>(i)] ? d.before[static_cast<std::size_t>(i)] : d.commands[k];
 }
 
-// An element's command: a controller's is 1 throughout (it is never open).
+// An element's command: a controller's is 1 throughout (it is never open, a slip controller's phase
+// aside), a slip-controlled element's from its controller's start on (its capacity at lock-up).
 inline double command(const HybridSystem&, const HybridData& d, int k, double t) {
-  return is_limit(d, k) ? 1.0 : value(command_signal(d, static_cast<std::size_t>(k), t), t);
+  if (is_limit(d, k)) return 1.0;
+  if (const int l = d.supplier[static_cast<std::size_t>(k)]; l >= 0 && d.phase[static_cast<std::size_t>(l)] != kWaiting) return 1.0;
+  return value(command_signal(d, static_cast<std::size_t>(k), t), t);
 }
 // The torque per unit command of element k while it slips: its capacity, or zero for a one-way
 // element overrunning in its free direction.
@@ -214,65 +243,6 @@ inline bool slip_is_zero(const HybridData& d, int k, double slip, double speed) 
 inline double monitor_band(const HybridData& d, int k, const Eigen::VectorXd& x) {
   if (k < d.ne - d.nm) return 0.0;
   return kZeroSlipUlps * std::numeric_limits<double>::epsilon() * d.slip_norm(k) * speed_scale(d, x);
-}
-
-// v = w at time t and state x: the inputs, the state torques, slipping torques c p(t) dir, held
-// controller torques, stuck torques left at zero. `before` asks for the left limit (a step that ends
-// on a breakpoint).
-inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t, bool before, const Eigen::VectorXd& x,
-                         Eigen::VectorXd& v) {
-  const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
-  v.resize(d.nw);
-  for (Eigen::Index i = 0; i < d.ns; ++i) v(i) = value(input_signal(d, static_cast<std::size_t>(i), at), at);
-  for (Eigen::Index i = d.ns; i < d.nu; ++i) v(i) = state_torque(sys.state_torques[static_cast<std::size_t>(i - d.ns)], x, at).torque;
-  for (int k = 0; k < d.ne; ++k) {
-    const auto K = static_cast<std::size_t>(k);
-    // + 0.0: an open element's torque is 0, not -0, in the CSV.
-    v(d.nu + k) = d.state[K] == ElementState::stuck ? 0.0
-                  : is_limit(d, k)                 ? held_torque(sys, d, k)
-                                                   : torque_scale(sys, d, k) * command(sys, d, k, at) * d.dir[K] + 0.0;
-  }
-}
-
-// dv/dt at time t (its left limit when `before`): the inputs' slopes, the slipping torques' c p'(t)
-// dir; stuck torques and held controller torques 0; the state torques' by state_torque_slopes,
-// which needs dx/dt.
-inline void known_input_slopes(const HybridSystem& sys, const HybridData& d, double t, bool before,
-                               Eigen::VectorXd& dv) {
-  const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
-  for (Eigen::Index i = 0; i < d.ns; ++i) dv(i) = slope(input_signal(d, static_cast<std::size_t>(i), at), at);
-  for (int k = 0; k < d.ne; ++k) {
-    const auto K = static_cast<std::size_t>(k);
-    dv(d.nu + k) = d.state[K] == ElementState::stuck || is_limit(d, k)
-                       ? 0.0
-                       : torque_scale(sys, d, k) * slope(command_signal(d, K, at), at) * d.dir[K];
-  }
-}
-
-// The state torques' rates at state x moving at dx/dt, at time t (its left limit when `before`).
-inline void state_torque_slopes(const HybridSystem& sys, const HybridData& d, double t, bool before,
-                                const Eigen::VectorXd& x, const Eigen::VectorXd& dx, Eigen::VectorXd& dv) {
-  const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
-  for (Eigen::Index i = d.ns; i < d.nu; ++i) {
-    const StateTorqueData& q = sys.state_torques[static_cast<std::size_t>(i - d.ns)];
-    const StateTorqueValue v = state_torque(q, x, at);
-    dv(i) = v.d_speed * q.speed.dot(dx) + v.d_time;
-    if (v.d_turbine != 0) dv(i) += v.d_turbine * q.turbine.dot(dx);
-  }
-}
-
-// The Jacobian of the state torques' contribution to dx/dt, B_q dq/dx, added to J: a mode's B column
-// times the torque's gradient over the states.
-inline void add_state_torque_jacobian(const HybridSystem& sys, const HybridData& d, const Eigen::MatrixXd& B, double t,
-                                      const Eigen::VectorXd& x, Eigen::MatrixXd& J) {
-  for (Eigen::Index i = d.ns; i < d.nu; ++i) {
-    const StateTorqueData& q = sys.state_torques[static_cast<std::size_t>(i - d.ns)];
-    const StateTorqueValue v = state_torque(q, x, t);
-    for (Eigen::Index c = 0; c < J.cols(); ++c) {  // the outer product by hand: no temporary
-      const double g = v.d_speed * q.speed(c) + (v.d_turbine != 0 ? v.d_turbine * q.turbine(c) : 0.0);
-      if (g != 0) J.col(c) += g * B.col(i);
-    }
-  }
 }
 
 }  // namespace pogear::rt::hybrid

@@ -33,9 +33,19 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
                      [&](const std::vector<double>& row) { return row.size() != q.engine.speeds.size(); })))
       return "an engine's map does not fit its speeds and throttles";
   }
-  for (const TorqueLimitData& l : sys.limits)
+  for (std::size_t i = 0; i < sys.limits.size(); ++i) {
+    const TorqueLimitData& l = sys.limits[i];
     if (l.law_x.size() != nx || l.law_w.size() != sys.N.cols())
       return "a controller's law is not a row over the system's states and inputs";
+    if (l.supplies < 0) continue;
+    if (l.supplies >= sys.S.rows() || l.integral >= nx || l.started_by >= static_cast<int>(sys.triggered.size()) ||
+        !std::isfinite(l.starts_at) ||
+        !((l.torque_min == 0 && l.torque_max > 0) || (l.torque_max == 0 && l.torque_min < 0)))
+      return "a slip controller names no brake or clutch, state or trigger of the system, or its limits are not 0 "
+             "and a capacity";
+    for (std::size_t j = 0; j < i; ++j)
+      if (sys.limits[j].supplies == l.supplies) return "two slip controllers supply the same brake or clutch";
+  }
   if (ne > 32) return "more than 32 brakes, clutches and torque limits (a mode is a 32-bit set)";
   for (const TriggeredSignal& s : sys.triggered) {
     const std::size_t n = s.command ? sys.elements.size() : sys.inputs.size();
@@ -62,7 +72,7 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
       d.nu != d.ns + static_cast<Eigen::Index>(sys.state_torques.size()) ||
       d.inputs.size() != sys.inputs.size() || d.commands.size() != sys.elements.size() ||
       d.start.size() != sys.triggered.size() || d.before.size() != sys.triggered.size() ||
-      d.nm != crossing_count(sys) ||
+      d.nm != crossing_count(sys) || d.supplier.size() != d.state.size() || d.phase.size() != d.state.size() ||
       d.shown_w.size() != d.nw - d.nm || d.shown_slip.size() != ne - d.nm)
     return "the hybrid workspace was sized for another system";
   return nullptr;

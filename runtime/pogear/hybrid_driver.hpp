@@ -23,6 +23,8 @@ inline bool observe_sample(const HybridSystem& sys, HybridData& d, double t, con
     detail::small_matvec_add(m.Kv, d.nw, d.sample_w.data(), d.T.data());
     for (std::size_t j = 0; j < m.stuck.size(); ++j) d.sample_w(d.nu + m.stuck[j]) = d.T(static_cast<Eigen::Index>(j));
   }
+  for (int k = 0; k < d.nf; ++k)  // a slip-controlled element carries its controller's torque
+    if (controlled(d, k)) d.sample_w(d.nu + k) = d.sample_w(d.nu + d.supplier[static_cast<std::size_t>(k)]);
   d.sample_slip.setZero();
   detail::small_matvec_add(d.S, d.nx, x.data(), d.sample_slip.data());
   if (d.nm == 0) return obs(t, HybridSample{x, d.sample_w, d.sample_slip, energy, d.mask});

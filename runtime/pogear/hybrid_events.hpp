@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "pogear/hybrid_data.hpp"
+#include "pogear/hybrid_inputs.hpp"
 
 namespace pogear::rt::hybrid {
 

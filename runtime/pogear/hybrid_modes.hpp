@@ -40,6 +40,16 @@ struct TorqueLimitData {
   std::string name;
   double torque_min = -std::numeric_limits<double>::infinity(), torque_max = std::numeric_limits<double>::infinity();
   Eigen::RowVectorXd law_x, law_w;  // over the states and over w (its entries on the known inputs only)
+  // A slip controller (docs/scene-format.md, "Slip control") supplies the torque of friction element
+  // `supplies`, its column that element's, from `starts_at` or from the start of triggered signal
+  // `started_by` until that element's slip reaches zero; its limits are 0 and the element's capacity
+  // in the direction of its target. Before and after, it is off (open, its torque 0) and the element
+  // carries its own torque, at command 1 from the controller's start on. Its integral, state
+  // `integral`, starts where the law continues the element's command (bumpless).
+  int supplies = -1;
+  double starts_at = 0;
+  int started_by = -1;
+  Eigen::Index integral = -1;
 };
 
 // A speed or a slip crossing a value, the event a triggered signal may wait for instead of an

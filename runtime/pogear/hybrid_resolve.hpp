@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "pogear/hybrid_inputs.hpp"
 #include "pogear/hybrid_mode_cache.hpp"
 
 namespace pogear::rt::hybrid {
@@ -70,6 +71,31 @@ inline double overload(const HybridSystem& sys, const HybridData& d, int k, doub
   return capacity > 0 ? Tj / capacity : (Tj > 0 ? std::numeric_limits<double>::infinity() : 0.0);
 }
 
+// The slip controllers that start at or before t (control_start) begin controlling, bumpless: their
+// integral starts where their law gives the command the element had (zero without an integral term);
+// false (with `error`) when the element one supplies slips against its target's direction.
+inline bool start_slip_control(const HybridSystem& sys, HybridData& d, double t, std::string& error) {
+  for (int l = d.nf; l < d.ne; ++l) {
+    const auto L = static_cast<std::size_t>(l);
+    if (!is_slip_controller(sys, d, l) || d.phase[L] != kWaiting || !(control_start(sys, d, l) <= t)) continue;
+    const TorqueLimitData& c = limit(sys, d, l);
+    const double p = command(sys, d, c.supplies, t), capacity = c.torque_max > 0 ? c.torque_max : c.torque_min;
+    d.phase[L] = kControlling;
+    if (c.integral >= 0 && c.integral < d.nx) {
+      d.x(c.integral) = 0;
+      known_inputs(sys, d, t, false, d.x, d.v);
+      if (const double gain = c.law_x(c.integral); gain != 0) d.x(c.integral) = (p * capacity - law(sys, d, l, d.x, d.v)) / gain;
+    }
+    const double s = d.S.row(c.supplies).dot(d.x);
+    if (!slip_is_zero(d, c.supplies, s, speed_scale(d, d.x)) && (s > 0) != (c.torque_max > 0)) {
+      error = c.name + " starts at t = " + detail::num(t) + " s while " + sys.elements[static_cast<std::size_t>(c.supplies)].name +
+              " slips at " + detail::num(s) + " rad/s, against its target's sign; give the target the sign of the slip";
+      return false;
+    }
+  }
+  return true;
+}
+
 // The consistent mode at time t, from d.x and the element states: every element that is stuck, or
 // whose slip is zero (or just reached zero: `trigger`), is tried stuck; the one whose torque exceeds
 // what it holds by the largest factor is released (slipping in its torque's direction) and the rest
@@ -80,6 +106,7 @@ inline double overload(const HybridSystem& sys, const HybridData& d, int k, doub
 inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int trigger, const EventObserver& on_event,
                          std::string& error) {
   report_starts(sys, d, t, on_event);
+  if (!start_slip_control(sys, d, t, error)) return false;
   d.old_state = d.state;
   std::uint32_t mask = 0;
   d.slip.noalias() = d.S * d.x;
@@ -88,13 +115,21 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
   // every slip is zero, and open elements tried stuck could over-constrain the gear). A controller
   // is always tried within its limits: it leaves saturation whenever its law allows. A slip is zero
   // by the zero-slip rule (slip_is_zero), never by its rounding's sign.
+  // A slip-controlled element whose slip is zero ends its control (kDone): it is tried stuck at full
+  // command, and its controller is off, held at its limit 0.
   for (int k = 0; k < d.ne; ++k) {
     const auto K = static_cast<std::size_t>(k);
+    if (is_slip_controller(sys, d, k) && d.phase[K] != kControlling) {
+      d.dir[K] = limit(sys, d, k).torque_max == 0 ? 1 : -1;
+      continue;
+    }
     const bool zero = is_limit(d, k) || slip_is_zero(d, k, d.slip(k), speed);
-    if (is_limit(d, k) || (!open_after(sys, d, k, t) && (d.state[K] == ElementState::stuck || zero || k == trigger)))
+    if (is_limit(d, k) || (!open_after(sys, d, k, t) && (d.state[K] == ElementState::stuck || zero || k == trigger))) {
       mask |= 1u << k;
-    else if (!zero)
+      if (controlled(d, k)) d.phase[static_cast<std::size_t>(d.supplier[K])] = kDone;
+    } else if (!zero) {
       d.dir[K] = d.slip(k) > 0 ? 1 : -1;
+    }
   }
   for (int round = 0; round <= d.ne; ++round) {
     const auto& m = mode_of(sys, d.cache, mask);
@@ -143,7 +178,7 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
   }
   for (int k = 0; k < d.ne; ++k) {
     const auto K = static_cast<std::size_t>(k);
-    if (d.state[K] != ElementState::stuck && open_after(sys, d, k, t)) d.state[K] = ElementState::open;
+    if (d.state[K] != ElementState::stuck && (open_after(sys, d, k, t) || off(sys, d, k))) d.state[K] = ElementState::open;
     if (d.old_state[K] != d.state[K]) {
       record(sys, d, t, k, d.old_state[K], d.state[K], on_event);
       if (++d.events_in_sample[K] > max_events_per_sample) {
@@ -167,7 +202,7 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
 inline void watch(const HybridSystem& sys, HybridData& d, double t, double t_end, const EventObserver& on_event) {
   for (int k = 0; k < d.ne; ++k) {
     const auto K = static_cast<std::size_t>(k);
-    const bool open = command(sys, d, k, t) == 0 && command(sys, d, k, std::nextafter(t_end, t)) == 0;
+    const bool open = off(sys, d, k) || (command(sys, d, k, t) == 0 && command(sys, d, k, std::nextafter(t_end, t)) == 0);
     if (open && d.state[K] != ElementState::stuck) {
       const double s = d.S.row(k).dot(d.x);
       d.dir[K] = s > 0 ? 1 : s < 0 ? -1 : d.dir[K];

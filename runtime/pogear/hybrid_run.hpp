@@ -19,7 +19,7 @@
 namespace pogear::rt {
 
 // Writes OUT/<name><suffix>.events.csv: `t [s],element,from,to`, one row per change of state (a
-// controller's states are `linear` and `at_limit`), and one `t,<signal>,waiting,started` where a
+// controller's states are `linear` and `at_limit`, a slip controller's also `off`), and one `t,<signal>,waiting,started` where a
 // triggered signal starts. Element, controller and signal names are identifiers (the readers check
 // them), so no field needs quoting.
 inline bool write_events(const SceneRun& run, const std::string& suffix, const std::vector<HybridEvent>& events,
@@ -40,7 +40,7 @@ inline bool write_events(const SceneRun& run, const std::string& suffix, const s
     } else if (k < elements.size()) {
       text += ',' + elements[k].name + ',' + state_name(e.from) + ',' + state_name(e.to) + '\n';
     } else {
-      auto name = [](ElementState s) { return s == ElementState::stuck ? "linear" : "at_limit"; };
+      auto name = [](ElementState s) { return s == ElementState::stuck ? "linear" : s == ElementState::open ? "off" : "at_limit"; };
       text += ',' + limits[k - elements.size()].name + ',' + name(e.from) + ',' + name(e.to) + '\n';
     }
   }
@@ -174,7 +174,9 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   units.emplace_back("bits of the stuck elements");
   SystemRunLog log(run, suffix, names, units);
   // The one admissibility rule (solver.hpp), as pogear simulate words it.
-  const SystemTraits traits{.nonlinear = nq > 0, .engages_friction = ne > 0, .limits_torque = nl > 0, .driveline = nd > 0};
+  const SystemTraits traits{.nonlinear = nq > 0, .engages_friction = ne > 0, .limits_torque = nl > 0, .driveline = nd > 0,
+                            .slip_control = std::any_of(hs.limits.begin(), hs.limits.end(),
+                                                        [](const TorqueLimitData& l) { return l.supplies >= 0; })};
   if (const auto refusal = solver_refusal(run.solver, traits)) {
     const std::vector<Solver> solvers = admissible_solvers(traits);
     std::fprintf(stderr, "%s%s: error: %s; use --solver %s\n", run.name.c_str(), suffix.c_str(),

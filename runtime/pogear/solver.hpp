@@ -56,6 +56,7 @@ struct SystemTraits {
   bool engages_friction = false;
   bool limits_torque = false;
   bool driveline = false;  // an engine or a converter, nonlinear whatever the loads
+  bool slip_control = false;  // a slip controller: its element's heat is quadratic in the state
 };
 
 // Why a solver cannot run a system: what the system holds (`cause`), and how that meets the solver
@@ -84,6 +85,9 @@ inline constexpr std::optional<SolverRefusal> solver_refusal(Solver s, const Sys
     return SolverRefusal{"a controller with torque limits switches at events",
                          "which rk4 does not locate (its fixed steps)"};
   if (system.nonlinear && s == Solver::exact) return SolverRefusal{nonlinear, "which exact stepping does not integrate"};
+  if (system.slip_control && s == Solver::exact)
+    return SolverRefusal{"a slip controller makes its element's heat quadratic in the state",
+                         "which exact stepping does not integrate"};
   if (system.nonlinear && s == Solver::rk4)
     return SolverRefusal{nonlinear, "which rk4's fixed step cannot be checked against its stability limit"};
   return std::nullopt;

@@ -18,6 +18,7 @@
 #include "common/cpp_text.hpp"
 #include "specialize/initial_state.hpp"
 #include "specialize/element_thermal.hpp"
+#include "specialize/torque_limits.hpp"
 #include "specialize/triggered_signals.hpp"
 #include "pogear/command_line.hpp"
 #include "common/printer.hpp"
@@ -88,16 +89,20 @@ CppText limit_code(double v) {
   return v > 0 ? code("std::numeric_limits<double>::infinity()") : code("-std::numeric_limits<double>::infinity()");
 }
 
-// The controllers with torque limits as the runtime takes them: name and limits [N m] (their laws
-// come from the system's torque_limit_laws).
+// The controllers with torque limits as the runtime takes them (torque_limit_data; their laws come
+// from the system's torque_limit_laws).
 CppText torque_limits_function(const SpecializedScene& model, const SpecializedSystem& sys, const CppText& name) {
   CppText s = code("// Controllers with torque limits of {}, in the order of its last inputs: name, torque_min and\n"
-                   "// torque_max [N m].\n", name);
+                   "// torque_max [N m], laws (from torque_limit_laws); a slip controller's brake or clutch, start [s],\n"
+                   "// trigger and integral state (-1, 0, -1, -1 for a speed controller).\n", name);
   s += code("inline std::vector<pogear::rt::TorqueLimitData> {}_torque_limits() {{\n  return {{", name);
-  for (std::size_t i = 0; i < sys.limited_controllers.size(); ++i) {
-    const ControllerSpec& k = model.scene.controllers[static_cast<std::size_t>(sys.limited_controllers[i])];
+  const std::vector<rt::TorqueLimitData> limits = torque_limit_data(model, sys, triggered_signals(model, sys));
+  for (std::size_t i = 0; i < limits.size(); ++i) {
+    const rt::TorqueLimitData& l = limits[i];
     s += (i ? code(",\n          ") : CppText{}) +
-         code("{{{}, {}, {}, {{}}, {{}}}}", string_literal(k.name), limit_code(k.torque_min), limit_code(k.torque_max));
+         code("{{{}, {}, {}, {{}}, {{}}, {}, {}, {}, {}}}", string_literal(l.name), limit_code(l.torque_min),
+              limit_code(l.torque_max), integer_code(l.supplies), number_code(l.starts_at), integer_code(l.started_by),
+              integer_code(l.integral));
   }
   s += code("}};\n}}\n");
   return s;
@@ -202,10 +207,18 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
               number_code(l.linear), number_code(l.quadratic));
   for (std::size_t c = 0; c < sc.controllers.size(); ++c) {
     const ControllerSpec& k = sc.controllers[c];
-    h += code("//   controller {}: Tc = {} e + {} theta on {}, e = ref - omega_{}, theta' = e [N m s, N m]\n",
-              comment_text(k.name), number_code(k.kp), number_code(k.ki),
-              comment_text(d.topology.bodies[static_cast<std::size_t>(k.body)].name),
-              comment_text(d.topology.bodies[static_cast<std::size_t>(k.measured)].name));
+    if (k.supplies >= 0)
+      h += code("//   slip controller {}: Tc = {} e + {} theta as {}'s torque, e = ref - slip_{}, theta' = e [N m s, N m],\n"
+                "//     from its start until {} locks\n",
+                comment_text(k.name), number_code(k.kp), number_code(k.ki),
+                comment_text(d.topology.friction_elements[static_cast<std::size_t>(k.supplies)].name),
+                comment_text(d.topology.friction_elements[static_cast<std::size_t>(k.supplies)].name),
+                comment_text(d.topology.friction_elements[static_cast<std::size_t>(k.supplies)].name));
+    else
+      h += code("//   controller {}: Tc = {} e + {} theta on {}, e = ref - omega_{}, theta' = e [N m s, N m]\n",
+                comment_text(k.name), number_code(k.kp), number_code(k.ki),
+                comment_text(d.topology.bodies[static_cast<std::size_t>(k.body)].name),
+                comment_text(d.topology.bodies[static_cast<std::size_t>(k.measured)].name));
     if (k.limited())
       h += code("//     within [{}, {}] N m, held at a limit beyond it (events){}\n", limit_code(k.torque_min),
                 limit_code(k.torque_max),

@@ -131,6 +131,7 @@ std::vector<ControllerSpec> read_controllers(const SceneReader& r, const toml::n
         r.fail(value, "a controller with torque limits and no kp needs tracking_time, the time constant with which "
                       "its integral follows a limit (kp / ki, the default, is zero)");
       c.tracking_time = c.kp / c.ki;  // the integral time: Astrom and Hagglund's choice for PI control
+      c.integral_time_tracking = true;
     }
     out.push_back(std::move(c));
   }

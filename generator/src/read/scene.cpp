@@ -28,6 +28,7 @@
 #include "read/signal_start.hpp"
 #include "read/thermal_table.hpp"
 #include "read/simulation_table.hpp"
+#include "read/slip_control.hpp"
 #include "read/toml_reader.hpp"
 #include "read/tooth_counts.hpp"
 
@@ -95,9 +96,10 @@ void check_solver(Scene& s, bool engaged) {
                                 .engages_friction = engaged,
                                 .limits_torque = std::any_of(s.controllers.begin(), s.controllers.end(),
                                                              [](const ControllerSpec& c) { return c.limited(); }),
-                                .driveline = s.engine || s.converter};
+                                .driveline = s.engine || s.converter,
+                                .slip_control = has_slip_control(s)};
   const std::vector<Solver> admissible = rt::admissible_solvers(traits);
-  if (traits.nonlinear && !s.solver_given) s.solver = Solver::dopri5;
+  if ((traits.nonlinear || traits.slip_control) && !s.solver_given) s.solver = Solver::dopri5;
   if (const auto refusal = rt::solver_refusal(s.solver, traits)) {
     // A quadratic load can be made linear; an engine's or a converter's torques cannot.
     const bool load = refusal->cause == rt::solver_refusal(Solver::exact, {.nonlinear = true})->cause;
@@ -143,25 +145,22 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                   max_model_file_bytes));
   r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
                      "parameters", "simulation", "engagement", "speed_unit", "loads", "controllers", "vehicle", "engine",
-                     "converter", "thermal"},
+                     "converter", "thermal", "slip_control"},
               "the scene file");
   Scene s;
   s.file = path;
   s.digest = text_digest(text);
   s.name = fs::path(path).stem().string();
   if (const toml::node* n = root.get("name")) s.name = r.string(*n, "name");
+  const SourceLocation name_where = root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0};
   if (!is_name(s.name))
-    throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
-                     fmt::format("scene name '{}' must be letters, digits and '_' (it names C++ code and files)", s.name));
+    throw InputError(name_where, fmt::format("scene name '{}' must be letters, digits and '_' (it names C++ code and files)", s.name));
   if (s.name.size() > max_name_length)
-    throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
-                     fmt::format("the scene name is {} characters long; names have at most {}", s.name.size(),
-                                 max_name_length));
+    throw InputError(name_where, fmt::format("the scene name is {} characters long; names have at most {}", s.name.size(), max_name_length));
   // The generated code lives in namespace pogear_generated::<name>.
   if (is_cpp_reserved(s.name))
-    throw InputError(root.get("name") ? r.loc(*root.get("name")) : SourceLocation{path, 0, 0},
-                     fmt::format("scene name '{}' is a C++ keyword or macro, which cannot name the generated code; "
-                                 "choose another name", s.name));
+    throw InputError(name_where, fmt::format("scene name '{}' is a C++ keyword or macro, which cannot name the generated "
+                                             "code; choose another name", s.name));
 
   const toml::node* model = root.get("model");
   if (!model) throw InputError(SourceLocation{path, 0, 0}, "the scene names no model; add model = \"path/to/model.toml\"");
@@ -284,6 +283,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
               [](const EngagementSpec& a, const EngagementSpec& b) { return a.element < b.element; });
   }
   if (const toml::node* n = root.get("thermal")) s.thermal = read_thermal(r, *n);
+  if (const toml::node* n = root.get("slip_control")) read_slip_control(r, *n, scene_dir, s);
 
   if (const toml::node* n = root.get("initial")) {
     if (!n->is_table()) r.fail(*n, "[initial] must be a table of omega_<body> and F_<mesh> values");
@@ -392,8 +392,8 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   }
 
   if (const toml::node* n = root.get("simulation")) read_simulation(r, *n, s);
-  const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(),
-                                   [](const EngagementSpec& e) { return !identically_zero(e.command, e.start); });
+  const bool engaged = std::any_of(s.engagement.begin(), s.engagement.end(), [&](const EngagementSpec& e) { return engages(s, e.element); });
+  check_slip_control(s);
   check_loads_and_controllers(s);
   check_signal_starts(s);
   check_thermal(s);

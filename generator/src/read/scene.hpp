@@ -135,7 +135,16 @@ struct ControllerSpec {
   // by back-calculation): theta' = e + (T - law) / (ki tracking_time).
   double torque_min = -std::numeric_limits<double>::infinity(), torque_max = std::numeric_limits<double>::infinity();
   double tracking_time = 0;  // [s], with limits and ki > 0
+  // tracking_time is its default kp / ki: then theta' = (T - ki theta) / kp exactly, the error's
+  // terms cancelling (in doubles kp / ki times ki is not kp).
+  bool integral_time_tracking = false;
   SourceLocation where;
+  // A slip controller ([slip_control], read/slip_control.hpp): its torque is brake or clutch
+  // `supplies`'s (a pair on its bodies), the speed it measures that element's slip, its gains the
+  // command's times the element's capacity (negative: more slip, more torque); it runs from `start`
+  // [s] or from its set-point's trigger until the element locks.
+  int supplies = -1;
+  double start = 0;
   bool limited() const { return std::isfinite(torque_min) || std::isfinite(torque_max); }
 };
 

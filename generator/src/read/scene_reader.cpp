@@ -10,6 +10,7 @@
 
 #include "common/quantity.hpp"
 #include "read/model_parameters.hpp"
+#include "read/slip_control.hpp"
 #include "pogear/parameters.hpp"
 #include "pogear/signal_table.hpp"
 
@@ -281,6 +282,7 @@ bool identically_zero(const rt::Signal& signal, const std::optional<SignalStart>
 }
 
 bool engages(const Scene& s, int element) {
+  if (slip_controller_of(s, element) >= 0) return true;  // the controller engages it
   return std::any_of(s.engagement.begin(), s.engagement.end(), [&](const EngagementSpec& e) {
     return e.element == element && !identically_zero(e.command, e.start);
   });

@@ -35,13 +35,24 @@ std::string loads_and_controllers_note(const SpecializedScene& model) {
                      parts.empty() ? std::string("zero") : joined(parts));
   }
   for (const ControllerSpec& c : sc.controllers)
-    s += fmt::format("controller {}: {} torque on {} for the speed of {}, its integral theta_{} a state{}\n",
-                     c.name, c.kp != 0 && c.ki != 0 ? "PI" : c.kp != 0 ? "P" : "I", t.bodies[static_cast<std::size_t>(c.body)].name,
-                     t.bodies[static_cast<std::size_t>(c.measured)].name, c.name,
-                     c.limited() ? fmt::format("; torque from {} to {} N m, events at the limits, where its integral "
-                                               "tracks the limit (time constant {} s)", c.torque_min, c.torque_max,
-                                               c.tracking_time)
-                                 : std::string(" (linear)"));
+    if (c.supplies >= 0)
+      s += fmt::format("slip controller {}: {} command of {} for its slip, its integral theta_{} a state; from {} until "
+                       "{} locks, its torque from {} to {} N m (the capacity), the integral tracking a limit (time "
+                       "constant {} s)\n",
+                       c.name, c.kp != 0 && c.ki != 0 ? "PI" : c.kp != 0 ? "P" : "I",
+                       t.friction_elements[static_cast<std::size_t>(c.supplies)].name, c.name,
+                       c.set_point_start ? std::string("its target's start") : fmt::format("t = {} s", c.start),
+                       t.friction_elements[static_cast<std::size_t>(c.supplies)].name, c.torque_min, c.torque_max,
+                       c.tracking_time);
+    else
+      s += fmt::format("controller {}: {} torque on {} for the speed of {}, its integral theta_{} a state{}\n", c.name,
+                       c.kp != 0 && c.ki != 0 ? "PI" : c.kp != 0 ? "P" : "I",
+                       t.bodies[static_cast<std::size_t>(c.body)].name, t.bodies[static_cast<std::size_t>(c.measured)].name,
+                       c.name,
+                       c.limited() ? fmt::format("; torque from {} to {} N m, events at the limits, where its integral "
+                                                 "tracks the limit (time constant {} s)", c.torque_min, c.torque_max,
+                                                 c.tracking_time)
+                                   : std::string(" (linear)"));
   if (sc.engine)
     s += fmt::format("engine on its body 'engine': torque from its map ({} speeds x {} throttles, bilinear) at its "
                      "speed and the throttle (nonlinear)\n", sc.engine->map.speeds.size(), sc.engine->map.throttles.size());

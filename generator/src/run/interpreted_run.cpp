@@ -13,6 +13,7 @@
 #include "pogear/hybrid_run.hpp"
 #include "specialize/reference_model.hpp"
 #include "specialize/element_thermal.hpp"
+#include "specialize/torque_limits.hpp"
 #include "specialize/triggered_signals.hpp"
 
 namespace pogear {
@@ -90,25 +91,18 @@ std::vector<rt::FrictionElementData> friction_data(const SpecializedScene& model
   return out;
 }
 
-// The controllers with torque limits of `sys`, as the runtime takes them (their laws from the system).
-std::vector<rt::TorqueLimitData> torque_limits(const SpecializedScene& model, const SpecializedSystem& sys) {
-  std::vector<rt::TorqueLimitData> out;
-  for (const int c : sys.limited_controllers) {
-    const ControllerSpec& k = model.scene.controllers[static_cast<std::size_t>(c)];
-    out.push_back({k.name, k.torque_min, k.torque_max, {}, {}});
-  }
-  return out;
-}
-
 int run_one_interpreted(const SpecializedScene& model, const SpecializedSystem& sys, const rt::SceneRun& run,
                         const std::string& suffix) {
   InterpretedSystem is{numeric_system(model, sys), port_names(model.derivation.symbols, output_variables(sys)),
                        output_units(model.derivation.topology, sys)};
   is.state_units = state_units(model.derivation.topology, sys);
   is.driveline_data = driveline_data(model.scene, sys, is.ns.driveline_speeds);
-  if (!sys.friction_elements.empty() || !sys.limited_controllers.empty() || !sys.driveline.empty())
-    return rt::run_hybrid_system(is, {}, input_signals(sys), friction_data(model), torque_limits(model, sys), is.ns.x0,
-                                 run, suffix, triggered_signals(model, sys), element_thermal(model));
+  if (!sys.friction_elements.empty() || !sys.limited_controllers.empty() || !sys.driveline.empty()) {
+    std::vector<rt::TriggeredSignal> triggered = triggered_signals(model, sys);
+    std::vector<rt::TorqueLimitData> limits = torque_limit_data(model, sys, triggered);
+    return rt::run_hybrid_system(is, {}, input_signals(sys), friction_data(model), std::move(limits), is.ns.x0, run,
+                                 suffix, std::move(triggered), element_thermal(model));
+  }
   return rt::run_system(is, {}, input_signals(sys), is.ns.x0, run, suffix);
 }
 

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "common/exact_algebra.hpp"
+#include "derive/engagement.hpp"
 #include "specialize/linear_form.hpp"
 #include "read/model_parameters.hpp"
 #include "names/model_variables.hpp"
@@ -71,18 +72,29 @@ void close_load(const LoadSpec& l, const Derivation& d, const SpeedOf& speed, Sp
 
 // A PI speed controller: its set-point an input, its integral a state theta' = ref - omega (with
 // limits, plus the back-calculation), its torque the law, or with limits an input set by the runs.
-void close_controller(const ControllerSpec& k, int i, const SymbolTable& s, const SpeedOf& speed,
+// A slip controller's measures its element's slip, E omega (E its row of engagement_rows).
+void close_controller(const ControllerSpec& k, int i, const Derivation& d, const SpeedOf& speed,
                       SpecializedSystem& sys, ClosedLoops& out) {
+  const SymbolTable& s = d.symbols;
   const Variable ref{VariableKind::set_point, i}, theta{VariableKind::controller_integral, i};
   sys.inputs.push_back({ref, k.set_point, k.set_point_start});
   sys.states.push_back({theta, 0.0});
-  const ex error = variable_symbol(s, ref) - speed(k.measured);
+  ex measured = 0;
+  if (k.supplies >= 0) {
+    const GiNaC::matrix e = engagement_rows(d.topology, {k.supplies});
+    for (unsigned b = 0; b < e.cols(); ++b)
+      if (!e(0, b).is_zero()) measured += e(0, b) * speed(static_cast<int>(b));
+  } else {
+    measured = speed(k.measured);
+  }
+  const ex error = (variable_symbol(s, ref) - measured).expand();
   const ex law = (exact_number(k.kp) * error + exact_number(k.ki) * variable_symbol(s, theta)).expand();
   if (k.limited() && k.ki != 0) {
     // Back-calculation: T - law is zero within the limits, and at a limit draws the integral
     // towards it with the time constant tracking_time.
     const ex torque = variable_symbol(s, {VariableKind::controller_torque, i});
-    sys.rhs.push_back((error + (torque - law) / (exact_number(k.ki) * exact_number(k.tracking_time))).expand());
+    const ex tracking = k.integral_time_tracking ? exact_number(k.kp) : exact_number(k.ki) * exact_number(k.tracking_time);
+    sys.rhs.push_back((error + (torque - law) / tracking).expand());
   } else {
     sys.rhs.push_back(error);
   }
@@ -113,7 +125,7 @@ ClosedLoops close_loops(const Scene& sc, const Derivation& d, bool elastic, cons
   sys.inputs = std::move(torques);
   for (const LoadSpec& l : sc.loads) close_load(l, d, speed, sys, out);
   for (std::size_t c = 0; c < sc.controllers.size(); ++c)
-    close_controller(sc.controllers[c], static_cast<int>(c), d.symbols, speed, sys, out);
+    close_controller(sc.controllers[c], static_cast<int>(c), d, speed, sys, out);
   sys.inputs.insert(sys.inputs.end(), driveline.begin(), driveline.end());
   sys.inputs.insert(sys.inputs.end(), frictions.begin(), frictions.end());
   for (const int c : sys.limited_controllers) sys.inputs.push_back({{VariableKind::controller_torque, c}, std::nullopt, std::nullopt});

@@ -10,6 +10,7 @@
 #include "specialize/parameter_folding.hpp"
 #include "specialize/specialization.hpp"
 #include "specialize/state_torques.hpp"
+#include "specialize/torque_limits.hpp"
 #include "specialize/triggered_signals.hpp"
 
 namespace pogear {
@@ -184,15 +185,28 @@ ControllerLaws controller_laws(const Scene& sc, const SpecializedSystem& sys, co
   for (Eigen::Index c = 0; c < nc; ++c) {
     const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
     const Eigen::Index ref = index_of(system_inputs, {VariableKind::set_point, static_cast<int>(c)});
-    out.M.row(nb + c).head(nb) = -speeds.row(k.measured);
+    Eigen::RowVectorXd measured = Eigen::RowVectorXd::Zero(speeds.cols());
+    if (k.supplies >= 0) {  // a slip controller's: its element's slip, E omega
+      const GiNaC::matrix e = engagement_rows(sc.model, {k.supplies});
+      for (unsigned b = 0; b < e.cols(); ++b) measured += to_double(as_number(e(0, b))) * speeds.row(b);
+    } else {
+      measured = speeds.row(k.measured);
+    }
+    out.M.row(nb + c).head(nb) = -measured;
     out.N(nb + c, ref) = 1;
-    law.x.row(c).head(nb) = -k.kp * speeds.row(k.measured);
+    law.x.row(c).head(nb) = -k.kp * measured;
     law.x(c, nb + c) = k.ki;
     law.u(c, ref) = k.kp;
   }
   for (const int c : sys.limited_controllers) {
     const ControllerSpec& k = sc.controllers[static_cast<std::size_t>(c)];
-    if (k.ki != 0) {
+    if (k.ki != 0 && k.integral_time_tracking) {  // theta' = (T - ki theta) / kp: the error cancels
+      const Eigen::Index torque = index_of(system_inputs, {VariableKind::controller_torque, c});
+      out.M.row(nb + c).setZero();
+      out.N.row(nb + c).setZero();
+      out.M(nb + c, nb + c) = -k.ki / k.kp;
+      out.N(nb + c, torque) = 1 / k.kp;
+    } else if (k.ki != 0) {
       const double gain = 1 / (k.ki * k.tracking_time);
       const Eigen::Index torque = index_of(system_inputs, {VariableKind::controller_torque, c});
       out.M.row(nb + c) -= gain * law.x.row(c);
@@ -366,10 +380,10 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedS
   hs.N = rt::with_quadratic_columns(ns.N, head, Nq);
   for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
   hs.triggered = triggered_signals(model, system);
-  for (std::size_t l = 0; l < system.limited_controllers.size(); ++l) {
-    const ControllerSpec& c = model.scene.controllers[static_cast<std::size_t>(system.limited_controllers[l])];
-    hs.limits.push_back({c.name, c.torque_min, c.torque_max, ns.limit_x.row(static_cast<Eigen::Index>(l)),
-                         rt::law_with_quadratic_columns(ns.limit_u.row(static_cast<Eigen::Index>(l)), head, nq)});
+  hs.limits = torque_limit_data(model, system, hs.triggered);
+  for (std::size_t l = 0; l < hs.limits.size(); ++l) {
+    hs.limits[l].law_x = ns.limit_x.row(static_cast<Eigen::Index>(l));
+    hs.limits[l].law_w = rt::law_with_quadratic_columns(ns.limit_u.row(static_cast<Eigen::Index>(l)), head, nq);
   }
   return hs;
 }

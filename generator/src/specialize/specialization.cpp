@@ -17,6 +17,7 @@
 #include "specialize/loop_closure.hpp"
 #include "read/loads_and_controllers.hpp"
 #include "read/model_parameters.hpp"
+#include "read/slip_control.hpp"
 #include "specialize/operation_count.hpp"
 #include "specialize/parameter_folding.hpp"
 #include "common/printer.hpp"
@@ -61,7 +62,7 @@ void inputs_of(const Scene& sc, SpecializedSystem& sys) {
 // is zero at every time stays open and leaves no term).
 void friction_inputs_of(const Scene& sc, SpecializedSystem& sys) {
   for (const EngagementSpec& e : sc.engagement) {
-    if (identically_zero(e.command, e.start)) continue;
+    if (!engages(sc, e.element)) continue;
     sys.inputs.push_back({{VariableKind::friction_torque, e.element}, std::nullopt, std::nullopt});
     sys.friction_elements.push_back(e.element);
   }
@@ -374,6 +375,10 @@ GiNaC::matrix input_torques(const Topology& t, const Scene& scene, const std::ve
     const VariableKind kind = inputs[j].kind;
     if (kind == VariableKind::torque || kind == VariableKind::load_torque) {
       G(inputs[j].index, j) = 1;
+    } else if (kind == VariableKind::controller_torque && controllers.at(static_cast<std::size_t>(inputs[j].index)).supplies >= 0) {
+      // A slip controller's torque acts as its element's does.
+      const GiNaC::matrix e = engagement_rows(t, {controllers[static_cast<std::size_t>(inputs[j].index)].supplies});
+      for (std::size_t b = 0; b < t.bodies.size(); ++b) G(b, j) = -e(0, b);
     } else if (kind == VariableKind::controller_torque) {
       G(controllers.at(static_cast<std::size_t>(inputs[j].index)).body, j) = 1;
     } else if (of_driveline(kind)) {
@@ -392,7 +397,8 @@ rt::SystemTraits solver_traits(const SpecializedScene& model) {
   return {.nonlinear = model.main.nonlinear,
           .engages_friction = !model.friction.empty(),
           .limits_torque = !model.main.limited_controllers.empty(),
-          .driveline = !model.main.driveline.empty()};
+          .driveline = !model.main.driveline.empty(),
+          .slip_control = has_slip_control(model.scene)};
 }
 
 GiNaC::numeric output_per_model_force(const Topology& t, const Mesh& m) {
@@ -421,7 +427,7 @@ SpecializedScene specialize(const Scene& scene) {
   if (scene.compare_rigid) model.rigid = specialize_system(scene, model.derivation, model.values, false);
   const Topology& t = model.derivation.topology;
   for (const EngagementSpec& e : scene.engagement) {
-    if (identically_zero(e.command, e.start)) continue;
+    if (!engages(scene, e.element)) continue;
     const FrictionElement& f = t.friction_elements[static_cast<std::size_t>(e.element)];
     model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter),
                                          static_friction_ratio(t, f), e.command, f.one_way, e.start});
