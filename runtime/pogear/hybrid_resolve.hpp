@@ -73,7 +73,7 @@ inline double overload(const HybridSystem& sys, const HybridData& d, int k, doub
 
 // The slip controllers that start at or before t (control_start) begin controlling, bumpless: their
 // integral starts where their law gives the command the element had (zero without an integral term);
-// false (with `error`) when the element one supplies slips against its target's direction.
+// false (with `error`) when the element one supplies does not slip, or slips against its target's sign.
 inline bool start_slip_control(const HybridSystem& sys, HybridData& d, double t, std::string& error) {
   for (int l = d.nf; l < d.ne; ++l) {
     const auto L = static_cast<std::size_t>(l);
@@ -87,9 +87,15 @@ inline bool start_slip_control(const HybridSystem& sys, HybridData& d, double t,
       if (const double gain = c.law_x(c.integral); gain != 0) d.x(c.integral) = (p * capacity - law(sys, d, l, d.x, d.v)) / gain;
     }
     const double s = d.S.row(c.supplies).dot(d.x);
-    if (!slip_is_zero(d, c.supplies, s, speed_scale(d, d.x)) && (s > 0) != (c.torque_max > 0)) {
-      error = c.name + " starts at t = " + detail::num(t) + " s while " + sys.elements[static_cast<std::size_t>(c.supplies)].name +
-              " slips at " + detail::num(s) + " rad/s, against its target's sign; give the target the sign of the slip";
+    const std::string& element = sys.elements[static_cast<std::size_t>(c.supplies)].name;
+    if (d.state[static_cast<std::size_t>(c.supplies)] == ElementState::stuck || slip_is_zero(d, c.supplies, s, speed_scale(d, d.x))) {
+      error = c.name + " starts at t = " + detail::num(t) + " s while " + element + " does not slip; a slip controller "
+              "takes over an element that slips (an on-coming one once it engages): start it then";
+      return false;
+    }
+    if ((s > 0) != (c.torque_max > 0)) {
+      error = c.name + " starts at t = " + detail::num(t) + " s while " + element + " slips at " + detail::num(s) +
+              " rad/s, against its target's sign; give the target the sign of the slip";
       return false;
     }
   }

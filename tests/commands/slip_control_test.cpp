@@ -175,23 +175,38 @@ TEST(SlipControl, ClosedLoopUpshiftRunsCompiledAsInterpreted) {
   EXPECT_LT(worst, 12.0);  // the PI loop's lag on a ramp of 792 rad/s^2 with these gains: some 10 rad/s
 }
 
-// A target of the other sign than the slip it is to hold stops the run as the controller starts:
-// its torque would push the slip on instead of holding it (docs/errors.md).
-TEST(SlipControl, TargetAgainstTheSlipStopsTheRun) {
-  const fs::path dir = temp_dir("slip_against");
+// Runs the pair with omega_a = `speed`, Ba's command `command` and its slip controller `control`,
+// which must stop the run with `message` (as docs/errors.md shows it).
+void expect_run_stops(const std::string& tag, const std::string& speed, const std::string& command,
+                      const std::string& control, const std::string& message) {
+  const fs::path dir = temp_dir(tag);
   write_text(dir / "pair.toml", read_text(source_path("tests/vibration/pair.toml")));
   write_text(dir / "scene.toml",
              "name = \"slip\"\nmodel = \"pair.toml\"\neffects = []\nkeep = [\"a\"]\n"
-             "[inputs]\ntau_a = \"30*Nm\"\n[initial]\nomega_a = \"100*rad/s\"\n[engagement]\nBa = \"0\"\n"
-             "[slip_control]\nBa = { target = \"-80*rad/s\", kp = \"0.05*s/rad\", ki = \"0.5/rad\" }\n"
-             "[simulation]\nhorizon = \"1*s\"\nsample = \"1*ms\"\n");
+             "[inputs]\ntau_a = \"30*Nm\"\n[initial]\nomega_a = \"" + speed + "\"\n[engagement]\nBa = \"" + command + "\"\n"
+             "[slip_control]\nBa = " + control + "\n[simulation]\nhorizon = \"1*s\"\nsample = \"1*ms\"\n");
   const Command c = run_command(std::string(POGEAR_EXECUTABLE) + " simulate scene.toml --interpreted -o out", dir);
   EXPECT_EQ(c.status, 3);
-  const std::string expected =
-      "slip: error: slip_Ba starts at t = 0 s while Ba slips at 100 rad/s, against its target's sign; give the target "
-      "the sign of the slip; the CSV keeps what was computed and is marked incomplete\n";
+  const std::string expected = "slip: error: " + message + "; the CSV keeps what was computed and is marked incomplete\n";
   EXPECT_EQ(c.err, expected);
   EXPECT_NE(read_text(source_path("docs/errors.md")).find(expected), std::string::npos);
+}
+
+// A target of the other sign than the slip it is to hold stops the run as the controller starts:
+// its torque would push the slip on instead of holding it.
+TEST(SlipControl, TargetAgainstTheSlipStopsTheRun) {
+  expect_run_stops("slip_against", "100*rad/s", "0", "{ target = \"-80*rad/s\", kp = \"0.05*s/rad\", ki = \"0.5/rad\" }",
+                   "slip_Ba starts at t = 0 s while Ba slips at 100 rad/s, against its target's sign; give the target "
+                   "the sign of the slip");
+}
+
+// The same for a controller that starts while its element does not slip (at rest, held by the
+// brake's own command): it would lock it at once at full command, overriding that command.
+TEST(SlipControl, StartOnAnElementAtRestStopsTheRun) {
+  expect_run_stops("slip_at_rest", "0*rad/s", "1",
+                   "{ target = \"20*rad/s\", kp = \"0.05*s/rad\", ki = \"0.5/rad\", start = \"0.3*s\" }",
+                   "slip_Ba starts at t = 0.3 s while Ba does not slip; a slip controller takes over an element that "
+                   "slips (an on-coming one once it engages): start it then");
 }
 
 }  // namespace

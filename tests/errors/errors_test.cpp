@@ -1277,7 +1277,7 @@ TEST_F(LoadsAndControllers, StartTorqueOutsideTheLimits) {
 
 TEST_F(LoadsAndControllers, NotWithTunables) {
   expect_error("[loads]\nr = { linear = \"0.5*N*m*s\" }\n",
-               R"~(scene.toml:7:11: error: a scene with [loads] or [controllers] has no tunable parameters yet; set the values in [parameters] and generate one simulator per value)~",
+               R"~(scene.toml:7:11: error: a scene with [loads], [controllers] or [slip_control] has no tunable parameters yet; set the values in [parameters] and generate one simulator per value)~",
                {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"J_c\"]"}});
 }
 

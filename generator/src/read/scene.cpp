@@ -79,8 +79,8 @@ void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
 void check_loads_and_controllers(const Scene& s) {
   if (s.loads.empty() && s.controllers.empty()) return;
   if (!s.tunable.empty())
-    throw InputError(s.tunable_where, "a scene with [loads] or [controllers] has no tunable parameters yet; set the "
-                                      "values in [parameters] and generate one simulator per value");
+    throw InputError(s.tunable_where, "a scene with [loads], [controllers] or [slip_control] has no tunable parameters "
+                                      "yet; set the values in [parameters] and generate one simulator per value");
   if (s.start != Start::given && !s.controllers.empty())
     throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [controllers]; give the "
                                     "initial speeds in [initial]");

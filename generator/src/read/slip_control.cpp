@@ -19,24 +19,17 @@ namespace {
 
 constexpr std::size_t max_controllers = 16;  // with the brakes and clutches, a mode is a 32-bit set
 
-// The sign the target keeps over [0, horizon] (its values at 0, the horizon and its breakpoints,
-// before its start too): +1 or -1, 0 when it changes sign or is zero throughout.
+// The sign of the target's first value other than zero over its own times [0, horizon] (a
+// piecewise linear signal: its values at 0, its breakpoints and the horizon), or 0 when it is zero
+// throughout. Its `before` is no target: the controller is off until the target starts.
 int target_sign(const ControllerSpec& c, double horizon) {
-  int sign = 0;
-  bool mixed = false;
-  for (const rt::Signal* s : {&c.set_point, c.set_point_start && c.set_point_start->before ? &*c.set_point_start->before : nullptr}) {
-    if (!s) continue;
-    std::vector<double> times = rt::breakpoints(*s, 0.0, horizon);
-    times.push_back(0.0);
-    times.push_back(horizon);
-    for (const double t : times)
-      for (const double v : {rt::value(*s, t), rt::value(*s, std::nextafter(t, 0.0))}) {
-        const int here = v > 0 ? 1 : v < 0 ? -1 : 0;
-        if (here != 0 && sign != 0 && here != sign) mixed = true;
-        if (here != 0) sign = here;
-      }
-  }
-  return mixed ? 0 : sign;
+  std::vector<double> times = rt::breakpoints(c.set_point, 0.0, horizon);
+  times.push_back(horizon);
+  times.insert(times.begin(), 0.0);
+  for (const double t : times)
+    for (const double v : {rt::value(c.set_point, std::nextafter(t, 0.0)), rt::value(c.set_point, t)})
+      if (v != 0) return v > 0 ? 1 : -1;
+  return 0;
 }
 
 }  // namespace
@@ -134,9 +127,8 @@ void check_slip_control(Scene& s) {
     const std::string& element = s.model.friction_elements[static_cast<std::size_t>(c.supplies)].name;
     const int sign = target_sign(c, s.horizon);
     if (sign == 0)
-      throw InputError(c.where, fmt::format("the target of {}'s slip controller changes sign or is zero throughout the "
-                                            "run; a target has the sign of the slip it holds (slip_{} in the CSV), and "
-                                            "is 0 at most in places", element, element));
+      throw InputError(c.where, fmt::format("the target of {}'s slip controller is zero throughout the run; a target "
+                                            "has the sign of the slip it holds (slip_{} in the CSV)", element, element));
     (sign > 0 ? c.torque_min : c.torque_max) = 0;
     for (const auto& [v, value] : s.initial)
       if (v.kind == VariableKind::controller_torque && s.controllers[static_cast<std::size_t>(v.index)].name == c.name)

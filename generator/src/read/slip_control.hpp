@@ -16,8 +16,8 @@ namespace pogear {
 // the element (its command until the controller starts).
 void read_slip_control(const SceneReader& r, const toml::node& n, const std::filesystem::path& scene_dir, Scene& s);
 
-// Once the horizon is known: each target keeps one sign over the run, which gives the torque limits
-// (0 and the element's capacity in that direction); a slip controller takes no start torque.
+// Once the horizon is known: the sign of each target's first value other than zero gives the torque
+// limits (0 and the element's capacity in that direction); a slip controller takes no start torque.
 void check_slip_control(Scene& s);
 
 bool has_slip_control(const Scene& s);

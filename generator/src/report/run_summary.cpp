@@ -37,13 +37,13 @@ std::string loads_and_controllers_note(const SpecializedScene& model) {
   for (const ControllerSpec& c : sc.controllers)
     if (c.supplies >= 0)
       s += fmt::format("slip controller {}: {} command of {} for its slip, its integral theta_{} a state; from {} until "
-                       "{} locks, its torque from {} to {} N m (the capacity), the integral tracking a limit (time "
-                       "constant {} s)\n",
+                       "{} locks, its torque from {} to {} N m (the capacity){}\n",
                        c.name, c.kp != 0 && c.ki != 0 ? "PI" : c.kp != 0 ? "P" : "I",
                        t.friction_elements[static_cast<std::size_t>(c.supplies)].name, c.name,
                        c.set_point_start ? std::string("its target's start") : fmt::format("t = {} s", c.start),
                        t.friction_elements[static_cast<std::size_t>(c.supplies)].name, c.torque_min, c.torque_max,
-                       c.tracking_time);
+                       c.ki != 0 ? fmt::format(", the integral tracking a limit (time constant {:.6g} s)", c.tracking_time)
+                                 : std::string());
     else
       s += fmt::format("controller {}: {} torque on {} for the speed of {}, its integral theta_{} a state{}\n", c.name,
                        c.kp != 0 && c.ki != 0 ? "PI" : c.kp != 0 ? "P" : "I",

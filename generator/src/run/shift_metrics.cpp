@@ -17,6 +17,7 @@
 #include "common/csv_rows.hpp"
 #include "common/json_text.hpp"
 #include "common/output_file.hpp"
+#include "read/slip_control.hpp"
 #include "specialize/triggered_signals.hpp"
 
 namespace pogear {
@@ -410,12 +411,32 @@ void write_shift_metrics(const SpecializedScene& model, const std::string& dir, 
   const std::string name = model.scene.name;
   const std::vector<RunEvent> events = read_run_events((fs::path(dir) / (name + suffix + ".events.csv")).string());
   // A command that started on an event, as the run applied it (its start in the events file).
+  // A slip-controlled element's command: its own until its controller starts (at the controller's
+  // start time, or as its target starts), then rising to 1 at the hand-over, where the controller
+  // goes off (its command is no signal of the scene).
   std::vector<ShiftElement> elements;
   for (const FrictionRun& f : model.friction) {
     double started = std::numeric_limits<double>::infinity();
     for (const RunEvent& e : events)
       if (e.element == started_command_name(f.name) && e.to == "started") started = e.t;
-    elements.push_back({f.name, signal_as_run(f.command, f.start, started, model.scene.horizon)});
+    rt::Signal command = signal_as_run(f.command, f.start, started, model.scene.horizon);
+    if (const int c = slip_controller_of(model.scene, f.element); c >= 0) {
+      const ControllerSpec& k = model.scene.controllers[static_cast<std::size_t>(c)];
+      double on = k.set_point_start ? std::numeric_limits<double>::infinity() : k.start, off = model.scene.horizon;
+      for (const RunEvent& e : events) {
+        if (e.element == "ref_" + k.name && e.to == "started") on = e.t;
+        if (e.element == k.name && e.to == "off") off = std::min(off, e.t);
+      }
+      if (on < off) {  // its pieces before the start, then the rise
+        rt::Table t{{0.0}, {rt::value(command, 0.0)}};
+        for (const double b : rt::breakpoints(command, 0.0, on))
+          for (const double v : {left_value(command, b), rt::value(command, b)})
+            if (b > 0 && b < on && (b != t.t.back() || v != t.v.back())) t.t.push_back(b), t.v.push_back(v);
+        t.t.insert(t.t.end(), {on, off, model.scene.horizon}), t.v.insert(t.v.end(), {left_value(command, on), 1.0, 1.0});
+        command = std::move(t);
+      }
+    }
+    elements.push_back({f.name, std::move(command)});
   }
   ShiftMetrics m = measure_shifts(read_run_table((fs::path(dir) / (name + suffix + ".csv")).string()), events, elements,
                                   model.scene.horizon);
