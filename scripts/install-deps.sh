@@ -3,6 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
+  ninja-build                      # CI's generator (.ci/run): it schedules every object of the build on one graph
   libginac-dev libcln-dev          # symbolic derivation
   libeigen3-dev                    # numeric linear algebra, matrix exponential
   libfmt-dev libtomlplusplus-dev libcli11-dev

@@ -17,6 +17,14 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
     return "the system's matrices M, N and S do not agree on the number of states";
   if (sys.S.rows() != static_cast<Eigen::Index>(sys.elements.size()))
     return "the system has not one slip row per brake or clutch";
+  for (const FrictionElementData& e : sys.elements) {
+    const Table& f = e.friction_curve;
+    if (f.t.empty()) continue;
+    bool fits = f.t.size() >= 2 && f.v.size() == f.t.size() && f.t.front() == 0;
+    for (std::size_t i = 0; fits && i < f.t.size(); ++i)
+      fits = std::isfinite(f.t[i]) && f.v[i] > 0 && f.v[i] <= 10 && (i == 0 || f.t[i] > f.t[i - 1]);
+    if (!fits) return "a friction curve is not slips strictly increasing from 0 with ratios in (0, 10]";
+  }
   if (sys.N.cols() != static_cast<Eigen::Index>(sys.inputs.size() + sys.state_torques.size()) + ne)
     return "the system has not one input column per input, state torque, brake or clutch, and torque limit";
   for (const StateTorqueData& q : sys.state_torques) {

@@ -10,7 +10,15 @@
 
 namespace pogear::rt::hybrid {
 
-// v = w at time t and state x: the inputs, the state torques, slipping torques c p(t) dir, held
+// The torque of slipping friction element k at time `at` and state x: c p(t) dir, times f(|S_k x|)
+// where its friction varies with slip.
+inline double slipping_torque(const HybridSystem& sys, const HybridData& d, int k, double at, const Eigen::VectorXd& x) {
+  const auto K = static_cast<std::size_t>(k);
+  const double T = torque_scale(sys, d, k) * command(sys, d, k, at) * d.dir[K];
+  return varies_with_slip(sys.elements[K]) ? T * friction_ratio(sys.elements[K], d.S.row(k).dot(x)) : T;
+}
+
+// v = w at time t and state x: the inputs, the state torques, slipping torques c p(t) f dir, held
 // controller torques, stuck torques left at zero. `before` asks for the left limit (a step that ends
 // on a breakpoint).
 inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t, bool before, const Eigen::VectorXd& x,
@@ -24,13 +32,13 @@ inline void known_inputs(const HybridSystem& sys, const HybridData& d, double t,
     // + 0.0: an open element's torque is 0, not -0, in the CSV.
     v(d.nu + k) = d.state[K] == ElementState::stuck || (k < d.nf && controlled(d, k)) ? 0.0
                   : is_limit(d, k) ? held_torque(sys, d, k)
-                                   : torque_scale(sys, d, k) * command(sys, d, k, at) * d.dir[K] + 0.0;
+                                   : slipping_torque(sys, d, k, at, x) + 0.0;
   }
 }
 
 // dv/dt at time t (its left limit when `before`): the inputs' slopes, the slipping torques' c p'(t)
-// dir; stuck torques and held controller torques 0; the state torques' by state_torque_slopes,
-// which needs dx/dt.
+// dir; stuck torques and held controller torques 0; the state torques' and the torques of friction
+// that varies with slip by state_torque_slopes, which needs dx/dt.
 inline void known_input_slopes(const HybridSystem& sys, const HybridData& d, double t, bool before,
                                Eigen::VectorXd& dv) {
   const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
@@ -52,7 +60,14 @@ double carried_torque(const HybridSystem& sys, const HybridData& d, int k, const
   return d.state[static_cast<std::size_t>(l)] == ElementState::stuck ? law(sys, d, l, x, v) : v(d.nu + l);
 }
 
-// The state torques' rates at state x moving at dx/dt, at time t (its left limit when `before`).
+// Whether friction element k slips with a torque of its own that varies with its slip.
+inline bool slips_along_curve(const HybridSystem& sys, const HybridData& d, int k) {
+  const auto K = static_cast<std::size_t>(k);
+  return varies_with_slip(sys.elements[K]) && d.state[K] != ElementState::stuck && !controlled(d, k);
+}
+
+// The state torques' rates at state x moving at dx/dt, at time t (its left limit when `before`), and
+// those of the slipping torques whose friction varies with slip: c dir (p' f + p f' ds/dt).
 inline void state_torque_slopes(const HybridSystem& sys, const HybridData& d, double t, bool before,
                                 const Eigen::VectorXd& x, const Eigen::VectorXd& dx, Eigen::VectorXd& dv) {
   const double at = before ? std::nextafter(t, -std::numeric_limits<double>::infinity()) : t;
@@ -61,6 +76,30 @@ inline void state_torque_slopes(const HybridSystem& sys, const HybridData& d, do
     const StateTorqueValue v = state_torque(q, x, at);
     dv(i) = v.d_speed * q.speed.dot(dx) + v.d_time;
     if (v.d_turbine != 0) dv(i) += v.d_turbine * q.turbine.dot(dx);
+  }
+  for (int k = 0; k < d.nf; ++k) {
+    if (!slips_along_curve(sys, d, k)) continue;
+    const auto K = static_cast<std::size_t>(k);
+    const FrictionElementData& e = sys.elements[K];
+    const double s = d.S.row(k).dot(x);
+    dv(d.nu + k) = torque_scale(sys, d, k) * d.dir[K] *
+                   (slope(command_signal(d, K, at), at) * friction_ratio(e, s) +
+                    command(sys, d, k, at) * friction_ratio_slope(e, s) * d.S.row(k).dot(dx));
+  }
+}
+
+// The Jacobian of the slipping torques whose friction varies with slip, added to J: B's column of
+// element k times c p(t) dir f'(s) S_k.
+inline void add_friction_curve_jacobian(const HybridSystem& sys, const HybridData& d, const Eigen::MatrixXd& B, double t,
+                                        const Eigen::VectorXd& x, Eigen::MatrixXd& J) {
+  for (int k = 0; k < d.nf; ++k) {
+    if (!slips_along_curve(sys, d, k)) continue;
+    const auto K = static_cast<std::size_t>(k);
+    const double g = torque_scale(sys, d, k) * command(sys, d, k, t) * d.dir[K] *
+                     friction_ratio_slope(sys.elements[K], d.S.row(k).dot(x));
+    if (g == 0) continue;
+    for (Eigen::Index c = 0; c < J.cols(); ++c)  // the outer product by hand: no temporary
+      if (d.S(k, c) != 0) J.col(c) += g * d.S(k, c) * B.col(d.nu + k);
   }
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -22,13 +23,31 @@ namespace pogear::rt {
 // A brake or clutch as a run sees it: torque capacity c (kinetic, at full engagement), the static
 // friction ratio mu_s / mu_k, and the engagement command p(t) in [0, 1] (piecewise linear).
 // A one-way element (freewheel) carries no torque while its slip is positive and holds against
-// negative slip only.
+// negative slip only. Kinetic friction that varies with slip s: slipping, the element carries
+// c p(t) f(|s|), f the friction curve over |s| [rad/s] from 0 (held beyond its last point); without
+// one, f = 1 and the element is linear.
 struct FrictionElementData {
   std::string name;
   double capacity = 0, static_ratio = 1;
   Signal command;
   bool one_way = false;
+  Table friction_curve = {};  // "= {}": a brace list that stops before it is complete (-Wmissing-field-initializers)
 };
+
+inline bool varies_with_slip(const FrictionElementData& e) { return !e.friction_curve.t.empty(); }
+// f(|s|) at slip s, and its rate over s (the curve is of |s|: its slope times the sign of s).
+inline double friction_ratio(const FrictionElementData& e, double s) {
+  return varies_with_slip(e) ? e.friction_curve.value(std::abs(s)) : 1.0;
+}
+inline double friction_ratio_slope(const FrictionElementData& e, double s) {
+  return varies_with_slip(e) ? std::copysign(table_slope(e.friction_curve, std::abs(s)), s) : 0.0;
+}
+// The largest torque the element carries, over its capacity at full command: stuck or slipping.
+inline double largest_friction_ratio(const FrictionElementData& e) {
+  double r = e.static_ratio;
+  for (const double f : e.friction_curve.v) r = std::max(r, f);
+  return r;
+}
 
 // A speed controller's torque limits (docs/scene-format.md, "Controllers"). The engine treats the
 // controller as an element after the brakes and clutches: "stuck" is its linear regime, where its
@@ -98,6 +117,11 @@ struct HybridSystem {
   // the states some slip reads.
   std::vector<Eigen::Index> speed_states;
 };
+
+// Whether some element's friction varies with slip: its slipping modes are then nonlinear.
+inline bool varies_with_slip(const HybridSystem& sys) {
+  return std::any_of(sys.elements.begin(), sys.elements.end(), [](const FrictionElementData& e) { return varies_with_slip(e); });
+}
 
 // The triggered signals that wait for a crossing (each runs as a monitor: hybrid_crossings.hpp).
 inline int crossing_count(const HybridSystem& sys) {

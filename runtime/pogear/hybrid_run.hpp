@@ -176,7 +176,8 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   // The one admissibility rule (solver.hpp), as pogear simulate words it.
   const SystemTraits traits{.nonlinear = nq > 0, .engages_friction = ne > 0, .limits_torque = nl > 0, .driveline = nd > 0,
                             .slip_control = std::any_of(hs.limits.begin(), hs.limits.end(),
-                                                        [](const TorqueLimitData& l) { return l.supplies >= 0; })};
+                                                        [](const TorqueLimitData& l) { return l.supplies >= 0; }),
+                            .friction_curve = varies_with_slip(hs)};
   if (const auto refusal = solver_refusal(run.solver, traits)) {
     const std::vector<Solver> solvers = admissible_solvers(traits);
     std::fprintf(stderr, "%s%s: error: %s; use --solver %s\n", run.name.c_str(), suffix.c_str(),
@@ -185,7 +186,8 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   }
 
   // The divergence check of run_system: friction only dissipates, and a friction torque never
-  // exceeds its static capacity, so it enters the bound as an input of that size; a quadratic load
+  // exceeds its static capacity (or its friction curve's highest), so it enters the bound as an input
+  // of that size; a quadratic load
   // only dissipates (its power -c |s|^3 on its own body's speed s), so it enters as an input of none.
   std::optional<EnergyBound<Eigen::MatrixXd, Eigen::MatrixXd>> energy_bound;
   if constexpr (requires(typename System::StateMatrix& L) { sys.energy_matrix(p, L); }) {
@@ -193,7 +195,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
     sys.energy_matrix(p, L);
     std::vector<Signal> bounds = signals;
     bounds.insert(bounds.end(), static_cast<std::size_t>(nq), Constant{0.0});
-    for (const auto& e : elements) bounds.push_back(Constant{e.static_ratio * e.capacity});
+    for (const auto& e : elements) bounds.push_back(Constant{largest_friction_ratio(e) * e.capacity});
     if (L.size() > 0)  // an empty L: no bound (a speed controller feeds in power)
       energy_bound.emplace(Eigen::MatrixXd(L), hs.N, bounds, Eigen::VectorXd(x0), run.horizon);
   }

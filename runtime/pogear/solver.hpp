@@ -57,6 +57,7 @@ struct SystemTraits {
   bool limits_torque = false;
   bool driveline = false;  // an engine or a converter, nonlinear whatever the loads
   bool slip_control = false;  // a slip controller: its element's heat is quadratic in the state
+  bool friction_curve = false;  // friction that varies with slip: a slipping element's torque varies with the state
 };
 
 // Why a solver cannot run a system: what the system holds (`cause`), and how that meets the solver
@@ -87,6 +88,9 @@ inline constexpr std::optional<SolverRefusal> solver_refusal(Solver s, const Sys
   if (system.nonlinear && s == Solver::exact) return SolverRefusal{nonlinear, "which exact stepping does not integrate"};
   if (system.slip_control && s == Solver::exact)
     return SolverRefusal{"a slip controller makes its element's heat quadratic in the state",
+                         "which exact stepping does not integrate"};
+  if (system.friction_curve && s == Solver::exact)
+    return SolverRefusal{"a friction curve makes a slipping element's torque vary with its slip",
                          "which exact stepping does not integrate"};
   if (system.nonlinear && s == Solver::rk4)
     return SolverRefusal{nonlinear, "which rk4's fixed step cannot be checked against its stability limit"};

@@ -361,7 +361,7 @@ TEST_F(FrictionElements, WithoutName) {
 
 TEST_F(FrictionElements, UnknownKey) {
   expect_error("[[brake]]\nname = \"B1\"\nbody = \"r\"\ntorque = \"T\"\n", "",
-      R"~(gear.toml:39:1: error: unknown key 'torque' in a [[brake]]; the keys are name, body, capacity, static_ratio, one_way)~");
+      R"~(gear.toml:39:1: error: unknown key 'torque' in a [[brake]]; the keys are name, body, capacity, static_ratio, one_way, friction_curve)~");
 }
 
 TEST_F(FrictionElements, MissingCapacity) {

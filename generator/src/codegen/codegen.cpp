@@ -52,16 +52,20 @@ CppText signals_function(const SpecializedSystem& sys, const SymbolTable& symbol
 }
 
 // The engaged brakes and clutches as the runtime takes them: name, capacity [N m], static ratio,
-// command p(t).
+// command p(t), one-way, and a friction curve where friction varies with slip.
 CppText friction_function(const SpecializedScene& model) {
+  const bool curves = std::any_of(model.friction.begin(), model.friction.end(),
+                                  [](const FrictionRun& f) { return !f.friction_curve.t.empty(); });
   CppText s = code("// Brakes and clutches engaged by the scene, in the order of the systems' friction torque inputs:\n"
-                   "// name, kinetic torque capacity [N m], static / kinetic friction, engagement command p(t), one-way.\n");
+                   "// name, kinetic torque capacity [N m], static / kinetic friction, engagement command p(t), one-way{}.\n",
+                   curves ? code(",\n// friction curve (kinetic torque over capacity against |slip| [rad/s])") : CppText{});
   s += code("inline std::vector<pogear::rt::FrictionElementData> friction_elements() {{\n  return {{");
   for (std::size_t i = 0; i < model.friction.size(); ++i) {
     const FrictionRun& f = model.friction[i];
     s += (i ? code(",\n          ") : CppText{}) +
-         code("{{{}, {}, {}, {}, {}}}", string_literal(f.name), number_code(f.capacity), number_code(f.static_ratio),
-              signal_code(f.command), f.one_way ? code("true") : code("false"));
+         code("{{{}, {}, {}, {}, {}{}}}", string_literal(f.name), number_code(f.capacity), number_code(f.static_ratio),
+              signal_code(f.command), f.one_way ? code("true") : code("false"),
+              f.friction_curve.t.empty() ? CppText{} : code(", ") + signal_code(f.friction_curve));
   }
   s += code("}};\n}}\n");
   return s;

@@ -100,6 +100,11 @@ struct FrictionElement {
   // A one-way element (freewheel, sprag): its slip may be positive freely (no torque); it holds
   // against negative slip only. A one-way brake lets its body turn forward and stops it turning back.
   bool one_way = false;
+  // Kinetic friction that varies with slip (friction_curve): the ratio of the kinetic torque to the
+  // capacity's at slip speeds |s| [rad/s], ascending from 0, linear between them and held beyond the
+  // last. Empty: the ratio is 1 at every slip.
+  std::vector<double> curve_slip, curve_ratio;
+  SourceLocation friction_curve_where;
   bool is_brake() const { return second < 0; }
 };
 

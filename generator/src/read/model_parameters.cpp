@@ -120,6 +120,13 @@ double static_friction_ratio(const Topology& t, const FrictionElement& e) {
   if (!(q.si >= 1.0 && q.si <= 10.0))
     throw InputError(e.static_ratio_where, fmt::format("static_ratio of '{}' is {}; static over kinetic friction is from "
                                                        "1 to 10 (1 when they are equal)", e.name, q.si));
+  // An element that locks holds at least the torque it carried slipping into the lock: else it breaks
+  // away at once and chatters.
+  if (!e.curve_ratio.empty() && e.curve_ratio.front() > q.si)
+    throw InputError(e.friction_curve_where, fmt::format("friction_curve of '{}' is {} at zero slip, above its static_ratio "
+                                                         "{}; static friction is at least the kinetic one as it locks: "
+                                                         "raise static_ratio or lower the curve's first ratio",
+                                                         e.name, e.curve_ratio.front(), q.si));
   return q.si;
 }
 

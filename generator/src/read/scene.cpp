@@ -28,6 +28,7 @@
 #include "read/signal_start.hpp"
 #include "read/thermal_table.hpp"
 #include "read/simulation_table.hpp"
+#include "read/friction_curve.hpp"
 #include "read/slip_control.hpp"
 #include "read/toml_reader.hpp"
 #include "read/tooth_counts.hpp"
@@ -92,14 +93,18 @@ void check_loads_and_controllers(const Scene& s) {
 // The scene's solver, or dopri5 for a nonlinear scene that names none, refused (rt::solver_refusal)
 // at the line that asks for it. Some solver runs every scene: dopri5 runs them all.
 void check_solver(Scene& s, bool engaged) {
+  const auto curved = [&](const EngagementSpec& e) {
+    return engages(s, e.element) && varies_with_slip(s.model.friction_elements[static_cast<std::size_t>(e.element)]);
+  };
   const rt::SystemTraits traits{.nonlinear = nonlinear(s),
                                 .engages_friction = engaged,
                                 .limits_torque = std::any_of(s.controllers.begin(), s.controllers.end(),
                                                              [](const ControllerSpec& c) { return c.limited(); }),
                                 .driveline = s.engine || s.converter,
-                                .slip_control = has_slip_control(s)};
+                                .slip_control = has_slip_control(s),
+                                .friction_curve = std::any_of(s.engagement.begin(), s.engagement.end(), curved)};
   const std::vector<Solver> admissible = rt::admissible_solvers(traits);
-  if ((traits.nonlinear || traits.slip_control) && !s.solver_given) s.solver = Solver::dopri5;
+  if ((traits.nonlinear || traits.slip_control || traits.friction_curve) && !s.solver_given) s.solver = Solver::dopri5;
   if (const auto refusal = rt::solver_refusal(s.solver, traits)) {
     // A quadratic load can be made linear; an engine's or a converter's torques cannot.
     const bool load = refusal->cause == rt::solver_refusal(Solver::exact, {.nonlinear = true})->cause;

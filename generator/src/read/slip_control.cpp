@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "names/model_variables.hpp"
+#include "read/friction_curve.hpp"
 #include "read/loads_and_controllers.hpp"
 #include "read/model_parameters.hpp"
 #include "read/signal_start.hpp"
@@ -125,6 +126,11 @@ void check_slip_control(Scene& s) {
   for (ControllerSpec& c : s.controllers) {
     if (c.supplies < 0) continue;
     const std::string& element = s.model.friction_elements[static_cast<std::size_t>(c.supplies)].name;
+    // Its torque limit, the capacity at full command, would vary with the slip it controls.
+    if (varies_with_slip(s.model.friction_elements[static_cast<std::size_t>(c.supplies)]))
+      throw InputError(c.where, fmt::format("{}'s friction varies with slip (friction_curve in the model), which a slip "
+                                            "controller does not take; control an element of constant friction, or give "
+                                            "{} a constant ratio", element, element));
     const int sign = target_sign(c, s.horizon);
     if (sign == 0)
       throw InputError(c.where, fmt::format("the target of {}'s slip controller is zero throughout the run; a target "

@@ -18,6 +18,7 @@
 #include "pogear/input_file.hpp"
 #include "read/model_parameters.hpp"
 #include "read/body_table.hpp"
+#include "read/friction_curve.hpp"
 #include "read/gear_table.hpp"
 #include "read/shaft_table.hpp"
 #include "read/toml_reader.hpp"
@@ -170,8 +171,8 @@ void read_friction_elements(const TomlReader& r, const toml::table& root, Topolo
     if (!list->is_array_of_tables()) r.fail(*list, fmt::format("'{}' must be written as [[{}]] tables", key, key));
     for (const toml::node& n : *list->as_array()) {
       const toml::table& et = *n.as_table();
-      if (brake) r.only_keys(et, {"name", "body", "capacity", "static_ratio", "one_way"}, "a [[brake]]");
-      else r.only_keys(et, {"name", "bodies", "capacity", "static_ratio", "one_way"}, "a [[clutch]]");
+      if (brake) r.only_keys(et, {"name", "body", "capacity", "static_ratio", "one_way", "friction_curve"}, "a [[brake]]");
+      else r.only_keys(et, {"name", "bodies", "capacity", "static_ratio", "one_way", "friction_curve"}, "a [[clutch]]");
       FrictionElement e;
       const toml::node* name = et.get("name");
       if (!name) r.fail(et, fmt::format("a [[{}]] needs a name, e.g. name = \"{}\"", key, brake ? "B1" : "C1"));
@@ -243,6 +244,7 @@ void read_friction_elements(const TomlReader& r, const toml::table& root, Topolo
       } else {
         e.static_ratio_where = e.where;
       }
+      if (const toml::node* c = et.get("friction_curve")) read_friction_curve(r, *c, e);
       t.friction_elements.push_back(std::move(e));
       if (t.friction_elements.size() > max_friction_elements)
         r.fail(n, fmt::format("more than {} brakes and clutches; pogear looks at every set of engaged elements, 2^k "

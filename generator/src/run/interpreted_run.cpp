@@ -87,7 +87,7 @@ struct InterpretedSystem {
 
 std::vector<rt::FrictionElementData> friction_data(const SpecializedScene& model) {
   std::vector<rt::FrictionElementData> out;
-  for (const FrictionRun& f : model.friction) out.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
+  for (const FrictionRun& f : model.friction) out.push_back(element_data(f));
   return out;
 }
 

@@ -378,7 +378,7 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedS
     hs.state_torques.push_back(rt::quadratic_torque_data(q.speed_row.transpose(), q.coefficient));
   }
   hs.N = rt::with_quadratic_columns(ns.N, head, Nq);
-  for (const FrictionRun& f : model.friction) hs.elements.push_back({f.name, f.capacity, f.static_ratio, f.command, f.one_way});
+  for (const FrictionRun& f : model.friction) hs.elements.push_back(element_data(f));
   hs.triggered = triggered_signals(model, system);
   hs.limits = torque_limit_data(model, system, hs.triggered);
   for (std::size_t l = 0; l < hs.limits.size(); ++l) {

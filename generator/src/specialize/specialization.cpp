@@ -17,6 +17,7 @@
 #include "specialize/loop_closure.hpp"
 #include "read/loads_and_controllers.hpp"
 #include "read/model_parameters.hpp"
+#include "read/friction_curve.hpp"
 #include "read/slip_control.hpp"
 #include "specialize/operation_count.hpp"
 #include "specialize/parameter_folding.hpp"
@@ -398,7 +399,8 @@ rt::SystemTraits solver_traits(const SpecializedScene& model) {
           .engages_friction = !model.friction.empty(),
           .limits_torque = !model.main.limited_controllers.empty(),
           .driveline = !model.main.driveline.empty(),
-          .slip_control = has_slip_control(model.scene)};
+          .slip_control = has_slip_control(model.scene),
+          .friction_curve = std::any_of(model.friction.begin(), model.friction.end(), [](const FrictionRun& f) { return !f.friction_curve.t.empty(); })};
 }
 
 GiNaC::numeric output_per_model_force(const Topology& t, const Mesh& m) {
@@ -429,8 +431,9 @@ SpecializedScene specialize(const Scene& scene) {
   for (const EngagementSpec& e : scene.engagement) {
     if (!engages(scene, e.element)) continue;
     const FrictionElement& f = t.friction_elements[static_cast<std::size_t>(e.element)];
-    model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter),
-                                         static_friction_ratio(t, f), e.command, f.one_way, e.start});
+    model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter) * constant_friction_ratio(f),
+                                         static_friction_ratio(t, f), e.command, f.one_way, e.start,
+                                         varies_with_slip(f) ? rt::Table{f.curve_slip, f.curve_ratio} : rt::Table{}});
   }
   if (const std::optional<StartState> start = start_state(model)) {
     set_initial_values(start->main, model.main);

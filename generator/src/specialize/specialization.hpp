@@ -116,6 +116,8 @@ struct SpecializedSystem {
 };
 
 // A brake or clutch of a scene at the scene's values: capacity [N m], static ratio, and command.
+// A friction curve that does not vary is a constant ratio, folded into the capacity; one that does is
+// friction_curve (over |slip| [rad/s]), else empty.
 struct FrictionRun {
   int element = -1;
   std::string name;
@@ -123,7 +125,13 @@ struct FrictionRun {
   rt::Signal command;
   bool one_way = false;
   std::optional<SignalStart> start;  // a command that starts on an event
+  rt::Table friction_curve;
 };
+
+// The element as the runtime's runs take it.
+inline rt::FrictionElementData element_data(const FrictionRun& f) {
+  return {f.name, f.capacity, f.static_ratio, f.command, f.one_way, f.friction_curve};
+}
 
 struct SpecializedScene {
   Scene scene;

@@ -264,6 +264,10 @@ Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedS
                                    "it reaches a state error of 1e-7 or less sooner than implicit, "
                                    "docs/accuracy-vs-time.md)",
                                    refusal->reason);
+  } else if (const auto curve = rt::solver_refusal(rt::Solver::exact, {.friction_curve = solver_traits(model).friction_curve})) {
+    out.suggested_solver = "dopri5";
+    out.reason = fmt::format("{}, {}; dopri5 integrates it, its steps held to the event-check step as on every shift",
+                             curve->cause, curve->reason);
   } else if (const auto slip = rt::solver_refusal(rt::Solver::exact, {.slip_control = has_slip_control(model.scene)})) {
     out.suggested_solver = "dopri5";
     out.reason = fmt::format("{}, {}; dopri5 integrates it on its dense output, its steps held to the event-check "
