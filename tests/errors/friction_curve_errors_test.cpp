@@ -37,6 +37,12 @@ TEST_F(FrictionCurves, SlipWithoutUnit) {
 TEST_F(FrictionCurves, SlipInHz) {
   expect_error(R"([["0*rad/s", 1.1], ["5*Hz", 1]])", R"~(gear.toml:39:38: error: a slip speed of friction_curve is in Hz, which could mean rev/s or rad/s; give it in rpm or rad/s)~");
 }
+TEST_F(FrictionCurves, SlipInPlainPerSecond) {
+  expect_error(R"([["0*rad/s", 1.1], ["5/s", 1]])", R"~(gear.toml:39:38: error: a slip speed of friction_curve is in 1/s, which could mean rev/s or rad/s; give it in rpm or rad/s)~");
+}
+TEST_F(FrictionCurves, SlipNamesAParameter) {
+  expect_error(R"([["0*rad/s", 1.1], ["v_max", 1]])", R"~(gear.toml:39:38: error: a slip speed of friction_curve names 'v_max'; the curve is data of the element, not of its parameters: give a number with its unit, e.g. "10*rad/s")~");
+}
 TEST_F(FrictionCurves, NotFromZeroSlip) {
   expect_error(R"([["5*rad/s", 1.1], ["50*rad/s", 1]])", R"~(gear.toml:39:20: error: friction_curve of 'B1' starts at zero slip, "0*rad/s" (the kinetic ratio as the element locks); its first row is at 5 rad/s)~");
 }

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -22,14 +24,26 @@ void read_friction_curve(const TomlReader& r, const toml::node& n, FrictionEleme
     if (!row.is_array() || row.as_array()->size() != 2) r.fail(row, form);
     const toml::node& s = *row.as_array()->get(0);
     const toml::node& f = *row.as_array()->get(1);
-    // A speed needs its unit (rad/s or rpm?), and names no parameter: the curve is data of the element.
+    // A speed needs its unit, an angle's over time, and names no parameter: the curve is data of the
+    // element. Hz and a bare 1/s are refused: as a speed either reads as rad/s, 2 pi short of the
+    // revolutions per second it usually means.
     const char* speed = "a slip speed of friction_curve is a speed with its unit, e.g. \"10*rad/s\" or \"100*rpm\"";
     if (!s.is_string()) r.fail(s, speed);
-    const Quantity q = evaluate_quantity(*s.value<std::string>(), {}, r.loc(s), 1);
+    const std::string text = *s.value<std::string>();
+    if (const std::vector<std::string> names = referenced_names(text); !names.empty())
+      r.fail(s, fmt::format("a slip speed of friction_curve names '{}'; the curve is data of the element, not of its "
+                            "parameters: give a number with its unit, e.g. \"10*rad/s\"", names.front()));
+    const Quantity q = evaluate_quantity(text, {}, r.loc(s), 1);
     if (!q.has_unit || !(q.dimension == angular_velocity_dimension())) r.fail(s, speed);
-    // Hz is 1/s, which as a speed would be read as rad/s: 2 pi short of the revolutions it usually means.
-    if (s.value<std::string>()->find("Hz") != std::string::npos)
+    const std::vector<std::string> units = referenced_units(text);
+    const auto named = [&](std::initializer_list<const char*> any) {
+      return std::any_of(units.begin(), units.end(),
+                         [&](const std::string& u) { return std::find(any.begin(), any.end(), u) != any.end(); });
+    };
+    if (named({"Hz", "kHz"}))
       r.fail(s, "a slip speed of friction_curve is in Hz, which could mean rev/s or rad/s; give it in rpm or rad/s");
+    if (!named({"rad", "deg", "rev", "rpm"}))
+      r.fail(s, "a slip speed of friction_curve is in 1/s, which could mean rev/s or rad/s; give it in rpm or rad/s");
     if (!std::isfinite(q.si)) r.fail(s, "a slip speed of friction_curve is not finite");
     if (e.curve_slip.empty() && q.si != 0)
       r.fail(s, fmt::format("friction_curve of '{}' starts at zero slip, \"0*rad/s\" (the kinetic ratio as the element "

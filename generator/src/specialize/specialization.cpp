@@ -431,8 +431,13 @@ SpecializedScene specialize(const Scene& scene) {
   for (const EngagementSpec& e : scene.engagement) {
     if (!engages(scene, e.element)) continue;
     const FrictionElement& f = t.friction_elements[static_cast<std::size_t>(e.element)];
-    model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter) * constant_friction_ratio(f),
-                                         static_friction_ratio(t, f), e.command, f.one_way, e.start,
+    // A curve that varies is applied by the runtime along the slip; a constant one, ratio r, is folded
+    // into the kinetic capacity, and out of the static ratio, so that the static capacity stays
+    // static_ratio c whatever the curve (r <= static_ratio: the ratio stays >= 1).
+    const double capacity = parameter_value(t, f.capacity_parameter);
+    const double r = varies_with_slip(f) ? 1.0 : constant_friction_ratio(f);
+    model.friction.push_back(FrictionRun{e.element, f.name, capacity * r, static_friction_ratio(t, f) / r, e.command,
+                                         f.one_way, e.start,
                                          varies_with_slip(f) ? rt::Table{f.curve_slip, f.curve_ratio} : rt::Table{}});
   }
   if (const std::optional<StartState> start = start_state(model)) {
