@@ -67,6 +67,8 @@ bool varies_with_slip(const FrictionElement& e) {
   return std::adjacent_find(e.curve_ratio.begin(), e.curve_ratio.end(), std::not_equal_to<>()) != e.curve_ratio.end();
 }
 
-double constant_friction_ratio(const FrictionElement& e) { return e.curve_ratio.empty() ? 1.0 : e.curve_ratio.front(); }
+double constant_friction_ratio(const FrictionElement& e) {
+  return e.curve_ratio.empty() || varies_with_slip(e) ? 1.0 : e.curve_ratio.front();
+}
 
 }  // namespace pogear

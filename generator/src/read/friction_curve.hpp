@@ -17,7 +17,8 @@ void read_friction_curve(const TomlReader& r, const toml::node& n, FrictionEleme
 // Whether the element's kinetic torque depends on its slip: a curve whose ratios are not all equal
 // (an equal one is a constant ratio, which folds into the capacity: constant_friction_ratio).
 bool varies_with_slip(const FrictionElement& e);
-// The ratio every slip has when the element's friction does not vary with slip: 1 without a curve.
+// The ratio folded into the element's kinetic capacity: a constant curve's ratio; 1 without a curve
+// or with one that varies, which the runtime applies along the slip.
 double constant_friction_ratio(const FrictionElement& e);
 
 }  // namespace pogear

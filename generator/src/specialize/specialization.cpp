@@ -431,12 +431,11 @@ SpecializedScene specialize(const Scene& scene) {
   for (const EngagementSpec& e : scene.engagement) {
     if (!engages(scene, e.element)) continue;
     const FrictionElement& f = t.friction_elements[static_cast<std::size_t>(e.element)];
-    // A curve that varies is applied by the runtime along the slip; a constant one, ratio r, is folded
-    // into the kinetic capacity, and out of the static ratio, so that the static capacity stays
-    // static_ratio c whatever the curve (r <= static_ratio: the ratio stays >= 1).
-    const double capacity = parameter_value(t, f.capacity_parameter);
-    const double r = varies_with_slip(f) ? 1.0 : constant_friction_ratio(f);
-    model.friction.push_back(FrictionRun{e.element, f.name, capacity * r, static_friction_ratio(t, f) / r, e.command,
+    // A constant curve's ratio r scales the kinetic capacity, not the static one: out of the static
+    // ratio, which stays >= 1 (r <= static_ratio).
+    const double r = constant_friction_ratio(f);
+    model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter) * r,
+                                         static_friction_ratio(t, f) / r, e.command,
                                          f.one_way, e.start,
                                          varies_with_slip(f) ? rt::Table{f.curve_slip, f.curve_ratio} : rt::Table{}});
   }
