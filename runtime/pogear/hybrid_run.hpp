@@ -142,6 +142,14 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
       names.push_back(prefix + e.name);
       units.emplace_back(prefix[0] == 'T' ? "N m" : prefix[0] == 's' ? (run.speeds_in_rpm ? "rpm" : "rad/s") : "J");
     }
+  // A capacity that follows tunable parameters (friction_elements(p)) may leave its range at the
+  // values --param gave.
+  for (const auto& e : elements)
+    if (!(e.capacity > 0) || !std::isfinite(e.capacity)) {
+      std::fprintf(stderr, "%s%s: error: %s has a torque capacity of %g N m; a capacity is positive: give --param "
+                   "values that keep it so\n", run.name.c_str(), suffix.c_str(), e.name.c_str(), e.capacity);
+      return 3;
+    }
   for (const ElementThermal& th : thermal) {
     if (th.element < 0 || th.element >= ne || !(th.heat_capacity > 0) || !(th.conductance >= 0) ||
         !std::isfinite(th.conductance) || !std::isfinite(th.ambient) || !std::isfinite(th.initial)) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -114,6 +115,126 @@ TEST(SimulateCommand, ParamValuesNameEachOtherAndTheSummaryFollows) {
     EXPECT_LT(relative_gap(read_csv((dir / "run/tunable.csv").string()), expected), 1e-12);
     EXPECT_EQ(frequency_line(c.out), frequency_line(reference.out));
   }
+}
+
+
+// The Simpson 1-2 upshift as `name` in `dir`, its model and tables by absolute path, with `extra` after
+// its compare_rigid line and `parameters` after its [parameters] header.
+fs::path simpson_scene(const fs::path& dir, const std::string& name, const std::string& extra, const std::string& parameters) {
+  std::string text = read_text(source_path("models/scenes/simpson_1_2_upshift.toml"));
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"name = \"simpson_1_2_upshift\"", "name = \"" + name + "\""},
+        {"\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
+        {"\"simpson_B2_release.csv\"", "\"" + source_path("models/scenes/simpson_B2_release.csv") + "\""},
+        {"\"simpson_B1_apply.csv\"", "\"" + source_path("models/scenes/simpson_B1_apply.csv") + "\""},
+        {"compare_rigid = true", "compare_rigid = true\n" + extra},
+        {"[parameters]\n", "[parameters]\n" + parameters + "\n"}})
+    text.replace(text.find(from), from.size(), to);
+  write_text(dir / (name + ".toml"), text);
+  return dir / (name + ".toml");
+}
+
+// A brake's capacity that follows a tunable (B1's through B2's) takes --param's value, compiled and
+// interpreted, as the values written in [parameters] do; one the values make negative is refused.
+TEST(SimulateCommand, ParamMovesCapacitiesThatFollowATunable) {
+  const fs::path dir = temp_dir("param_capacity");
+  const fs::path tunable = simpson_scene(dir, "tunable", "tunable = [\"Tcap_B2\"]", "Tcap_B1 = \"Tcap_B2 - 450*N*m\"");
+  const fs::path literal = simpson_scene(dir, "literal", "", "Tcap_B2 = \"750*N*m\"\nTcap_B1 = \"300*N*m\"");
+  const Command first = simulate(tunable, "--param Tcap_B2=750*N*m -o " + (dir / "a").string());
+  simulate(tunable, "--interpreted --param Tcap_B2=750*N*m -o " + (dir / "b").string());
+  simulate(literal, "--interpreted -o " + (dir / "c").string());
+  simulate(tunable, "--interpreted -o " + (dir / "d").string());  // at the scene's 800 and 350 N m
+  // An events file's rows past its header: time, and the rest of the row.
+  auto events = [&](const std::string& run, const std::string& file) {
+    std::vector<std::pair<double, std::string>> rows;
+    std::ifstream in(dir / run / file);
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) rows.emplace_back(std::stod(line.substr(0, line.find(','))), line.substr(line.find(',')));
+    return rows;
+  };
+  for (const std::string suffix : {"", ".rigid"}) {
+    SCOPED_TRACE(suffix);
+    const Csv reference = read_csv((dir / "c" / ("literal" + suffix + ".csv")).string());
+    // The compiled run's matrices are the generated code's and the interpreted run's are the
+    // reference model's, equal up to rounding; over 2000 steps and the events that stays below 1e-9
+    // of each column's scale (the compiled shift test's bound). Interpreted with the option, the same
+    // numbers reach the same engine (300 N m exactly, 750 - 450).
+    EXPECT_LT(relative_gap(read_csv((dir / "a" / ("tunable" + suffix + ".csv")).string()), reference), 1e-9);
+    EXPECT_EQ(relative_gap(read_csv((dir / "b" / ("tunable" + suffix + ".csv")).string()), reference), 0);
+    // The same events in the same order; the scene's capacities move the shift by far more than rounding.
+    const std::string file = suffix + ".events.csv";
+    const auto compiled = events("a", "tunable" + file), written = events("c", "literal" + file);
+    ASSERT_EQ(compiled.size(), written.size());
+    ASSERT_GE(compiled.size(), 3u);
+    for (std::size_t i = 0; i < compiled.size(); ++i) {
+      EXPECT_EQ(compiled[i].second, written[i].second);
+      EXPECT_NEAR(compiled[i].first, written[i].first, 1e-12);  // located to rounding of the same trajectory
+    }
+    EXPECT_GT(relative_gap(read_csv((dir / "d" / ("tunable" + suffix + ".csv")).string()), reference), 1e-3);
+  }
+  // At 400 N m B1's capacity would be -50 N m: pogear refuses the value as it refuses it in
+  // [parameters], and the simulator run by itself refuses the capacity.
+  const Command refused = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + tunable.string() +
+                                      " --param Tcap_B2=400*N*m -o " + (dir / "e").string());
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("parameter 'Tcap_B1' is a brake's torque capacity and must be positive (it is -50)"),
+            std::string::npos)
+      << refused.err;
+  const std::string simulator = simulator_path(first.out);
+  ASSERT_FALSE(simulator.empty()) << first.out;
+  const Command alone = run_command(simulator + " --quiet --param Tcap_B2=400*N*m --out " + (dir / "f").string());
+  EXPECT_EQ(alone.status, 3);
+  EXPECT_NE(alone.err.find("B1 has a torque capacity of -50 N m; a capacity is positive"), std::string::npos) << alone.err;
+}
+
+
+// The power-split drive (a speed controller and a quadratic road load) over 4 s as `name` in `dir`,
+// with `scene_lines` after its compare_rigid line (which `keep_rigid` false drops) and `parameters`.
+fs::path power_split_scene(const fs::path& dir, const std::string& name, bool keep_rigid, const std::string& scene_lines,
+                           const std::string& parameters) {
+  std::string text = read_text(source_path("models/scenes/power_split_drive.toml"));
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"name = \"power_split_drive\"", "name = \"" + name + "\""},
+        {"\"../power_split.toml\"", "\"" + source_path("models/power_split.toml") + "\""},
+        {"\"power_split_drive_mg2.csv\"", "\"" + source_path("models/scenes/power_split_drive_mg2.csv") + "\""},
+        {"compare_rigid = true", (keep_rigid ? "compare_rigid = true\n" : "") + scene_lines},
+        {"[inputs]\n", "[parameters]\n" + parameters + "\n\n[inputs]\n"},
+        {"horizon = \"8*s\"", "horizon = \"4*s\""}})
+    text.replace(text.find(from), from.size(), to);
+  write_text(dir / (name + ".toml"), text);
+  return dir / (name + ".toml");
+}
+
+// Tunables with loads and controllers: an inertia and a stiffness in both models (compiled; the rigid
+// one then an implicit form over the controller's integral and the quadratic road load), an inertia
+// that the load's column divides by in the elastic model (interpreted), each as the values written.
+TEST(SimulateCommand, ParamWithLoadsAndControllers) {
+  const fs::path dir = temp_dir("param_loops");
+  const fs::path tunable = power_split_scene(dir, "tunable", true, "tunable = [\"J_c\", \"K_ps\"]", "");
+  const fs::path both_written = power_split_scene(dir, "written", true, "", "J_c = \"0.2*kg*m^2\"\nK_ps = \"2e8*N/m\"");
+  simulate(tunable, "--param J_c=0.2*kg*m^2 --param K_ps=2e8*N/m -o " + (dir / "a").string());
+  simulate(both_written, "--interpreted -o " + (dir / "b").string());
+  simulate(tunable, "--interpreted -o " + (dir / "f").string());  // the scene's 0.15 kg m^2 and 1e8 N/m
+  for (const std::string suffix : {"", ".rigid"}) {
+    SCOPED_TRACE(suffix);
+    const Csv reference = read_csv((dir / "b" / ("written" + suffix + ".csv")).string());
+    // TR-BDF2 at the scene's 1e-6 steps generated and reference matrices equal up to rounding (the
+    // rigid ones solved from L at run time); the step sizes its error control picks follow them
+    // continuously, and the runs part by 9e-11 and 8e-15 of a column's scale (measured; 1e-8 leaves
+    // room for another machine's rounding). The scene's own values part them by more than 1e-3.
+    EXPECT_LT(relative_gap(read_csv((dir / "a" / ("tunable" + suffix + ".csv")).string()), reference), 1e-8);
+    EXPECT_GT(relative_gap(read_csv((dir / "f" / ("tunable" + suffix + ".csv")).string()), reference), 1e-3);
+  }
+  const fs::path inertia = power_split_scene(dir, "inertia", false, "tunable = [\"J_r\"]", "");
+  const fs::path inertia_written = power_split_scene(dir, "inertia_written", false, "", "J_r = \"9*kg*m^2\"");
+  simulate(inertia, "--interpreted --param J_r=9*kg*m^2 -o " + (dir / "c").string());
+  simulate(inertia_written, "--interpreted -o " + (dir / "d").string());
+  simulate(inertia, "--interpreted -o " + (dir / "e").string());
+  const Csv written = read_csv((dir / "d/inertia_written.csv").string());
+  // The same exact numbers reach the same engine.
+  EXPECT_EQ(relative_gap(read_csv((dir / "c/inertia.csv").string()), written), 0);
+  EXPECT_GT(relative_gap(read_csv((dir / "e/inertia.csv").string()), written), 1e-3);  // the model's 7 kg m^2
 }
 
 }  // namespace

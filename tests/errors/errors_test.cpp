@@ -1111,23 +1111,8 @@ TEST_F(EngagementCommands, NotWithRk4) {
                {{R"(solver = "exact")", R"(solver = "rk4")"}});
 }
 
-TEST_F(EngagementCommands, TunableCapacity) {
-  expect_error("B1 = \"1\"\n",
-               R"~(scene.toml:7:11: error: 'Tcap_B1' is the torque capacity of B1, which a simulation takes at the scene's value; it cannot be tunable: set it in [parameters] instead)~",
-               {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"Tcap_B1\"]"}});
-}
-
-// A capacity or static ratio defined through a tunable would keep its number while --param moved
-// the tunable (issue 31, item 3: T_B = "T_base" held 48.1 N m at any T_base): refused, naming it.
-TEST_F(EngagementCommands, CapacityThroughATunable) {
-  const std::string model = edited(shift_model(), {{"Tcap_B1 = \"50*N*m\"", "T_base = \"50*N*m\"\nTcap_B1 = \"T_base\""}});
-  expect_documented(
-      scene_error(edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"T_base\"]"}}) +
-                      "\n[engagement]\nB1 = \"1\"\n",
-                  model),
-      R"~(scene.toml:7:11: error: 'Tcap_B1', the torque capacity of B1, is defined through tunable 'T_base', and a simulation takes capacities at the scene's value; drop 'T_base' from tunable, or give 'Tcap_B1' a value of its own)~");
-}
-
+// A static ratio defined through a tunable would keep its number while --param moved the tunable:
+// refused, naming it (capacities follow their tunables: SimulateCommand.ParamMovesCapacitiesThatFollowATunable).
 TEST_F(EngagementCommands, StaticRatioThroughATunable) {
   const std::string model = edited(shift_model(), {{"body = \"r\"", "body = \"r\"\nstatic_ratio = \"mu_s\""},
                                                    {"Tcap_B1 = \"50*N*m\"", "Tcap_B1 = \"50*N*m\"\nmu_s = \"1.2\""}});
@@ -1273,12 +1258,6 @@ TEST_F(LoadsAndControllers, StartTorqueOutsideTheLimits) {
   expect_error(controller,
                R"~(scene.toml:12:10: error: Tc_mg1 = -25 N m is below controller 'mg1''s torque_min, -20 N m; give a start torque within its limits)~",
                {{"omega_c = \"0*rpm\"", "Tc_mg1 = \"-25*N*m\""}});
-}
-
-TEST_F(LoadsAndControllers, NotWithTunables) {
-  expect_error("[loads]\nr = { linear = \"0.5*N*m*s\" }\n",
-               R"~(scene.toml:7:11: error: a scene with [loads], [controllers] or [slip_control] has no tunable parameters yet; set the values in [parameters] and generate one simulator per value)~",
-               {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"J_c\"]"}});
 }
 
 TEST_F(LoadsAndControllers, NotWithRigidStart) {

@@ -15,6 +15,13 @@ TEST_F(EngagementCommands, SlipControlOfNoElement) {
   expect_error(controlled + "B9 = { target = \"10*rad/s\", kp = \"0.01*s/rad\" }\n",
                R"~(scene.toml:25:1: error: 'B9' is no brake or clutch of the model (it has B1, C1); [slip_control] controls the slip of one of them)~", adaptive);
 }
+// A slip controller's gains and limits are per unit of its element's capacity at the scene's value.
+TEST_F(EngagementCommands, SlipControlNotWithTunables) {
+  Edits edits = adaptive;
+  edits.push_back({"compare_rigid = true", "compare_rigid = true\ntunable = [\"Tcap_B1\"]"});
+  expect_error(controlled + "B1 = { target = \"10*rad/s\", kp = \"0.01*s/rad\" }\n",
+               R"~(scene.toml:7:11: error: a scene with [slip_control] has no tunable parameters yet; set the values in [parameters] and generate one simulator per value)~", edits);
+}
 TEST_F(EngagementCommands, SlipControlNotATable) {
   expect_error(controlled + "B1 = \"10*rad/s\"\n",
                R"~(scene.toml:25:6: error: a slip controller is a table { target = <slip speed signal>, kp = "<s/rad>", ki = "<1/rad>" })~", adaptive);

@@ -16,6 +16,7 @@
 #include "build_config/build_config.hpp"
 #include "codegen/codegen_system.hpp"
 #include "common/cpp_text.hpp"
+#include "names/symbols.hpp"
 #include "specialize/initial_state.hpp"
 #include "specialize/element_thermal.hpp"
 #include "specialize/torque_limits.hpp"
@@ -51,19 +52,42 @@ CppText signals_function(const SpecializedSystem& sys, const SymbolTable& symbol
   return s;
 }
 
+// The tunables the elements' capacities read, in the order of the scene's list.
+std::vector<std::string> capacity_tunables(const SpecializedScene& model) {
+  std::vector<std::string> used;
+  for (const std::string& name : model.scene.tunable)
+    if (std::any_of(model.friction.begin(), model.friction.end(), [&](const FrictionRun& f) {
+          return f.tuned_capacity.has(parameter_symbol(model.derivation.symbols, name));
+        }))
+      used.push_back(name);
+  return used;
+}
+
 // The engaged brakes and clutches as the runtime takes them: name, capacity [N m], static ratio,
-// command p(t), one-way, and a friction curve where friction varies with slip.
+// command p(t), one-way, and a friction curve where friction varies with slip. A capacity that
+// follows a tunable reads it from the system's Params (Elastic's and Rigid's have every tunable).
 CppText friction_function(const SpecializedScene& model) {
   const bool curves = std::any_of(model.friction.begin(), model.friction.end(),
                                   [](const FrictionRun& f) { return !f.friction_curve.t.empty(); });
+  const bool tuned = has_tuned_capacity(model);
   CppText s = code("// Brakes and clutches engaged by the scene, in the order of the systems' friction torque inputs:\n"
                    "// name, kinetic torque capacity [N m], static / kinetic friction, engagement command p(t), one-way{}.\n",
                    curves ? code(",\n// friction curve (kinetic torque over capacity against |slip| [rad/s])") : CppText{});
-  s += code("inline std::vector<pogear::rt::FrictionElementData> friction_elements() {{\n  return {{");
+  if (tuned) {
+    s += code("// Capacities follow tunable parameters: p is the Params of the system run.\n");
+    s += code("template <class Params>\ninline std::vector<pogear::rt::FrictionElementData> friction_elements(const Params& p) {{\n");
+    for (const std::string& name : capacity_tunables(model))
+      s += code("  const double {} = p.{};\n", identifier(name), identifier(name));
+    s += code("  return {{");
+  } else {
+    s += code("inline std::vector<pogear::rt::FrictionElementData> friction_elements() {{\n  return {{");
+  }
   for (std::size_t i = 0; i < model.friction.size(); ++i) {
     const FrictionRun& f = model.friction[i];
+    const CppText capacity = GiNaC::is_a<GiNaC::numeric>(f.tuned_capacity) ? number_code(f.capacity)
+                                                                            : expression_code(f.tuned_capacity, {});
     s += (i ? code(",\n          ") : CppText{}) +
-         code("{{{}, {}, {}, {}, {}{}}}", string_literal(f.name), number_code(f.capacity), number_code(f.static_ratio),
+         code("{{{}, {}, {}, {}, {}{}}}", string_literal(f.name), capacity, number_code(f.static_ratio),
               signal_code(f.command), f.one_way ? code("true") : code("false"),
               f.friction_curve.t.empty() ? CppText{} : code(", ") + signal_code(f.friction_curve));
   }
@@ -307,9 +331,10 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
   m += code("  if (!pogear::rt::set_parameters(run.params, {{{}}}, argv[0])) return 1;\n",
             parameter_fields(model.main, code("params")));
   m += code("  const scene::{} system;\n", main_struct);
+  const bool tuned = has_tuned_capacity(model);
   if (hybrid)
-    m += code("  int status = pogear::rt::run_hybrid_system(system, params, scene::{}_signals(), scene::friction_elements(), {}"
-              "scene::{}::initial_state(), run, \"\"{});\n", main_struct,
+    m += code("  int status = pogear::rt::run_hybrid_system(system, params, scene::{}_signals(), scene::friction_elements({}), {}"
+              "scene::{}::initial_state(), run, \"\"{});\n", main_struct, tuned ? code("params") : CppText{},
               limits ? code("scene::{}_torque_limits(), ", main_struct) : CppText{}, main_struct, main_triggers);
   else
     m += code("  int status = pogear::rt::run_system<Solvers>(system, params, scene::{}_signals(), scene::{}::initial_state(), run, \"\");\n",
@@ -320,8 +345,9 @@ GeneratedSources generate(const SpecializedScene& model, const std::vector<rt::S
       m += code("  rigid_params.{} = params.{};\n", identifier(p.name), identifier(p.name));
     if (hybrid)
       m += code("  if (status == 0)\n    status = pogear::rt::run_hybrid_system(scene::Rigid{{}}, rigid_params, scene::Rigid_signals(), "
-                "scene::friction_elements(), {}scene::Rigid::initial_state(), run, \".rigid\"{});\n",
-                limits ? code("scene::Rigid_torque_limits(), ") : CppText{}, rigid_triggers);
+                "scene::friction_elements({}), {}scene::Rigid::initial_state(), run, \".rigid\"{});\n",
+                tuned ? code("rigid_params") : CppText{}, limits ? code("scene::Rigid_torque_limits(), ") : CppText{},
+                rigid_triggers);
     else
       m += code("  if (status == 0)\n    status = pogear::rt::run_system<Solvers>(scene::Rigid{{}}, rigid_params, scene::Rigid_signals(), "
                 "scene::Rigid::initial_state(), run, \".rigid\");\n");

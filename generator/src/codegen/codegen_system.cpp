@@ -181,7 +181,21 @@ CppText rhs_function(const SystemCode& c) {
   CppText s = code("  // dx/dt: {}.\n", operation_text(sys.rhs_ops));
   s += code("  static void rhs([[maybe_unused]] const Params& p, [[maybe_unused]] const State& x,\n"
             "                  [[maybe_unused]] const Input& u, State& dx) {{\n");
-  if (sys.implicit) {
+  if (sys.implicit && sys.nonlinear) {
+    // L dx/dt = A x + B u + Q TQ, the quadratic loads' torques TQ temporaries of the state.
+    const ImplicitForm& f = *sys.implicit;
+    s += code("    StateMatrix L, A;\n    InputMatrix B;\n    implicit_form(p, L, A, B);\n");
+    s += aliases(c, symbols_in(entries({&f.Q}), sys.rhs_temporaries), code("x"));
+    for (const auto& a : sys.rhs_temporaries)
+      s += code("    const double {} = {};\n", identifier(a.name), c.expression(a.value));
+    s += code("    State f = A * x;\n    f.noalias() += B * u;\n");
+    const std::size_t first = sys.rhs_temporaries.size() - f.Q.cols();  // the loads' TQ come last, in Q's order
+    for (unsigned i = 0; i < f.Q.rows(); ++i)
+      for (unsigned q = 0; q < f.Q.cols(); ++q)
+        if (!f.Q(i, q).is_zero())
+          s += code("    f[{}] += {};\n", index_code(i), c.expression(f.Q(i, q) * sys.rhs_temporaries[first + q].symbol));
+    s += code("    dx = Eigen::LLT<StateMatrix>(L).solve(f);\n");
+  } else if (sys.implicit) {
     s += code("    StateMatrix M;\n    InputMatrix N;\n    matrices(p, M, N);\n");
     s += code("    dx.noalias() = M * x;\n    dx.noalias() += N * u;\n");
   } else {
@@ -317,9 +331,20 @@ CppText system_struct(const SpecializedSystem& sys, const Scene& scene, const De
               "  // dx/dt: the hybrid runs (pogear/hybrid.hpp) take them as inputs that are functions of the state.\n");
     s += code("  static void quadratic_loads([[maybe_unused]] const Params& p, Eigen::MatrixXd& columns, "
               "Eigen::MatrixXd& speeds,\n                              Eigen::VectorXd& coefficients) {{\n");
-    s += aliases(c, symbols_in(entries({&sys.quadratic_columns, &sys.quadratic_speeds})), code("x"));
-    s += code("    columns.setZero(nx, {});\n    speeds.setZero({}, nx);\n    coefficients.resize({});\n", nq, nq, nq);
-    s += matrix_entries(c, sys.quadratic_columns, code("columns")) + matrix_entries(c, sys.quadratic_speeds, code("speeds"));
+    if (sys.implicit) {  // columns L^-1 Q
+      const ImplicitForm& f = *sys.implicit;
+      s += aliases(c, symbols_in(entries({&f.Q, &sys.quadratic_speeds})), code("x"));
+      s += code("    StateMatrix L, A;\n    InputMatrix B;\n    implicit_form(p, L, A, B);\n");
+      s += code("    Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(nx, {});\n", nq);
+      s += matrix_entries(c, f.Q, code("Q"));
+      s += code("    columns = Eigen::LLT<StateMatrix>(L).solve(Q);\n    speeds.setZero({}, nx);\n    coefficients.resize({});\n",
+                nq, nq);
+    } else {
+      s += aliases(c, symbols_in(entries({&sys.quadratic_columns, &sys.quadratic_speeds})), code("x"));
+      s += code("    columns.setZero(nx, {});\n    speeds.setZero({}, nx);\n    coefficients.resize({});\n", nq, nq, nq);
+      s += matrix_entries(c, sys.quadratic_columns, code("columns"));
+    }
+    s += matrix_entries(c, sys.quadratic_speeds, code("speeds"));
     for (std::size_t i = 0; i < sys.quadratic_coefficients.size(); ++i)
       s += code("    coefficients[{}] = {};\n", index_code(i), c.expression(sys.quadratic_coefficients[i]));
     s += code("  }}\n\n");

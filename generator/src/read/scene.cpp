@@ -79,9 +79,11 @@ void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
 // What loads and controllers cannot be combined with (yet), each refused at the line that asks for it.
 void check_loads_and_controllers(const Scene& s) {
   if (s.loads.empty() && s.controllers.empty()) return;
-  if (!s.tunable.empty())
-    throw InputError(s.tunable_where, "a scene with [loads], [controllers] or [slip_control] has no tunable parameters "
-                                      "yet; set the values in [parameters] and generate one simulator per value");
+  // A slip controller's gains and limits are per unit of its element's capacity, taken at the scene's
+  // value. (A rigid model solved from tunable inertias is refused by specialize: rigid_loop_tunables.)
+  if (!s.tunable.empty() && has_slip_control(s))
+    throw InputError(s.tunable_where, "a scene with [slip_control] has no tunable parameters yet; set the values in "
+                                      "[parameters] and generate one simulator per value");
   if (s.start != Start::given && !s.controllers.empty())
     throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [controllers]; give the "
                                     "initial speeds in [initial]");
@@ -406,20 +408,9 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   check_solver(s, engaged);
   check_vehicle_jerk(s);
   for (const EngagementSpec& e : s.engagement) {
+    // A capacity may follow a tunable (FrictionRun::tuned_capacity); a static ratio is data of the
+    // element's event functions at the scene's value.
     const FrictionElement& f = topology.friction_elements[static_cast<std::size_t>(e.element)];
-    if (std::find(s.tunable.begin(), s.tunable.end(), f.capacity_parameter) != s.tunable.end())
-      throw InputError(s.tunable_where,
-                       fmt::format("'{}' is the torque capacity of {}, which a simulation takes at the scene's value; "
-                                   "it cannot be tunable: set it in [parameters] instead",
-                                   f.capacity_parameter, f.name));
-    // Through other parameters just the same: the simulator would keep the capacity's number while
-    // --param moved the tunable (T_B = "T_base" with T_base tunable held 48.1 N m at any T_base).
-    if (const std::string t = tunable_behind(topology, s.tunable, f.capacity_parameter); !t.empty())
-      throw InputError(s.tunable_where,
-                       fmt::format("'{}', the torque capacity of {}, is defined through tunable '{}', and a simulation "
-                                   "takes capacities at the scene's value; drop '{}' from tunable, or give '{}' a value "
-                                   "of its own",
-                                   f.capacity_parameter, f.name, t, t, f.capacity_parameter));
     for (const std::string& name : referenced_names(f.static_ratio))
       if (const std::string t = tunable_behind(topology, s.tunable, name); !t.empty())
         throw InputError(s.tunable_where,

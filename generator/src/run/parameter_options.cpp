@@ -74,6 +74,10 @@ SpecializedScene at_parameter_options(const SpecializedScene& model, const std::
   }
   const Derivation& d = at.derivation;
   at.derivation.rigid_values = exact_rigid_values(d.rigid, d.elastic, d.values);
+  // read_parameter_options has checked every parameter's role at these values, a capacity's sign too.
+  for (FrictionRun& f : at.friction)
+    if (!GiNaC::is_a<GiNaC::numeric>(f.tuned_capacity))
+      f.capacity = to_double(f.tuned_capacity.subs(tunables, GiNaC::subs_options::no_pattern));
   return at;
 }
 

@@ -134,6 +134,39 @@ ClosedLoops close_loops(const Scene& sc, const Derivation& d, bool elastic, cons
   return out;
 }
 
+void close_implicit_form(const SymbolTable& s, const ClosedLoops& loops, const std::vector<Variable>& open_inputs,
+                         SpecializedSystem& sys) {
+  if (!sys.implicit || (loops.torques.empty() && loops.quadratic.empty() && sys.rhs.empty())) return;
+  const ImplicitForm& gear = *sys.implicit;
+  const unsigned k1 = gear.L.rows(), nx = static_cast<unsigned>(sys.states.size());
+  std::vector<ex> rows;
+  for (unsigned i = 0; i < k1; ++i) {
+    ex row = 0;
+    for (unsigned j = 0; j < k1; ++j) row += gear.A(i, j) * variable_symbol(s, sys.states[j].variable);
+    for (unsigned c = 0; c < open_inputs.size(); ++c) row += gear.B(i, c) * variable_symbol(s, open_inputs[c]);
+    rows.push_back(row.subs(loops.torques, GiNaC::subs_options::no_pattern).expand());
+  }
+  rows.insert(rows.end(), sys.rhs.begin(), sys.rhs.end());  // the integrals', their torques substituted
+  std::vector<ex> variables;
+  for (const StatePort& x : sys.states) variables.push_back(variable_symbol(s, x.variable));
+  for (const InputPort& u : sys.inputs) variables.push_back(variable_symbol(s, u.variable));
+  for (const Assignment& q : loops.quadratic) variables.push_back(q.symbol);
+  const GiNaC::matrix coefficients = linear_coefficients(rows, variables);
+  const auto nu = static_cast<unsigned>(sys.inputs.size()), nq = static_cast<unsigned>(loops.quadratic.size());
+  ImplicitForm f{GiNaC::matrix(nx, nx), GiNaC::matrix(nx, nx), GiNaC::matrix(nx, nu),
+                 nq ? GiNaC::matrix(nx, nq) : GiNaC::matrix(0, 0)};
+  for (unsigned i = 0; i < nx; ++i) {
+    for (unsigned j = 0; j < nx; ++j) {
+      f.L(i, j) = i < k1 && j < k1 ? gear.L(i, j) : ex(i == j ? 1 : 0);
+      f.A(i, j) = coefficients(i, j);
+    }
+    for (unsigned c = 0; c < nu; ++c) f.B(i, c) = coefficients(i, nx + c);
+    for (unsigned q = 0; q < nq; ++q) f.Q(i, q) = coefficients(i, nx + nu + q);
+  }
+  sys.implicit = std::move(f);
+  sys.rhs.clear();
+}
+
 void limit_laws(const SymbolTable& s, const ClosedLoops& loops, SpecializedSystem& sys) {
   if (loops.limited.empty()) return;
   std::vector<ex> variables;

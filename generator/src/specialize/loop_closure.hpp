@@ -34,6 +34,13 @@ struct ClosedLoops {
 ClosedLoops close_loops(const Scene& sc, const Derivation& d, bool elastic, const GiNaC::exmap& fold,
                         SpecializedSystem& sys);
 
+// A rigid system solved from tunables (SpecializedSystem::implicit) with loads or controllers: its
+// implicit form over the closed loop, L dx/dt = A x + B u + Q TQ, the laws substituted into the
+// gear's rows (B1's columns over `open_inputs`) and the integrals' rows, explicit, under an identity
+// block of L. The integrals' rows leave sys.rhs, which an implicit system does not have.
+void close_implicit_form(const SymbolTable& s, const ClosedLoops& loops, const std::vector<Variable>& open_inputs,
+                         SpecializedSystem& sys);
+
 // The limited controllers' laws as rows over the states and the inputs (SpecializedSystem::limit_law_x, _u).
 void limit_laws(const SymbolTable& s, const ClosedLoops& loops, SpecializedSystem& sys);
 

@@ -22,6 +22,7 @@
 #include "specialize/operation_count.hpp"
 #include "specialize/parameter_folding.hpp"
 #include "common/printer.hpp"
+#include "specialize/tunable_checks.hpp"
 #include "specialize/tunable_parameters.hpp"
 
 namespace pogear {
@@ -66,55 +67,6 @@ void friction_inputs_of(const Scene& sc, SpecializedSystem& sys) {
     if (!engages(sc, e.element)) continue;
     sys.inputs.push_back({{VariableKind::friction_torque, e.element}, std::nullopt, std::nullopt});
     sys.friction_elements.push_back(e.element);
-  }
-}
-
-// What `--param` accepts for a tunable, and the sign its roles in the model ask for.
-TunableParameter tunable_parameter(const Topology& t, const std::string& name, double value) {
-  TunableParameter p{name, value, {}, ""};
-  const Parameter* given = find_parameter(t, name);
-  if (given) {
-    if (auto unit = written_unit(*given)) p.units.push_back({unit->first, unit->second});
-    if (given->value.has_unit && !(given->value.dimension == Dimension{}) &&
-        (p.units.empty() || p.units[0].unit != describe(given->value.dimension)))
-      p.units.push_back({describe(given->value.dimension), 1.0});
-    if (given->value.has_unit && !(given->value.dimension == Dimension{}))
-      for (const auto& spelling : common_unit_spellings(given->value.dimension))
-        if (std::none_of(p.units.begin(), p.units.end(), [&](const UnitSpelling& u) { return u.unit == spelling.first; }))
-          p.units.push_back({spelling.first, spelling.second});
-  }
-  bool positive = false, non_negative = false;
-  for (const Body* b : every_body(t)) {
-    positive = positive || b->inertia_parameter == name || (b->axis == AxisKind::carried && b->distance_parameter == name);
-    non_negative = non_negative || b->friction_parameter == name;
-    for (const auto& w : b->wheels) positive = positive || w.radius_parameter == name;
-  }
-  for (const auto& m : t.meshes) {
-    positive = positive || m.stiffness_parameter == name;
-    non_negative = non_negative || m.damping_parameter == name;
-  }
-  p.sign = positive ? "positive" : non_negative ? "non-negative" : "";
-  return p;
-}
-
-// A given radius cannot follow a tunable through a geometry relation: it keeps its number, which
-// the relation then contradicts at every other value of the tunable.
-void check_tunable_geometry(const Scene& sc, const Derivation& d, const GiNaC::exmap& fold) {
-  const SymbolTable& s = d.symbols;
-  for (const auto& g : d.radius.relations) {
-    const ex lhs = parameter_symbol(s, g.parameter).subs(fold, GiNaC::subs_options::no_pattern);
-    const ex rhs = g.rhs.subs(fold, GiNaC::subs_options::no_pattern);
-    if ((lhs - rhs).expand().is_zero()) continue;
-    std::string tunables;
-    for (const auto& name : sc.tunable)
-      if (lhs.has(parameter_symbol(s, name)) || rhs.has(parameter_symbol(s, name))) tunables += (tunables.empty() ? "'" : ", '") + name + "'";
-    if (tunables.empty()) continue;  // rounding of given values, checked when the model was read
-    throw InputError(sc.tunable_where,
-                     fmt::format("tunable {} enters the geometry relation {} = {} of {}, but '{}' is given in the "
-                                 "model and would keep its value; leave '{}' out of the model so that it is derived, "
-                                 "or define it through the tunable, or do not tune a radius of this relation",
-                                 tunables, g.parameter, print_expression(g.rhs, Notation::ginac),
-                                 describe_mesh(d.topology, g.mesh), g.parameter, g.parameter));
   }
 }
 
@@ -262,6 +214,11 @@ void set_initial_values(const std::vector<double>& x0, SpecializedSystem& sys) {
 
 void count_system_operations(SpecializedSystem& sys) {
   sys.rhs_ops = sys.implicit ? implicit_operations(*sys.implicit) : count_all(sys.rhs_temporaries, sys.rhs);
+  if (sys.implicit && sys.nonlinear) {  // the quadratic loads' torques, added to A x + B u before the solve
+    const OperationCount q = count_all(sys.rhs_temporaries, {});
+    sys.rhs_ops.multiplications += q.multiplications;
+    sys.rhs_ops.additions += q.additions;
+  }
   sys.output_ops = count_all({}, output_values(sys));
   if (sys.output_derivatives) {  // the outputs call rhs
     sys.output_ops.multiplications += sys.rhs_ops.multiplications;
@@ -291,6 +248,7 @@ SpecializedSystem specialize_system(const Scene& sc, const Derivation& d, const 
   sys.implicit = std::move(gear.implicit);
   const std::size_t gear_states = sys.states.size();  // before the controllers' integrals
   const ClosedLoops loops = close_loops(sc, d, elastic, fold, sys);
+  close_implicit_form(d.symbols, loops, open_inputs.variables, sys);
   const std::vector<Variable> states = state_variables(sys);
   std::vector<double> x0 = initial_state(sc, d, values.numbers, states, gear_states, elastic);
   start_controllers_at_given_torques(sc, d, values.numbers, states, gear_states, elastic, x0);
@@ -434,16 +392,26 @@ SpecializedScene specialize(const Scene& scene) {
     // A constant curve's ratio r scales the kinetic capacity, not the static one: out of the static
     // ratio, which stays >= 1 (r <= static_ratio).
     const double r = constant_friction_ratio(f);
+    // A tunable is no key of the folding: it stands for itself.
+    const GiNaC::realsymbol& c = parameter_symbol(model.derivation.symbols, f.capacity_parameter);
+    const auto folded = model.values.equations.find(c);
+    const GiNaC::ex tuned = (folded != model.values.equations.end() ? folded->second : GiNaC::ex(c)) * exact_number(r);
     model.friction.push_back(FrictionRun{e.element, f.name, parameter_value(t, f.capacity_parameter) * r,
                                          static_friction_ratio(t, f) / r, e.command,
                                          f.one_way, e.start,
-                                         varies_with_slip(f) ? rt::Table{f.curve_slip, f.curve_ratio} : rt::Table{}});
+                                         varies_with_slip(f) ? rt::Table{f.curve_slip, f.curve_ratio} : rt::Table{},
+                                         tuned.expand()});
   }
   if (const std::optional<StartState> start = start_state(model)) {
     set_initial_values(start->main, model.main);
     if (model.rigid) set_initial_values(start->rigid, *model.rigid);
   }
   return model;
+}
+
+bool has_tuned_capacity(const SpecializedScene& model) {
+  return std::any_of(model.friction.begin(), model.friction.end(),
+                     [](const FrictionRun& f) { return !GiNaC::is_a<GiNaC::numeric>(f.tuned_capacity); });
 }
 
 int friction_run_index(const SpecializedScene& model, int element) {

@@ -41,6 +41,8 @@ struct TunableParameter {
 // L dx/dt = A x + B u, which the generated code solves numerically (L symmetric positive definite).
 struct ImplicitForm {
   GiNaC::matrix L, A, B;
+  // With quadratic loads, their torques' columns: L dx/dt = A x + B u + Q TQ (0 x 0 without).
+  GiNaC::matrix Q = GiNaC::matrix(0, 0);
 };
 
 enum class SystemKind { elastic, rigid };
@@ -126,7 +128,11 @@ struct FrictionRun {
   bool one_way = false;
   std::optional<SignalStart> start;  // a command that starts on an event
   rt::Table friction_curve;
+  // The capacity in the tunables (a number when none enters it), what a run at other --param values
+  // takes: the generated friction_elements(p), and at_parameter_options.
+  GiNaC::ex tuned_capacity;
 };
+
 
 // The element as the runtime's runs take it.
 inline rt::FrictionElementData element_data(const FrictionRun& f) {
@@ -150,6 +156,9 @@ SpecializedScene specialize(const Scene& scene);
 // Brake or clutch `element`'s index among model.friction (the engaged elements), or
 // model.friction.size() when the scene does not engage it.
 int friction_run_index(const SpecializedScene& model, int element);
+
+// Whether some element's capacity follows a tunable parameter.
+bool has_tuned_capacity(const SpecializedScene& model);
 
 // What the scene's systems hold that some solvers cannot run, for rt::solver_refusal.
 rt::SystemTraits solver_traits(const SpecializedScene& model);

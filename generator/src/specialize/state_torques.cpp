@@ -77,7 +77,8 @@ void quadratic_load_form(const SymbolTable& s, const ClosedLoops& loops, Special
   for (const ex& row : sys.rhs) rows.push_back(row.subs(temps, GiNaC::subs_options::no_pattern));
   for (const Assignment& q : loops.quadratic) torques.push_back(q.symbol);
   for (const StatePort& x : sys.states) states.push_back(variable_symbol(s, x.variable));
-  sys.quadratic_columns = linear_coefficients(rows, torques);
+  // An implicit system's columns are L^-1 Q, which its generated code solves (ImplicitForm::Q).
+  if (!sys.implicit) sys.quadratic_columns = linear_coefficients(rows, torques);
   sys.quadratic_speeds = linear_coefficients(loops.quadratic_speeds, states);
   sys.quadratic_coefficients = loops.quadratic_coefficients;
 }
