@@ -22,6 +22,13 @@ TEST_F(EngagementCommands, SlipControlNotWithTunables) {
   expect_error(controlled + "B1 = { target = \"10*rad/s\", kp = \"0.01*s/rad\" }\n",
                R"~(scene.toml:7:11: error: a scene with [slip_control] has no tunable parameters yet; set the values in [parameters] and generate one simulator per value)~", edits);
 }
+// Speed and slip controllers share the scene's 16 (a run's modes are bits of a 32-bit word).
+TEST_F(EngagementCommands, SlipControlBeyondSixteenControllers) {
+  std::string controllers = "\n[controllers]\n";
+  for (int i = 0; i < 16; ++i) controllers += "c" + std::to_string(i) + " = { body = \"s\", set_point = \"1*rpm\", kp = \"1*N*m*s\" }\n";
+  expect_error("B1 = \"0\"\n" + controllers + "\n[slip_control]\nB1 = { target = \"10*rad/s\", kp = \"0.01*s/rad\" }\n",
+               R"~(scene.toml:43:6: error: more than 16 controllers and slip controllers; a scene has at most 16)~", adaptive);
+}
 TEST_F(EngagementCommands, SlipControlNotATable) {
   expect_error(controlled + "B1 = \"10*rad/s\"\n",
                R"~(scene.toml:25:6: error: a slip controller is a table { target = <slip speed signal>, kp = "<s/rad>", ki = "<1/rad>" })~", adaptive);

@@ -99,6 +99,20 @@ TEST(SpeedController, StartsAtTheGivenTorqueWithoutABump) {
   EXPECT_GT(dip, 0.5);               // 2 N m on 0.068 kg m^2 before the controller answers
 }
 
+// The diagnostics see a limited controller within its limits: a stiff P controller (kp / J = 7.4e4/s)
+// sets the fastest rate, with limits it never reaches as without limits (whose law is in M itself).
+TEST(SpeedController, DiagnosticsSeeALimitedControllersFeedback) {
+  const std::string controller = "[controllers]\nspeed = { body = \"a\", set_point = \"100*rad/s\", kp = \"5000*N*m*s/rad\"";
+  const SpecializedScene open = scene_model(pair_scene(controller + " }\n"));
+  const SpecializedScene limited = scene_model(pair_scene(controller + ", torque_max = \"1e6*N*m\" }\n"));
+  ASSERT_EQ(limited.main.limited_controllers.size(), 1u);
+  const Diagnostics a = system_diagnostics(open, open.main), b = system_diagnostics(limited, limited.main);
+  // -kp / J (no bearing friction in pair.toml) and the integral's 0: the eigenvalues of a 2 x 2, to rounding.
+  EXPECT_NEAR(a.fastest_rate, 5000 / J_seen_from_a, 1e-9 * a.fastest_rate);
+  EXPECT_NEAR(b.fastest_rate, a.fastest_rate, 1e-12 * a.fastest_rate);
+  EXPECT_EQ(b.growing_modes, 0);
+}
+
 TEST(SpeedController, MeasuresTheBodyItIsGiven) {
   // Driving a and measuring b, which an external mesh turns the other way (omega_b = -ratio
   // omega_a): J omega_a' = kp (ref - omega_b) = kp (ref + ratio omega_a) feeds back positively, and

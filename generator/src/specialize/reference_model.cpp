@@ -341,6 +341,19 @@ Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSys
   return evaluate_matrix(sys.implicit->L, values).llt().solve(evaluate_matrix(sys.implicit->A, values));
 }
 
+Eigen::MatrixXd state_matrix_within_limits(const SpecializedScene& model, const SpecializedSystem& sys) {
+  Eigen::MatrixXd M = state_matrix(model, sys);
+  if (sys.limited_controllers.empty()) return M;
+  const GiNaC::exmap& values = model.values.numbers;
+  const Eigen::MatrixXd N = sys.implicit ? Eigen::MatrixXd(evaluate_matrix(sys.implicit->L, values)
+                                                               .llt()
+                                                               .solve(evaluate_matrix(sys.implicit->B, values)))
+                                         : evaluate_matrix(sys.N, values);
+  const Eigen::MatrixXd X = evaluate_matrix(sys.limit_law_x, values);
+  M += N.rightCols(X.rows()) * X;  // the limited controllers' torques are the last inputs
+  return M;
+}
+
 rt::DrivelineData driveline_data(const Scene& scene, const SpecializedSystem& sys, const Eigen::MatrixXd& speeds) {
   rt::DrivelineData out;
   for (std::size_t i = 0; i < sys.driveline.size(); ++i) {

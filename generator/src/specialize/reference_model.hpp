@@ -46,5 +46,8 @@ rt::HybridSystem hybrid_system(const SpecializedScene& model, const SpecializedS
 
 // The state matrix M of a system at the scene's values (every tunable at its value).
 Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSystem& system);
+// The same with the torque-limited controllers within their limits, their laws' state rows closed
+// through their torques' columns: M + N_c X (M itself without such controllers).
+Eigen::MatrixXd state_matrix_within_limits(const SpecializedScene& model, const SpecializedSystem& system);
 
 }  // namespace pogear

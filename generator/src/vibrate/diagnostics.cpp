@@ -234,8 +234,9 @@ Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedS
   const GiNaC::exmap& values = model.values.numbers;
   // The specialized system's own M, exact in the tunable parameters, at their values: the numbers
   // numeric_system computes by another formula (the tests compare them), without solving again.
-  // L1 holds inertias and radii only, which the folding leaves at the model's values.
-  Diagnostics out = diagnose(state_matrix(model, sys), evaluate_matrix(d.rigid_values.L1, {}),
+  // L1 holds inertias and radii only, which the folding leaves at the model's values. Limited
+  // controllers within their limits: a stiff controller's feedback is there, not in the open M.
+  Diagnostics out = diagnose(state_matrix_within_limits(model, sys), evaluate_matrix(d.rigid_values.L1, {}),
                              evaluate_matrix(d.elastic.R, values), model.scene.sample, input_excitation(model, sys));
   // At the derivation's values (the scene's overrides), not the folded ones: a rigid scene folds
   // the stiffnesses away, yet the frequency below which it holds is that of its gear.
