@@ -57,6 +57,37 @@ TEST(FrictionCurve, RatioOneThroughoutReproducesTheRunBitForBit) {
   EXPECT_GE(compared, 4);  // the elastic and rigid CSV, the events and the shift metrics at least
 }
 
+// The converter's lock-up clutch of the shipped ZF 6HP26 launch with a constant curve of ratio 0.5
+// is one of half the capacity and twice the static ratio (the same static capacity): every file the
+// runs write is the same, byte for byte. Its run with a varying curve differs.
+TEST(FrictionCurve, LockUpClutchTakesACurve) {
+  const std::string scene = with_edits(read_text(source_path("models/scenes/zf6hp26_launch.toml")),
+                                       {{"\"../zf6hp26.toml\"", "\"" + source_path("models/zf6hp26.toml") + "\""}});
+  for (const std::string table : {"zf6hp26_launch_C_apply.csv", "zf6hp26_launch_D_release.csv", "zf6hp26_launch_lockup.csv"})
+    ASSERT_NE(scene.find("\"" + table + "\""), std::string::npos) << table;
+  auto variant = [&](const std::string& name, const std::string& lockup) {
+    std::string text = with_edits(scene, {{"lockup = { capacity = \"700*N*m\", static_ratio = 1.2 }", lockup}});
+    for (const std::string table : {"zf6hp26_launch_C_apply.csv", "zf6hp26_launch_D_release.csv", "zf6hp26_launch_lockup.csv"})
+      text = with_edits(text, {{"\"" + table + "\"", "\"" + source_path("models/scenes/" + table) + "\""}});
+    const fs::path dir = temp_dir(name);
+    fs::create_directories(dir);
+    write_text(dir / "scene.toml", text);
+    return simulate_curve_scene(dir, "--interpreted");
+  };
+  const fs::path curved = variant("lockup_half_curve", "lockup = { capacity = \"700*N*m\", static_ratio = 1.2, friction_curve = "
+                                                       "[[\"0*rad/s\", 0.5], [\"100*rad/s\", 0.5]] }");
+  const fs::path halved = variant("lockup_half_capacity", "lockup = { capacity = \"350*N*m\", static_ratio = 2.4 }");
+  const fs::path varying = variant("lockup_varying", "lockup = { capacity = \"700*N*m\", static_ratio = 1.2, friction_curve = "
+                                                     "[[\"0*rad/s\", 1], [\"20*rad/s\", 0.8]] }");
+  int compared = 0;
+  for (const auto& f : fs::directory_iterator(halved)) {
+    EXPECT_EQ(read_text(f.path()), read_text(curved / f.path().filename())) << f.path().filename();
+    ++compared;
+  }
+  EXPECT_GE(compared, 3);  // the CSV, the events and the shift metrics at least
+  EXPECT_NE(read_text(varying / "zf6hp26_launch.events.csv"), read_text(halved / "zf6hp26_launch.events.csv"));
+}
+
 // Two rigid wheels meshing, b on a fixed axis (J = J_a + J_b (r_a / r_b)^2 = 0.5 kg m^2 at a, no bearing friction), a
 // at w0 = +-150 rad/s against brake B of capacity c = 20 N m fully applied, whose friction curve
 // rises linearly from 0.5 at zero slip to 1.5 at 100 rad/s and holds 1.5 beyond: the kinetic torque

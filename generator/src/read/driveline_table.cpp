@@ -13,6 +13,7 @@
 
 #include "pogear/parameters.hpp"
 #include "pogear/run_limits.hpp"
+#include "read/friction_curve.hpp"
 #include "read/model_parameters.hpp"
 
 namespace pogear {
@@ -177,7 +178,7 @@ void read_converter(const SceneReader& r, const toml::node& n, Scene& s) {
 
   if (const toml::node* l = v.get("lockup")) {
     if (!l->is_table()) r.fail(*l, "lockup is a table { capacity = \"600*N*m\", static_ratio = 1.2 }");
-    r.only_keys(*l->as_table(), {"capacity", "static_ratio"}, "the lock-up clutch");
+    r.only_keys(*l->as_table(), {"capacity", "static_ratio", "friction_curve"}, "the lock-up clutch");
     if (find_friction_element(t, lockup_clutch_name) >= 0 || find_body(t, lockup_clutch_name) >= 0)
       r.fail(*l, fmt::format("the model has an element or body named '{}', which the lock-up clutch is; rename the "
                              "model's", lockup_clutch_name));
@@ -198,6 +199,8 @@ void read_converter(const SceneReader& r, const toml::node& n, Scene& s) {
       e.static_ratio = fmt::format("{}", ratio);
       e.static_ratio_where = r.loc(*m);
     }
+    // Checked against the static ratio with every element's (static_friction_ratio).
+    if (const toml::node* f = l->as_table()->get("friction_curve")) read_friction_curve(r, *f, e);
     t.friction_elements.push_back(std::move(e));
   }
   s.converter = std::move(c);
