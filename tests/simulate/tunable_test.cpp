@@ -98,6 +98,25 @@ TEST(Tunables, DerivedRadiiFollowATunableRadius) {
   EXPECT_LT(relative_gap(state_matrix(m, *m.rigid), numeric_system(m, *m.rigid).M), 1e-12);
 }
 
+// A tunable inertia makes the rigid model an implicit form; with the power-split drive's speed
+// controller and quadratic road load it is closed over the loop (the controller's integral, the load's
+// linear part in A, its quadratic torque's column in Q). Solved at the scene's values it is the
+// reference model's closed loop, which that builds from L, A, B in doubles by another formula.
+TEST(Tunables, RigidImplicitFormClosesLoadsAndControllers) {
+  const SpecializedScene m = scene_model(with_tunable(scene_text("power_split_drive"), "\"J_c\""));
+  ASSERT_TRUE(m.rigid && m.rigid->implicit);
+  const ImplicitForm& f = *m.rigid->implicit;
+  ASSERT_EQ(f.L.rows(), 3u);  // omega_c, omega_r and the controller's integral
+  const NumericSystem reference = numeric_system(m, *m.rigid);
+  const GiNaC::exmap& at = m.values.numbers;
+  const Eigen::LLT<Eigen::MatrixXd> L(evaluate_matrix(f.L, at));
+  // A 3 x 3 Cholesky solve against the reference's exact-then-rounded M: a few eps of each column.
+  EXPECT_LT(relative_gap(L.solve(evaluate_matrix(f.A, at)), reference.M), 1e-12);
+  EXPECT_LT(relative_gap(L.solve(evaluate_matrix(f.B, at)), reference.N), 1e-12);
+  ASSERT_EQ(reference.quadratic.size(), 1u);
+  EXPECT_LT(relative_gap(L.solve(evaluate_matrix(f.Q, at)), Eigen::MatrixXd(reference.quadratic[0].state_column)), 1e-12);
+}
+
 // The compiled tunable path, with values other than the scene's through --param, against the
 // interpreted path of the same scene with those values as [parameters] overrides.
 TEST(Tunables, ParamOptionMatchesTheInterpretedPathWithTheSameValues) {
