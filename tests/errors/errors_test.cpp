@@ -798,6 +798,16 @@ TEST_F(Scenes, QuantityNamesATunable) {
                       {R"(tau_c = { constant = "100*Nm" })", R"(tau_c = { constant = "J_c*500/s^2" })"}},
       R"~(scene.toml:10:22: error: constant names tunable 'J_c', but the simulator takes this value at the scene's value of it, whatever --param sets; write the value without 'J_c', or drop 'J_c' from tunable)~");
 }
+// Read before the tunables are listed in the file (a load, a controller, a vehicle), a value is
+// refused all the same.
+TEST_F(LoadsAndControllers, GainNamesATunable) {
+  expect_error("[controllers]\nspeed = { body = \"c\", set_point = \"100*rpm\", kp = \"b_c*20\" }\n",
+               R"~(scene.toml:23:51: error: kp names tunable 'b_c', but the simulator takes this value at the scene's value of it, whatever --param sets; write the value without 'b_c', or drop 'b_c' from tunable)~",
+               {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"b_c\"]"}});
+  expect_error("[loads]\nr = { linear = \"b_c\" }\n",
+               R"~(scene.toml:23:16: error: linear names tunable 'b_c', but the simulator takes this value at the scene's value of it, whatever --param sets; write the value without 'b_c', or drop 'b_c' from tunable)~",
+               {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"b_c\"]"}});
+}
 TEST_F(Scenes, TunableClashesWithGeneratedCode) {
   const std::string model = edited(base_model(), {{"[parameters]\n", "[parameters]\ndouble = 2\n"}});
   expect_documented(scene_error(edited(base_scene(), {{"compare_rigid = true", "compare_rigid = true\ntunable = [\"double\"]"}}), model),

@@ -36,6 +36,12 @@ class StartInGear : public ErrorTest {
   }
 };
 
+// Its stuck torques are checked against the capacities at the scene's values.
+TEST_F(StartInGear, WithTunables) {
+  expect_start_error({{"effects = [", "tunable = [\"Tcap_A\"]\neffects = ["}},
+      R"~(scene.toml:14:8: error: a start in a gear is computed at the scene's parameter values (its stuck torques within the capacities), which tunable parameters change at run time; set them in [parameters], or start from given speeds)~");
+}
+
 TEST_F(StartInGear, UnknownGear) {
   expect_start_error({{R"(gear = "1")", R"(gear = "7")"}},
       R"~(scene.toml:13:8: error: '7' is not a gear of the model; its gears are 1, 2, 3, 4, 5, 6, R)~");

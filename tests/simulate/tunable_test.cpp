@@ -117,6 +117,26 @@ TEST(Tunables, RigidImplicitFormClosesLoadsAndControllers) {
   EXPECT_LT(relative_gap(L.solve(evaluate_matrix(f.Q, at)), Eigen::MatrixXd(reference.quadratic[0].state_column)), 1e-12);
 }
 
+// The ZF 6HP26 launch (rigid: an engine, a converter, a vehicle's road load, brakes and clutches) with
+// a tunable output inertia: its implicit form solved at the scene's values is the reference model's
+// system, the engine's and converter's torque columns among its inputs.
+TEST(Tunables, RigidImplicitFormWithAnEngineAndAConverter) {
+  std::string scene = scene_text("zf6hp26_launch");
+  scene = with_line(scene, "speed_unit = \"rpm\"", "speed_unit = \"rpm\"\ntunable = [\"J_out\", \"Tcap_C\"]");
+  const SpecializedScene m = scene_model(scene);
+  ASSERT_TRUE(m.main.implicit);
+  ASSERT_FALSE(m.main.driveline.empty());
+  const ImplicitForm& f = *m.main.implicit;
+  const NumericSystem reference = numeric_system(m, m.main);
+  const GiNaC::exmap& at = m.values.numbers;
+  const Eigen::LLT<Eigen::MatrixXd> L(evaluate_matrix(f.L, at));
+  // A Cholesky solve against the reference's exact-then-rounded M and N: a few eps of each column.
+  EXPECT_LT(relative_gap(L.solve(evaluate_matrix(f.A, at)), reference.M), 1e-12);
+  EXPECT_LT(relative_gap(L.solve(evaluate_matrix(f.B, at)), reference.N), 1e-12);
+  ASSERT_EQ(reference.quadratic.size(), 1u);  // the car's drag
+  EXPECT_LT(relative_gap(L.solve(evaluate_matrix(f.Q, at)), Eigen::MatrixXd(reference.quadratic[0].state_column)), 1e-12);
+}
+
 // The compiled tunable path, with values other than the scene's through --param, against the
 // interpreted path of the same scene with those values as [parameters] overrides.
 TEST(Tunables, ParamOptionMatchesTheInterpretedPathWithTheSameValues) {

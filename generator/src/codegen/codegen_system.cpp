@@ -360,6 +360,7 @@ CppText system_struct(const SpecializedSystem& sys, const Scene& scene, const De
     s += code("  static void torque_limit_laws([[maybe_unused]] const Params& p, Eigen::MatrixXd& X, Eigen::MatrixXd& W) {{\n");
     s += code("    X.setZero({}, nx);\n    W.setZero({}, nu);\n", index_code(sys.limited_controllers.size()),
               index_code(sys.limited_controllers.size()));
+    s += aliases(c, symbols_in(entries({&sys.limit_law_x, &sys.limit_law_u})), code("x"));
     s += matrix_entries(c, sys.limit_law_x, code("X")) + matrix_entries(c, sys.limit_law_u, code("W"));
     s += code("  }}\n\n");
   }

@@ -208,9 +208,6 @@ void read_converter(const SceneReader& r, const toml::node& n, Scene& s) {
 
 void check_driveline(const Scene& s) {
   if (!s.engine && !s.converter) return;
-  if (!s.tunable.empty())
-    throw InputError(s.tunable_where, "a scene with an [engine] or a [converter] has no tunable parameters yet; set the "
-                                      "values in [parameters] and generate one simulator per value");
   // Their torques follow the speeds through tables: the equilibrium is a nonlinear problem, where the
   // gear's alone is linear and solved exactly.
   if (s.start == Start::steady)

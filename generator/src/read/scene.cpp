@@ -194,6 +194,16 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   // Before anything that evaluates a quantity: [initial] and [inputs] may name parameters.
   if (const toml::node* n = root.get("parameters")) apply_overrides(r, *n, s.model);
 
+  // The tunables before any other quantity of the scene: one that names a tunable is a number of the
+  // generated code and is refused (SceneReader::evaluated). Their names are checked below, once the
+  // scene's own parameters (a lock-up clutch's capacity) and variables are known.
+  const toml::node* tunable_node = root.get("tunable");
+  if (tunable_node) {
+    s.tunable = r.strings(*tunable_node, "tunable");
+    s.tunable_where = r.loc(*tunable_node);
+    r.tunable = &s.tunable;
+  }
+
   // Before the effects, which ask for the compliance of its half-shafts.
   if (const toml::node* n = root.get("vehicle")) read_vehicle(r, *n, scene_dir, s);
   // Before [engagement], which may command the converter's lock-up clutch.
@@ -237,9 +247,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
 
   std::set<std::string> parameter_names;
   for (const auto& p : topology.parameters) parameter_names.insert(p.name);
-  if (const toml::node* n = root.get("tunable")) {
-    s.tunable = r.strings(*n, "tunable");
-    s.tunable_where = r.loc(*n);
+  if (const toml::node* n = tunable_node) {
     std::set<std::string> seen;
     for (const auto& name : s.tunable) {
       if (!parameter_names.count(name)) r.fail(*n, fmt::format("tunable '{}' is not a parameter of the model", name));
@@ -248,7 +256,6 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
         r.fail(*n, fmt::format("tunable '{}' cannot be a variable of the generated C++ (a keyword, a macro or a name "
                                "the code uses itself); rename the parameter in the model", name));
     }
-    r.tunable = &s.tunable;  // what the scene's quantities below may not name
   }
 
   if (const toml::node* n = root.get("inputs")) {

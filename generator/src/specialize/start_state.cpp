@@ -151,6 +151,11 @@ std::optional<StartState> start_state(const SpecializedScene& model) {
   auto refuse = [&](const std::string& why) {
     throw InputError(sc.start_where, fmt::format("start = \"{}\" {}", start, why));
   };
+  if (!sc.tunable.empty() && !sc.initial_engaged.empty())
+    throw InputError(sc.initial_engaged_where,
+                     "a start in a gear is computed at the scene's parameter values (its stuck torques within the "
+                     "capacities), which tunable parameters change at run time; set them in [parameters], or start "
+                     "from given speeds");
   if (!sc.tunable.empty())
     refuse("is computed at the scene's parameter values, which tunable parameters change at run time; set them in "
            "[parameters], or start from given speeds");
