@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -118,20 +120,29 @@ TEST(SimulateCommand, ParamValuesNameEachOtherAndTheSummaryFollows) {
 }
 
 
-// The Simpson 1-2 upshift as `name` in `dir`, its model and tables by absolute path, with `extra` after
-// its compare_rigid line and `parameters` after its [parameters] header.
-fs::path simpson_scene(const fs::path& dir, const std::string& name, const std::string& extra, const std::string& parameters) {
-  std::string text = read_text(source_path("models/scenes/simpson_1_2_upshift.toml"));
-  for (const auto& [from, to] :
-       {std::pair<std::string, std::string>{"name = \"simpson_1_2_upshift\"", "name = \"" + name + "\""},
-        {"\"../simpson_3speed.toml\"", "\"" + source_path("models/simpson_3speed.toml") + "\""},
-        {"\"simpson_B2_release.csv\"", "\"" + source_path("models/scenes/simpson_B2_release.csv") + "\""},
-        {"\"simpson_B1_apply.csv\"", "\"" + source_path("models/scenes/simpson_B1_apply.csv") + "\""},
-        {"compare_rigid = true", "compare_rigid = true\n" + extra},
-        {"[parameters]\n", "[parameters]\n" + parameters + "\n"}})
-    text.replace(text.find(from), from.size(), to);
+// Shipped scene models/scenes/<shipped>.toml as `name` in `dir`: its model and tables (`files`, in
+// models/ and models/scenes/) by absolute path, then `edits` in order, each of a text it has.
+fs::path shipped_scene(const fs::path& dir, const std::string& shipped, const std::string& name,
+                       const std::vector<std::string>& files, const std::vector<std::pair<std::string, std::string>>& edits) {
+  std::string text = read_text(source_path("models/scenes/" + shipped + ".toml"));
+  auto edit = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  };
+  edit("name = \"" + shipped + "\"", "name = \"" + name + "\"");
+  for (const std::string& f : files)
+    edit("\"" + f + "\"", "\"" + source_path(f.rfind("../", 0) == 0 ? "models/" + f.substr(3) : "models/scenes/" + f) + "\"");
+  for (const auto& [from, to] : edits) edit(from, to);
   write_text(dir / (name + ".toml"), text);
   return dir / (name + ".toml");
+}
+
+// The Simpson 1-2 upshift as `name` in `dir`, with `extra` after its compare_rigid line and
+// `parameters` after its [parameters] header.
+fs::path simpson_scene(const fs::path& dir, const std::string& name, const std::string& extra, const std::string& parameters) {
+  return shipped_scene(dir, "simpson_1_2_upshift", name, {"../simpson_3speed.toml", "simpson_B2_release.csv", "simpson_B1_apply.csv"},
+                       {{"compare_rigid = true", "compare_rigid = true\n" + extra}, {"[parameters]\n", "[parameters]\n" + parameters + "\n"}});
 }
 
 // A brake's capacity that follows a tunable (B1's through B2's) takes --param's value, compiled and
@@ -193,17 +204,10 @@ TEST(SimulateCommand, ParamMovesCapacitiesThatFollowATunable) {
 // with `scene_lines` after its compare_rigid line (which `keep_rigid` false drops) and `parameters`.
 fs::path power_split_scene(const fs::path& dir, const std::string& name, bool keep_rigid, const std::string& scene_lines,
                            const std::string& parameters) {
-  std::string text = read_text(source_path("models/scenes/power_split_drive.toml"));
-  for (const auto& [from, to] :
-       {std::pair<std::string, std::string>{"name = \"power_split_drive\"", "name = \"" + name + "\""},
-        {"\"../power_split.toml\"", "\"" + source_path("models/power_split.toml") + "\""},
-        {"\"power_split_drive_mg2.csv\"", "\"" + source_path("models/scenes/power_split_drive_mg2.csv") + "\""},
-        {"compare_rigid = true", (keep_rigid ? "compare_rigid = true\n" : "") + scene_lines},
-        {"[inputs]\n", "[parameters]\n" + parameters + "\n\n[inputs]\n"},
-        {"horizon = \"8*s\"", "horizon = \"4*s\""}})
-    text.replace(text.find(from), from.size(), to);
-  write_text(dir / (name + ".toml"), text);
-  return dir / (name + ".toml");
+  return shipped_scene(dir, "power_split_drive", name, {"../power_split.toml", "power_split_drive_mg2.csv"},
+                       {{"compare_rigid = true", (keep_rigid ? "compare_rigid = true\n" : "") + scene_lines},
+                        {"[inputs]\n", "[parameters]\n" + parameters + "\n\n[inputs]\n"},
+                        {"horizon = \"8*s\"", "horizon = \"4*s\""}});
 }
 
 // Tunables with loads and controllers: an inertia and a stiffness in both models (compiled; the rigid
@@ -242,18 +246,10 @@ TEST(SimulateCommand, ParamWithLoadsAndControllers) {
 // `scene_lines` after its speed_unit line and `parameters` in a [parameters] table.
 fs::path launch_scene(const fs::path& dir, const std::string& name, const std::string& scene_lines,
                       const std::string& parameters) {
-  std::string text = read_text(source_path("models/scenes/zf6hp26_launch.toml"));
-  for (const auto& [from, to] :
-       {std::pair<std::string, std::string>{"name = \"zf6hp26_launch\"", "name = \"" + name + "\""},
-        {"\"../zf6hp26.toml\"", "\"" + source_path("models/zf6hp26.toml") + "\""},
-        {"\"zf6hp26_launch_D_release.csv\"", "\"" + source_path("models/scenes/zf6hp26_launch_D_release.csv") + "\""},
-        {"\"zf6hp26_launch_C_apply.csv\"", "\"" + source_path("models/scenes/zf6hp26_launch_C_apply.csv") + "\""},
-        {"\"zf6hp26_launch_lockup.csv\"", "\"" + source_path("models/scenes/zf6hp26_launch_lockup.csv") + "\""},
-        {"speed_unit = \"rpm\"", "speed_unit = \"rpm\"\n" + scene_lines},
-        {"[engine]\n", "[parameters]\n" + parameters + "\n\n[engine]\n"}})
-    text.replace(text.find(from), from.size(), to);
-  write_text(dir / (name + ".toml"), text);
-  return dir / (name + ".toml");
+  return shipped_scene(dir, "zf6hp26_launch", name,
+                       {"../zf6hp26.toml", "zf6hp26_launch_D_release.csv", "zf6hp26_launch_C_apply.csv", "zf6hp26_launch_lockup.csv"},
+                       {{"speed_unit = \"rpm\"", "speed_unit = \"rpm\"\n" + scene_lines},
+                        {"[engine]\n", "[parameters]\n" + parameters + "\n\n[engine]\n"}});
 }
 
 // Tunables with an engine and a converter: a clutch's capacity and the output inertia (which makes
@@ -287,18 +283,13 @@ TEST(SimulateCommand, ParamWithAnEngineAndAConverter) {
 TEST(SimulateCommand, ParamWithTunableRadiiAndALimitedController) {
   const fs::path dir = temp_dir("param_radii");
   auto scene = [&](const std::string& name, const std::string& tunable, const std::string& parameters) {
-    std::string text = read_text(source_path("models/scenes/lumped_planets.toml"));
-    for (const auto& [from, to] :
-         {std::pair<std::string, std::string>{"name = \"lumped_planets\"", "name = \"" + name + "\""},
-          {"\"../lumped_planets.toml\"", "\"" + source_path("models/lumped_planets.toml") + "\""},
-          {"compare_rigid = true", "compare_rigid = true\n" + tunable},
-          {"[simulation]", "[loads]\nr = { constant = \"5*N*m\", linear = \"0.2*N*m*s\" }\n\n[controllers]\nhold = { body = "
-                           "\"s\", speed_of = \"s\", set_point = { step = \"300*rpm\", before = \"0*rpm\", at = \"0.5*s\" }, "
-                           "kp = \"2*N*m*s\", ki = \"10*N*m\", torque_max = \"40*N*m\" }\n\n[parameters]\n" +
-                               parameters + "\n\n[simulation]"}})
-      text.replace(text.find(from), from.size(), to);
-    write_text(dir / (name + ".toml"), text);
-    return dir / (name + ".toml");
+    return shipped_scene(
+        dir, "lumped_planets", name, {"../lumped_planets.toml"},
+        {{"compare_rigid = true", "compare_rigid = true\n" + tunable},
+         {"[simulation]", "[loads]\nr = { constant = \"5*N*m\", linear = \"0.2*N*m*s\" }\n\n[controllers]\nhold = { body = "
+                          "\"s\", speed_of = \"s\", set_point = { step = \"300*rpm\", before = \"0*rpm\", at = \"0.5*s\" }, "
+                          "kp = \"2*N*m*s\", ki = \"10*N*m\", torque_max = \"40*N*m\" }\n\n[parameters]\n" +
+                              parameters + "\n\n[simulation]"}});
   };
   const fs::path tunable = scene("tunable", "tunable = [\"r_s\", \"r_p\", \"J_r\"]", "");
   const fs::path written = scene("written", "", "r_s = \"9*cm\"\nr_p = \"5*cm\"\nJ_r = \"0.7*kg*m^2\"");
