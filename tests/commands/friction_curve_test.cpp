@@ -133,46 +133,53 @@ double closed_form_speed(double t) {
   return std::max(150 * std::exp(-0.4 * (t - t1)) - 50, 0.0);
 }
 
-TEST(FrictionCurve, LinearCurveOnOneBodyFollowsTheClosedForm) {
+// The two wheels spun at +-150 rad/s with `solver`, run `path` ("" compiled, "--interpreted"),
+// against the closed form: speed, heat and lock time.
+void expect_linear_curve_closed_form(const std::string& solver, const std::string& path, double sign) {
   const double t_lock = 5.0 / 6.0 + 2.5 * std::log(3.0);
-  // Both directions run interpreted and one compiled: the compiled simulator runs the same engine on
-  // the generated matrices (what the compiled run adds, the curve as generated data, has no sign).
+  SCOPED_TRACE(solver + " " + path + (sign > 0 ? " forward" : " backward"));
+  const fs::path dir = temp_dir("curve_" + solver + (path.empty() ? "_compiled" : "_interpreted") +
+                                (sign > 0 ? "_fwd" : "_back"));
+  fs::create_directories(dir);
+  write_text(dir / "two_wheels.toml", two_wheels_model);
+  write_text(dir / "scene.toml",
+             "name = \"spin\"\nmodel = \"two_wheels.toml\"\neffects = []\n[initial]\nomega_a = \"" +
+                 std::to_string(static_cast<int>(150 * sign)) + "*rad/s\"\n[engagement]\nB = \"1\"\n"
+                 "[simulation]\nhorizon = \"4*s\"\nsample = \"1*ms\"\nsolver = \"" + solver +
+                 "\"\ntolerance = 1e-10\n");
+  const fs::path out = simulate_curve_scene(dir, path);
+  const Csv csv = read_csv((out / "spin.csv").string());
+  const std::size_t t = csv.column("t"), w = csv.column("omega_a"), E = csv.column("E_B");
+  ASSERT_LT(E, csv.header.size());
+  ASSERT_EQ(csv.rows.size(), 4001u);
+  double worst = 0;
+  for (const auto& row : csv.rows) worst = std::max(worst, std::abs(sign * row[w] - closed_form_speed(row[t])));
+  // At a tolerance of 1e-10 (relative: 1e-8 rad/s per step at 100 rad/s) dopri5 ends 3.1e-8
+  // rad/s off, the steps after the curve's corner at 100 rad/s, where it ends a step (without
+  // that, 1.6e-7); TR-BDF2, of order 2, accumulates 2.0e-6 over its 1456 steps. The heat is
+  // off by J w dw of that (1.6e-6 J, 1.0e-4 J); the lock time by the speed's error over its
+  // final rate |w'| = 2 rad/s^2 (5.4e-10 s, 8.5e-8 s). Each bound is 3 to 5 times the measured.
+  const bool dopri5 = solver == "dopri5";
+  EXPECT_LT(worst, dopri5 ? 1.5e-7 : 1e-5);
+  EXPECT_NEAR(csv.rows.back()[E], 0.5 * 0.5 * 150 * 150, dopri5 ? 1e-5 : 5e-4);
+  // The lock: the events file's B slipping -> stuck.
+  const std::string events = read_text(out / "spin.events.csv");
+  const auto at = events.find(",B,slipping,stuck");
+  ASSERT_NE(at, std::string::npos) << events;
+  const double t_event = std::stod(events.substr(events.rfind('\n', at) + 1));
+  EXPECT_NEAR(t_event, t_lock, dopri5 ? 3e-9 : 4e-7);
+}
+
+// Both directions, with both methods that run a curve.
+TEST(FrictionCurve, LinearCurveOnOneBodyFollowsTheClosedForm) {
   for (const std::string solver : {"dopri5", "implicit"})
-    for (const std::string path : {"", "--interpreted"})
-      for (const double sign : {1.0, -1.0}) {
-        if (path.empty() && sign < 0) continue;
-        SCOPED_TRACE(solver + " " + path + (sign > 0 ? " forward" : " backward"));
-        const fs::path dir = temp_dir("curve_" + solver + (path.empty() ? "_compiled" : "_interpreted") +
-                                      (sign > 0 ? "_fwd" : "_back"));
-        fs::create_directories(dir);
-        write_text(dir / "two_wheels.toml", two_wheels_model);
-        write_text(dir / "scene.toml",
-                   "name = \"spin\"\nmodel = \"two_wheels.toml\"\neffects = []\n[initial]\nomega_a = \"" +
-                       std::to_string(static_cast<int>(150 * sign)) + "*rad/s\"\n[engagement]\nB = \"1\"\n"
-                       "[simulation]\nhorizon = \"4*s\"\nsample = \"1*ms\"\nsolver = \"" + solver +
-                       "\"\ntolerance = 1e-10\n");
-        const fs::path out = simulate_curve_scene(dir, path);
-        const Csv csv = read_csv((out / "spin.csv").string());
-        const std::size_t t = csv.column("t"), w = csv.column("omega_a"), E = csv.column("E_B");
-        ASSERT_LT(E, csv.header.size());
-        ASSERT_EQ(csv.rows.size(), 4001u);
-        double worst = 0;
-        for (const auto& row : csv.rows) worst = std::max(worst, std::abs(sign * row[w] - closed_form_speed(row[t])));
-        // At a tolerance of 1e-10 (relative: 1e-8 rad/s per step at 100 rad/s) dopri5 ends 3.1e-8
-        // rad/s off, the steps after the curve's corner at 100 rad/s, where it ends a step (without
-        // that, 1.6e-7); TR-BDF2, of order 2, accumulates 2.0e-6 over its 1456 steps. The heat is
-        // off by J w dw of that (1.6e-6 J, 1.0e-4 J); the lock time by the speed's error over its
-        // final rate |w'| = 2 rad/s^2 (5.4e-10 s, 8.5e-8 s). Each bound is 3 to 5 times the measured.
-        const bool dopri5 = solver == "dopri5";
-        EXPECT_LT(worst, dopri5 ? 1.5e-7 : 1e-5);
-        EXPECT_NEAR(csv.rows.back()[E], 0.5 * 0.5 * 150 * 150, dopri5 ? 1e-5 : 5e-4);
-        // The lock: the events file's B slipping -> stuck.
-        const std::string events = read_text(out / "spin.events.csv");
-        const auto at = events.find(",B,slipping,stuck");
-        ASSERT_NE(at, std::string::npos) << events;
-        const double t_event = std::stod(events.substr(events.rfind('\n', at) + 1));
-        EXPECT_NEAR(t_event, t_lock, dopri5 ? 3e-9 : 4e-7);
-      }
+    for (const double sign : {1.0, -1.0}) expect_linear_curve_closed_form(solver, "--interpreted", sign);
+}
+
+// Compiled, one direction: the simulator runs the same engine on the generated matrices (what the
+// compiled run adds, the curve as generated data, has no sign).
+TEST(FrictionCurve, CompiledLinearCurveFollowsTheClosedForm) {
+  for (const std::string solver : {"dopri5", "implicit"}) expect_linear_curve_closed_form(solver, "", 1.0);
 }
 
 // The static capacity is static_ratio c (here 1.2 x 20 N m = 24 N m), whatever the curve, varying or
