@@ -79,8 +79,7 @@ void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
 // What loads and controllers cannot be combined with (yet), each refused at the line that asks for it.
 void check_loads_and_controllers(const Scene& s) {
   if (s.loads.empty() && s.controllers.empty()) return;
-  // A slip controller's gains and limits are per unit of its element's capacity, taken at the scene's
-  // value. (A rigid model solved from tunable inertias is refused by specialize: rigid_loop_tunables.)
+  // A slip controller's gains and limits are per unit of its element's capacity at the scene's value.
   if (!s.tunable.empty() && has_slip_control(s))
     throw InputError(s.tunable_where, "a scene with [slip_control] has no tunable parameters yet; set the values in "
                                       "[parameters] and generate one simulator per value");
@@ -415,8 +414,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   check_solver(s, engaged);
   check_vehicle_jerk(s);
   for (const EngagementSpec& e : s.engagement) {
-    // A capacity may follow a tunable (FrictionRun::tuned_capacity); a static ratio is data of the
-    // element's event functions at the scene's value.
+    // A capacity may follow a tunable (FrictionRun::tuned_capacity); a static ratio may not.
     const FrictionElement& f = topology.friction_elements[static_cast<std::size_t>(e.element)];
     for (const std::string& name : referenced_names(f.static_ratio))
       if (const std::string t = tunable_behind(topology, s.tunable, name); !t.empty())

@@ -342,16 +342,14 @@ Eigen::MatrixXd state_matrix(const SpecializedScene& model, const SpecializedSys
 }
 
 Eigen::MatrixXd state_matrix_within_limits(const SpecializedScene& model, const SpecializedSystem& sys) {
-  Eigen::MatrixXd M = state_matrix(model, sys);
-  if (sys.limited_controllers.empty()) return M;
+  if (sys.limited_controllers.empty()) return state_matrix(model, sys);
   const GiNaC::exmap& values = model.values.numbers;
-  const Eigen::MatrixXd N = sys.implicit ? Eigen::MatrixXd(evaluate_matrix(sys.implicit->L, values)
-                                                               .llt()
-                                                               .solve(evaluate_matrix(sys.implicit->B, values)))
-                                         : evaluate_matrix(sys.N, values);
   const Eigen::MatrixXd X = evaluate_matrix(sys.limit_law_x, values);
-  M += N.rightCols(X.rows()) * X;  // the limited controllers' torques are the last inputs
-  return M;
+  const Eigen::Index nc = X.rows();  // the limited controllers' torques are the last inputs
+  if (!sys.implicit) return evaluate_matrix(sys.M, values) + evaluate_matrix(sys.N, values).rightCols(nc) * X;
+  // L^-1 (A + B_c X): one solve.
+  const Eigen::MatrixXd B = evaluate_matrix(sys.implicit->B, values);
+  return evaluate_matrix(sys.implicit->L, values).llt().solve(evaluate_matrix(sys.implicit->A, values) + B.rightCols(nc) * X);
 }
 
 rt::DrivelineData driveline_data(const Scene& scene, const SpecializedSystem& sys, const Eigen::MatrixXd& speeds) {

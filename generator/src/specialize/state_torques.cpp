@@ -71,14 +71,17 @@ GiNaC::matrix driveline_speed_rows(const Scene& sc, const Derivation& d, const G
 // and N: before their temporaries join the rhs's, so that each TQ_ stays a symbol of the rows.
 void quadratic_load_form(const SymbolTable& s, const ClosedLoops& loops, SpecializedSystem& sys) {
   if (loops.quadratic.empty()) return;
-  GiNaC::exmap temps;
-  for (const auto& a : sys.rhs_temporaries) temps[a.symbol] = a.value.subs(temps, GiNaC::subs_options::no_pattern);
-  std::vector<ex> rows, torques, states;
-  for (const ex& row : sys.rhs) rows.push_back(row.subs(temps, GiNaC::subs_options::no_pattern));
-  for (const Assignment& q : loops.quadratic) torques.push_back(q.symbol);
-  for (const StatePort& x : sys.states) states.push_back(variable_symbol(s, x.variable));
   // An implicit system's columns are L^-1 Q, which its generated code solves (ImplicitForm::Q).
-  if (!sys.implicit) sys.quadratic_columns = linear_coefficients(rows, torques);
+  if (!sys.implicit) {
+    GiNaC::exmap temps;
+    for (const auto& a : sys.rhs_temporaries) temps[a.symbol] = a.value.subs(temps, GiNaC::subs_options::no_pattern);
+    std::vector<ex> rows, torques;
+    for (const ex& row : sys.rhs) rows.push_back(row.subs(temps, GiNaC::subs_options::no_pattern));
+    for (const Assignment& q : loops.quadratic) torques.push_back(q.symbol);
+    sys.quadratic_columns = linear_coefficients(rows, torques);
+  }
+  std::vector<ex> states;
+  for (const StatePort& x : sys.states) states.push_back(variable_symbol(s, x.variable));
   sys.quadratic_speeds = linear_coefficients(loops.quadratic_speeds, states);
   sys.quadratic_coefficients = loops.quadratic_coefficients;
 }
