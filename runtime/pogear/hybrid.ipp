@@ -71,6 +71,9 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   if (c.method.solver == Solver::exact && slip_control)
     return RunStatus{false, "a slip controller makes its element's heat quadratic in the state, which exact stepping "
                             "does not integrate", 0.0};
+  if (c.method.solver == Solver::exact && lags_its_command(sys))
+    return RunStatus{false, "an actuator's lag makes its element's engagement exponential between the command's "
+                            "breakpoints, which exact stepping does not integrate", 0.0};
   // The signals as the run reads them: a triggered one is its `before` until it starts.
   d.inputs = sys.inputs;
   for (std::size_t k = 0; k < sys.elements.size(); ++k) d.commands[k] = sys.elements[k].command;
@@ -84,9 +87,9 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
     (s.command ? d.command_trigger[j] : d.input_trigger[j]) = static_cast<int>(i);
     const Signal& after = s.command ? d.commands[j] : d.inputs[j];
     d.before[i] = held_until_start(after, s.before);
-    all.push_back(d.before[i]);
+    if (!s.command || !actuated(sys.elements[j])) all.push_back(d.before[i]);  // an actuator's knots are its breakpoints
     for_each_break(after, [&](double) { ++start_breaks; });
-    ++start_breaks;  // the start itself
+    start_breaks += s.command ? 2 : 1;  // the start itself, and an actuator's knot at the start plus its delay
   }
   std::fill(d.start.begin(), d.start.end(), std::numeric_limits<double>::infinity());
   std::fill(d.reported.begin(), d.reported.end(), 0);
@@ -94,7 +97,7 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   for (std::size_t j = 0; j < d.inputs.size(); ++j)
     if (d.input_trigger[j] < 0) all.push_back(d.inputs[j]);
   for (std::size_t k = 0; k < d.commands.size(); ++k)
-    if (d.command_trigger[k] < 0) all.push_back(d.commands[k]);
+    if (d.command_trigger[k] < 0 && !actuated(sys.elements[k])) all.push_back(d.commands[k]);
   for (const auto& q : sys.state_torques)  // an engine's throttle steps end steps as an input's do
     if (q.kind == StateTorqueKind::engine) all.push_back(q.throttle);
   // The horizon itself may be one: the last step then ends on the inputs' values before it.
@@ -102,6 +105,21 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   for (const TorqueLimitData& l : sys.limits)  // a slip controller's start in time: its mode is resolved there
     if (l.supplies >= 0 && l.started_by < 0 && l.starts_at > 0 && l.starts_at <= d.horizon)
       d.breaks.insert(std::lower_bound(d.breaks.begin(), d.breaks.end(), l.starts_at), l.starts_at);
+  // An actuated element's engagement (actuator.hpp), from the command as the run starts reading it;
+  // its knots are breakpoints in place of the command's own (room kept for a triggered command's).
+  for (std::size_t k = 0; k < sys.elements.size(); ++k) {
+    const FrictionElementData& e = sys.elements[k];
+    ActuatorKnots& knots = d.actuators[k];
+    for (std::vector<double>* v : {&knots.t, &knots.e, &knots.p, &knots.slope}) v->clear();
+    if (!actuated(e)) continue;
+    const int i = d.command_trigger[k];
+    const Signal& now = i >= 0 ? d.before[static_cast<std::size_t>(i)] : d.commands[k];
+    const std::size_t n = knot_count(now) + (i >= 0 ? knot_count(d.commands[k]) + 1 : 0);
+    for (std::vector<double>* v : {&knots.t, &knots.e, &knots.p, &knots.slope}) v->reserve(n);
+    add_knots(knots, now, -std::numeric_limits<double>::infinity(), e.fill_delay, e.time_constant);
+    for (const double t : knots.t)
+      if (t > 0 && t <= d.horizon) d.breaks.insert(std::lower_bound(d.breaks.begin(), d.breaks.end(), t), t);
+  }
   d.breaks.erase(std::unique(d.breaks.begin(), d.breaks.end()), d.breaks.end());
   d.breaks.reserve(d.breaks.size() + start_breaks);
   d.sine_period = shortest_sine_period(all);

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "pogear/actuator.hpp"
 #include "pogear/event_proof.hpp"
 #include "pogear/hybrid_modes.hpp"
 #include "pogear/hybrid_observe.hpp"
@@ -59,6 +60,9 @@ struct HybridData {
   // `triggers_live`: off while the initial mode resolves (no event); `started_now`: a signal started
   // at the instant being resolved, which must be resolved again with it.
   std::vector<Signal> inputs, commands, before;
+  // Per brake or clutch with an actuator, its engagement's knots (the command as the run reads it:
+  // `before`, then from a trigger's start the triggered one); empty for the others.
+  std::vector<ActuatorKnots> actuators;
   std::vector<int> input_trigger, command_trigger;
   std::vector<double> start;
   std::vector<char> reported;
@@ -147,6 +151,7 @@ inline HybridData make_hybrid_data(const HybridSystem& sys, double horizon) {
   d.shown_energy.resize(d.energy.size() - d.nm);
   d.inputs = sys.inputs;  // each run copies them again: the system may change between runs
   for (const FrictionElementData& e : sys.elements) d.commands.push_back(e.command);
+  d.actuators.resize(sys.elements.size());
   d.input_trigger.assign(sys.inputs.size(), -1);
   d.command_trigger.assign(sys.elements.size(), -1);
   d.before.resize(sys.triggered.size());
@@ -200,12 +205,21 @@ inline const Signal& command_signal(const HybridData& d, std::size_t k, double t
   return i >= 0 && t < d.start[static_cast<std::size_t>(i)] ? d.before[static_cast<std::size_t>(i)] : d.commands[k];
 }
 
-// An element's command: a controller's is 1 throughout (it is never open, a slip controller's phase
-// aside), a slip-controlled element's from its controller's start on (its capacity at lock-up).
-inline double command(const HybridSystem&, const HybridData& d, int k, double t) {
+// An element's command as it engages the element: a controller's is 1 throughout (it is never open,
+// a slip controller's phase aside), a slip-controlled element's from its controller's start on (its
+// capacity at lock-up), an actuated element's the engagement its actuator gives.
+inline double command(const HybridSystem& sys, const HybridData& d, int k, double t) {
   if (is_limit(d, k)) return 1.0;
-  if (const int l = d.supplier[static_cast<std::size_t>(k)]; l >= 0 && d.phase[static_cast<std::size_t>(l)] != kWaiting) return 1.0;
-  return value(command_signal(d, static_cast<std::size_t>(k), t), t);
+  const auto K = static_cast<std::size_t>(k);
+  if (const int l = d.supplier[K]; l >= 0 && d.phase[static_cast<std::size_t>(l)] != kWaiting) return 1.0;
+  if (const FrictionElementData& e = sys.elements[K]; actuated(e)) return engagement(d.actuators[K], e.time_constant, t);
+  return value(command_signal(d, K, t), t);
+}
+// Its rate (right derivative), where command() follows the element's own signal.
+inline double command_slope(const HybridSystem& sys, const HybridData& d, int k, double t) {
+  const auto K = static_cast<std::size_t>(k);
+  if (const FrictionElementData& e = sys.elements[K]; actuated(e)) return engagement_slope(d.actuators[K], e.time_constant, t);
+  return slope(command_signal(d, K, t), t);
 }
 // The torque per unit command of element k while it slips: its capacity, or zero for a one-way
 // element overrunning in its free direction.

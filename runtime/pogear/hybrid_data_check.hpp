@@ -25,6 +25,9 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
       fits = std::isfinite(f.t[i]) && f.v[i] > 0 && f.v[i] <= 10 && (i == 0 || f.t[i] > f.t[i - 1]);
     if (!fits) return "a friction curve is not slips strictly increasing from 0 with ratios in (0, 10]";
   }
+  for (const FrictionElementData& e : sys.elements)
+    if (!(e.fill_delay >= 0) || !std::isfinite(e.fill_delay) || !(e.time_constant >= 0) || !std::isfinite(e.time_constant))
+      return "an actuator's fill delay or time constant is negative or not finite";
   if (sys.N.cols() != static_cast<Eigen::Index>(sys.inputs.size() + sys.state_torques.size()) + ne)
     return "the system has not one input column per input, state torque, brake or clutch, and torque limit";
   for (const StateTorqueData& q : sys.state_torques) {
@@ -53,6 +56,8 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
              "and a capacity";
     for (std::size_t j = 0; j < i; ++j)
       if (sys.limits[j].supplies == l.supplies) return "two slip controllers supply the same brake or clutch";
+    if (actuated(sys.elements[static_cast<std::size_t>(l.supplies)]))
+      return "a slip controller supplies a brake or clutch with an actuator (its command would need the actuator's state)";
   }
   if (ne > 32) return "more than 32 brakes, clutches and torque limits (a mode is a 32-bit set)";
   for (const TriggeredSignal& s : sys.triggered) {
@@ -78,7 +83,7 @@ inline const char* data_mismatch(const HybridSystem& sys, const HybridData& d) {
       d.S.cols() != nx || d.x.size() != nx || d.energy.size() != ne + static_cast<Eigen::Index>(sys.state_torques.size()) || d.state.size() != static_cast<std::size_t>(ne) ||
       d.dir.size() != d.state.size() || d.g0.size() != ne || d.v.size() != d.nw || d.dx.size() != nx ||
       d.nu != d.ns + static_cast<Eigen::Index>(sys.state_torques.size()) ||
-      d.inputs.size() != sys.inputs.size() || d.commands.size() != sys.elements.size() ||
+      d.inputs.size() != sys.inputs.size() || d.commands.size() != sys.elements.size() || d.actuators.size() != sys.elements.size() ||
       d.start.size() != sys.triggered.size() || d.before.size() != sys.triggered.size() ||
       d.nm != crossing_count(sys) || d.supplier.size() != d.state.size() || d.phase.size() != d.state.size() ||
       d.shown_w.size() != d.nw - d.nm || d.shown_slip.size() != ne - d.nm)

@@ -47,7 +47,7 @@ inline void known_input_slopes(const HybridSystem& sys, const HybridData& d, dou
     const auto K = static_cast<std::size_t>(k);
     dv(d.nu + k) = d.state[K] == ElementState::stuck || is_limit(d, k) || controlled(d, k)
                        ? 0.0
-                       : torque_scale(sys, d, k) * slope(command_signal(d, K, at), at) * d.dir[K];
+                       : torque_scale(sys, d, k) * command_slope(sys, d, k, at) * d.dir[K];
   }
 }
 
@@ -83,7 +83,7 @@ inline void state_torque_slopes(const HybridSystem& sys, const HybridData& d, do
     const FrictionElementData& e = sys.elements[K];
     const double s = d.S.row(k).dot(x);
     dv(d.nu + k) = torque_scale(sys, d, k) * d.dir[K] *
-                   (slope(command_signal(d, K, at), at) * friction_ratio(e, s) +
+                   (command_slope(sys, d, k, at) * friction_ratio(e, s) +
                     command(sys, d, k, at) * friction_ratio_slope(e, s) * d.S.row(k).dot(dx));
   }
 }

@@ -32,7 +32,11 @@ struct FrictionElementData {
   Signal command;
   bool one_way = false;
   Table friction_curve = {};  // "= {}": a brace list that stops before it is complete (-Wmissing-field-initializers)
+  // The actuator between command and engagement (actuator.hpp): fill delay and lag [s], 0 without.
+  double fill_delay = 0, time_constant = 0;
 };
+
+inline bool actuated(const FrictionElementData& e) { return e.fill_delay > 0 || e.time_constant > 0; }
 
 inline bool varies_with_slip(const FrictionElementData& e) { return !e.friction_curve.t.empty(); }
 // f(|s|) at slip s, and its rate over s (the curve is of |s|: its slope times the sign of s).
@@ -121,6 +125,12 @@ struct HybridSystem {
 // Whether some element's friction varies with slip: its slipping modes are then nonlinear.
 inline bool varies_with_slip(const HybridSystem& sys) {
   return std::any_of(sys.elements.begin(), sys.elements.end(), [](const FrictionElementData& e) { return varies_with_slip(e); });
+}
+
+// Whether some element's actuator lags its command: the engagement is then exponential between the
+// command's breakpoints, not linear.
+inline bool lags_its_command(const HybridSystem& sys) {
+  return std::any_of(sys.elements.begin(), sys.elements.end(), [](const FrictionElementData& e) { return e.time_constant > 0; });
 }
 
 // The triggered signals that wait for a crossing (each runs as a monitor: hybrid_crossings.hpp).

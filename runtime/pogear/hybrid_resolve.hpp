@@ -27,6 +27,17 @@ inline void start_signal(const HybridSystem& sys, HybridData& d, std::size_t i, 
     if ((at == d.breaks.end() || *at != b) && d.breaks.size() < d.breaks.capacity()) d.breaks.insert(at, b);
   };
   add(t0);
+  if (s.command && actuated(sys.elements[j])) {
+    // The actuator engages by `before` until t0 + its delay, then lags the triggered command.
+    const FrictionElementData& e = sys.elements[j];
+    ActuatorKnots& knots = d.actuators[j];
+    const double from = t0 + e.fill_delay;
+    drop_knots_from(knots, from);
+    const std::size_t kept = knots.t.size();
+    add_knots(knots, d.commands[j], t0, e.fill_delay, e.time_constant);
+    for (std::size_t n = kept; n < knots.t.size(); ++n) add(knots.t[n]);
+    return;
+  }
   for_each_break(s.command ? d.commands[j] : d.inputs[j], add);
 }
 

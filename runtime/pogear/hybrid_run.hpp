@@ -185,7 +185,7 @@ int run_hybrid_system(const System& sys, const typename System::Params& p, const
   const SystemTraits traits{.nonlinear = nq > 0, .engages_friction = ne > 0, .limits_torque = nl > 0, .driveline = nd > 0,
                             .slip_control = std::any_of(hs.limits.begin(), hs.limits.end(),
                                                         [](const TorqueLimitData& l) { return l.supplies >= 0; }),
-                            .friction_curve = varies_with_slip(hs)};
+                            .friction_curve = varies_with_slip(hs), .actuator_lag = lags_its_command(hs)};
   if (const auto refusal = solver_refusal(run.solver, traits)) {
     const std::vector<Solver> solvers = admissible_solvers(traits);
     std::fprintf(stderr, "%s%s: error: %s; use --solver %s\n", run.name.c_str(), suffix.c_str(),

@@ -58,6 +58,7 @@ struct SystemTraits {
   bool driveline = false;  // an engine or a converter, nonlinear whatever the loads
   bool slip_control = false;  // a slip controller: its element's heat is quadratic in the state
   bool friction_curve = false;  // friction that varies with slip: a slipping element's torque varies with the state
+  bool actuator_lag = false;  // an actuator's first-order lag: an engagement exponential between breakpoints
 };
 
 // Why a solver cannot run a system: what the system holds (`cause`), and how that meets the solver
@@ -91,6 +92,9 @@ inline constexpr std::optional<SolverRefusal> solver_refusal(Solver s, const Sys
                          "which exact stepping does not integrate"};
   if (system.friction_curve && s == Solver::exact)
     return SolverRefusal{"a friction curve makes a slipping element's torque vary with its slip",
+                         "which exact stepping does not integrate"};
+  if (system.actuator_lag && s == Solver::exact)
+    return SolverRefusal{"an actuator's lag makes its element's engagement exponential between the command's breakpoints",
                          "which exact stepping does not integrate"};
   if (system.nonlinear && s == Solver::rk4)
     return SolverRefusal{nonlinear, "which rk4's fixed step cannot be checked against its stability limit"};

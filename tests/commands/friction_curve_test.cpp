@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/braked_wheels.hpp"
 #include "../support/commands.hpp"
 #include "../support/csv.hpp"
 #include "../support/files.hpp"
@@ -95,37 +96,10 @@ TEST(FrictionCurve, LockUpClutchTakesACurve) {
 // capacity and again along the curve.) Above 100 rad/s the speed falls linearly, |w| = 150 - 60 t,
 // until t1 = 5/6 s; then J |w|' = -(10 + 0.2 |w|): |w| + 50 = 150 e^(-0.4 (t - t1)), the brake
 // locking at t1 + 2.5 ln 3. All the kinetic energy J w0^2 / 2 = 5625 J becomes the brake's heat.
-const char* const two_wheels_model = R"(name = "two_wheels"
-keep = ["a"]
-
-[[body]]
-name = "a"
-
-[[body]]
-name = "b"
-axis = { fixed = "below" }
-
-[[mesh]]
-first = "a"
-second = "b"
-
-[[brake]]
-name = "B"
-body = "a"
-static_ratio = 1.2
-friction_curve = [["0*rad/s", 0.5], ["100*rad/s", 1.5]]
-
-[parameters]
-r_a = "5*cm"
-r_b = "10*cm"
-J_a = "0.3*kg*m^2"
-J_b = "0.8*kg*m^2"
-b_a = "0*N*m*s"
-b_b = "0*N*m*s"
-K_ab = "1e6*N/m"
-b_ab = "10*N*s/m"
-Tcap_B = "20*N*m"
-)";
+std::string two_wheels_model() {
+  return with_edits(braked_wheels_model(),
+                    {{"static_ratio = 1.2\n", "static_ratio = 1.2\nfriction_curve = [[\"0*rad/s\", 0.5], [\"100*rad/s\", 1.5]]\n"}});
+}
 
 double closed_form_speed(double t) {
   const double t1 = 5.0 / 6.0;
@@ -141,7 +115,7 @@ void expect_linear_curve_closed_form(const std::string& solver, const std::strin
   const fs::path dir = temp_dir("curve_" + solver + (path.empty() ? "_compiled" : "_interpreted") +
                                 (sign > 0 ? "_fwd" : "_back"));
   fs::create_directories(dir);
-  write_text(dir / "two_wheels.toml", two_wheels_model);
+  write_text(dir / "two_wheels.toml", two_wheels_model());
   write_text(dir / "scene.toml",
              "name = \"spin\"\nmodel = \"two_wheels.toml\"\neffects = []\n[initial]\nomega_a = \"" +
                  std::to_string(static_cast<int>(150 * sign)) + "*rad/s\"\n[engagement]\nB = \"1\"\n"
@@ -192,8 +166,8 @@ TEST(FrictionCurve, StaticCapacityIsTheStaticRatioTimesTheCapacity) {
       const fs::path dir = temp_dir("curve_static_" + std::to_string(torque) + (varies ? "_varying" : "_constant"));
       fs::create_directories(dir);
       write_text(dir / "two_wheels.toml",
-                 varies ? std::string(two_wheels_model)
-                        : with_edits(two_wheels_model, {{"[\"100*rad/s\", 1.5]", "[\"100*rad/s\", 0.5]"}}));
+                 varies ? two_wheels_model()
+                        : with_edits(two_wheels_model(), {{"[\"100*rad/s\", 1.5]", "[\"100*rad/s\", 0.5]"}}));
       write_text(dir / "scene.toml", "name = \"hold\"\nmodel = \"two_wheels.toml\"\neffects = []\n[inputs]\ntau_a = \"" +
                                          std::to_string(torque) + "*N*m\"\n[initial]\nomega_a = \"0*rad/s\"\n"
                                          "[engagement]\nB = \"1\"\n[simulation]\nhorizon = \"0.5*s\"\nsample = \"10*ms\"\n");

@@ -688,7 +688,7 @@ TEST_F(SceneFiles, TomlSyntax) {
 
 TEST_F(SceneFiles, UnknownKey) {
   expect_scene_error({{"compare_rigid = true", "compare_rigid = true\nduration = 2"}},
-      R"~(scene.toml:7:1: error: unknown key 'duration' in the scene file; the keys are name, model, effects, keep, compare_rigid, tunable, outputs, inputs, initial, parameters, simulation, engagement, speed_unit, loads, controllers, vehicle, engine, converter, thermal, slip_control)~");
+      R"~(scene.toml:7:1: error: unknown key 'duration' in the scene file; the keys are name, model, effects, keep, compare_rigid, tunable, outputs, inputs, initial, parameters, simulation, engagement, speed_unit, loads, controllers, vehicle, engine, converter, thermal, actuators, slip_control)~");
 }
 
 TEST_F(SceneFiles, ModelError) {

@@ -66,6 +66,12 @@ TEST_F(StartInGear, ElementOpenAtTheStart) {
       R"~(scene.toml:13:8: error: gear '1' engages D, but [engagement] leaves it open at t = 0; command it engaged from the start, e.g. D = "1")~");
 }
 
+// A command that rises at t = 0 reaches the element only after its actuator's delay or lag.
+TEST_F(StartInGear, ElementTheActuatorHasNotEngagedAtTheStart) {
+  expect_start_error({{R"(D = "1")", "D = { step = \"1\", at = \"0*s\", before = \"0\" }\n\n[actuators]\nD = { fill_delay = \"30*ms\" }"}},
+      R"~(scene.toml:16:8: error: gear '1' engages D, but its actuator has not engaged it at t = 0 (its command rises at t = 0, behind its fill delay or lag); command it engaged before the run, e.g. D = "1")~");
+}
+
 TEST_F(StartInGear, ElementOutsideTheGearEngagedAtTheStart) {
   expect_start_error({{R"(D = "1")", "D = \"1\"\nB = \"0.5\""}},
       R"~(scene.toml:14:8: error: starting in gear '1', B is commanded 0.5 at t = 0, but the gear does not engage it; open it at t = 0 (its command 0), or start in a gear that engages it)~");

@@ -165,6 +165,7 @@ enum class Drive {
   fan,        // a quadratic torque (an input of the state) brakes body 3
   driveline,  // an engine on body 1 and a converter from it to body 2, the clutch its lock-up
   triggered,  // the signals, the load's step starting 0.5 s after the clutch locks
+  actuated,   // the clutch's actuator lags its command, which falls 0.5 s after the clutch locks
 };
 
 // Body 1 spins against bodies 2 and 3 (an elastic shaft between them) through a clutch that engages,
@@ -195,6 +196,13 @@ rt::HybridSystem clutch_and_shaft(Drive drive) {
   if (drive == Drive::triggered) {  // a jump to 30 N m at its start: the table's repeated first time
     sys.inputs[1] = rt::Table{{0, 0}, {0, 30}};
     sys.triggered = {{false, 1, 0, rt::ElementState::stuck, 0.5, "load", std::nullopt, std::nullopt}};
+  }
+  if (drive == Drive::actuated) {  // its knots at the trigger in capacity reserved before the run
+    rt::FrictionElementData& e = sys.elements[0];
+    e.fill_delay = 0.02;
+    e.time_constant = 0.05;
+    sys.triggered = {{true, 0, 0, rt::ElementState::stuck, 0.5, "command_C", e.command, std::nullopt}};
+    e.command = rt::Table{{0, 0.25}, {1, 0.6}};
   }
   if (drive == Drive::fan) sys.state_torques.push_back(rt::quadratic_torque_data(Eigen::RowVector4d(0, 0, 0, 1), 0.002));
   if (drive == Drive::driveline) {
@@ -245,7 +253,7 @@ void expect_later_periods_allocate_nothing(Drive drive, rt::HybridMethod method)
   ASSERT_TRUE(status.ok) << status.message;
   ASSERT_EQ(t.size() + 1, n);
   ASSERT_GE(events.size(), 3u);  // engages, locks, breaks away
-  EXPECT_EQ(started, drive == Drive::triggered ? 1 : 0);
+  EXPECT_EQ(started, drive == Drive::triggered || drive == Drive::actuated ? 1 : 0);
   auto has_event = [&](std::size_t i) {  // in the sample period (t[i-1], t[i]]
     for (const double e : events)
       if (e > t[i - 1] && e <= t[i]) return true;
@@ -298,6 +306,15 @@ TEST(NoAlloc, HybridSteppingOfAnEngineAndAConverter) {
   for (const rt::Solver solver : {rt::Solver::dopri5, rt::Solver::implicit}) {
     SCOPED_TRACE(std::string(rt::solver_name(solver)));
     expect_later_periods_allocate_nothing(Drive::driveline, rt::HybridMethod{solver, {}});
+  }
+}
+
+// The clutch's command through an actuator (delay and lag), falling on a trigger: the engagement's
+// knots, rebuilt at the trigger, in the capacity reserved before the run.
+TEST(NoAlloc, HybridSteppingThroughAnActuator) {
+  for (const rt::Solver solver : {rt::Solver::dopri5, rt::Solver::implicit}) {
+    SCOPED_TRACE(std::string(rt::solver_name(solver)));
+    expect_later_periods_allocate_nothing(Drive::actuated, rt::HybridMethod{solver, {}});
   }
 }
 #endif

@@ -26,6 +26,7 @@
 #include "read/vehicle_table.hpp"
 #include "read/scene_reader.hpp"
 #include "read/signal_start.hpp"
+#include "read/actuator_table.hpp"
 #include "read/thermal_table.hpp"
 #include "read/simulation_table.hpp"
 #include "read/friction_curve.hpp"
@@ -103,9 +104,12 @@ void check_solver(Scene& s, bool engaged) {
                                                              [](const ControllerSpec& c) { return c.limited(); }),
                                 .driveline = s.engine || s.converter,
                                 .slip_control = has_slip_control(s),
-                                .friction_curve = std::any_of(s.engagement.begin(), s.engagement.end(), curved)};
+                                .friction_curve = std::any_of(s.engagement.begin(), s.engagement.end(), curved),
+                                .actuator_lag = std::any_of(s.actuators.begin(), s.actuators.end(),
+                                                            [](const ActuatorSpec& a) { return a.time_constant > 0; })};
   const std::vector<Solver> admissible = rt::admissible_solvers(traits);
-  if ((traits.nonlinear || traits.slip_control || traits.friction_curve) && !s.solver_given) s.solver = Solver::dopri5;
+  if ((traits.nonlinear || traits.slip_control || traits.friction_curve || traits.actuator_lag) && !s.solver_given)
+    s.solver = Solver::dopri5;
   if (const auto refusal = rt::solver_refusal(s.solver, traits)) {
     // A quadratic load can be made linear; an engine's or a converter's torques cannot.
     const bool load = refusal->cause == rt::solver_refusal(Solver::exact, {.nonlinear = true})->cause;
@@ -151,7 +155,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
                   max_model_file_bytes));
   r.only_keys(root, {"name", "model", "effects", "keep", "compare_rigid", "tunable", "outputs", "inputs", "initial",
                      "parameters", "simulation", "engagement", "speed_unit", "loads", "controllers", "vehicle", "engine",
-                     "converter", "thermal", "slip_control"},
+                     "converter", "thermal", "actuators", "slip_control"},
               "the scene file");
   Scene s;
   s.file = path;
@@ -296,6 +300,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
               [](const EngagementSpec& a, const EngagementSpec& b) { return a.element < b.element; });
   }
   if (const toml::node* n = root.get("thermal")) s.thermal = read_thermal(r, *n);
+  if (const toml::node* n = root.get("actuators")) s.actuators = read_actuators(r, *n);
   if (const toml::node* n = root.get("slip_control")) read_slip_control(r, *n, scene_dir, s);
 
   if (const toml::node* n = root.get("initial")) {
@@ -410,6 +415,7 @@ Scene parse_scene_text(const std::string& text, const std::string& path) {
   check_loads_and_controllers(s);
   check_signal_starts(s);
   check_thermal(s);
+  check_actuators(s);
   check_driveline(s);
   check_solver(s, engaged);
   check_vehicle_jerk(s);

@@ -79,6 +79,14 @@ struct ThermalSpec {
   SourceLocation where;
 };
 
+// A brake's or clutch's actuator (scene-format.md, "Actuators"): the command reaches the element
+// after a fill delay [s], through a first-order lag [s].
+struct ActuatorSpec {
+  int element = -1;  // index into Topology::friction_elements
+  double fill_delay = 0, time_constant = 0;
+  SourceLocation where;
+};
+
 // A load on a body (scene-format.md, "Loads"): the torque -(constant + linear omega + quadratic
 // omega |omega|) in SI units. The constant part is a constant input, the linear one a damping that
 // keeps the scene linear, the quadratic one makes it nonlinear.
@@ -194,6 +202,7 @@ struct Scene {
   SourceLocation initial_engaged_where;
   std::vector<std::string> tunable;
   std::vector<ThermalSpec> thermal;  // in element order
+  std::vector<ActuatorSpec> actuators;  // in element order
   std::vector<Variable> outputs;  // velocities and forces; empty: every velocity, and every force with mesh_forces
   double horizon = 1.0;
   double sample = 1e-3;

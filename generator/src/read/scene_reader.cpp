@@ -288,6 +288,14 @@ bool engages(const Scene& s, int element) {
   });
 }
 
+void fail_no_friction_element(const SceneReader& r, const toml::node& where, std::string_view name,
+                              std::string_view purpose) {
+  std::string names;
+  for (const FrictionElement& e : r.model->friction_elements) names += (names.empty() ? "" : ", ") + e.name;
+  r.fail(where, fmt::format("'{}' is no brake or clutch of the model{}; {}", name,
+                            names.empty() ? std::string(", which has none") : " (it has " + names + ")", purpose));
+}
+
 double value_at_start(const rt::Signal& signal, const std::optional<SignalStart>& start) {
   return rt::value(start ? rt::held_until_start(signal, start->before) : signal, 0.0);
 }

@@ -43,6 +43,11 @@ struct SceneReader : TomlReader {
   Quantity checked_quantity(const toml::node& n, const Dimension& dim, std::string_view what) const;
 };
 
+// Refuses `name` at `where` as no brake or clutch of the model, listing those it has, then why the
+// scene names one (`purpose`).
+[[noreturn]] void fail_no_friction_element(const SceneReader& r, const toml::node& where, std::string_view name,
+                                           std::string_view purpose);
+
 // The tunable that parameter `name` is or is defined through (directly or through other
 // parameters), or "". The model's evaluation has ruled out cycles.
 std::string tunable_behind(const Topology& t, const std::vector<std::string>& tunable, const std::string& name);

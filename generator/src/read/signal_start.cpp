@@ -23,10 +23,7 @@ constexpr std::string_view kWhenForms =
     "(< or >), e.g. when = \"C stuck\" or when = \"|slip_C| < 50*rpm\"";
 
 [[noreturn]] void fail_no_element(const SceneReader& r, const toml::node& when, std::string_view name) {
-  std::string names;
-  for (const FrictionElement& e : r.model->friction_elements) names += (names.empty() ? "" : ", ") + e.name;
-  r.fail(when, fmt::format("'{}' is no brake or clutch of the model{}; {}", name,
-                           names.empty() ? std::string(", which has none") : " (it has " + names + ")", kWhenForms));
+  fail_no_friction_element(r, when, name, kWhenForms);
 }
 
 // The speed a crossing's text gives after its comparison (at `offset` in the string), with the

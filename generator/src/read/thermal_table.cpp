@@ -36,12 +36,7 @@ std::vector<ThermalSpec> read_thermal(const SceneReader& r, const toml::node& n)
     const std::string name(key.str());
     ThermalSpec th;
     th.element = find_friction_element(*r.model, name);
-    if (th.element < 0) {
-      std::string names;
-      for (const auto& e : r.model->friction_elements) names += (names.empty() ? "" : ", ") + e.name;
-      r.fail(value, fmt::format("'{}' is no brake or clutch of the model{}; [thermal] gives an element's heat "
-                                "capacity and cooling", name, names.empty() ? std::string(", which has none") : " (it has " + names + ")"));
-    }
+    if (th.element < 0) fail_no_friction_element(r, value, name, "[thermal] gives an element's heat capacity and cooling");
     const toml::table& e = r.table(value, fmt::format("[thermal] {}", name));
     r.only_keys(e, {"heat_capacity", "conductance", "ambient", "initial"}, fmt::format("[thermal] {}", name));
     th.where = r.loc(value);

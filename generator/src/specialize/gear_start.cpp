@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
+#include "pogear/actuator.hpp"
 #include "common/exact_algebra.hpp"
 #include "derive/engagement.hpp"
 #include "names/model_variables.hpp"
@@ -55,6 +57,18 @@ Derivation mode_derivation(const Scene& sc, const Topology& t, const std::vector
   return derive_topology(t, named, sc.initial_where, false, sc.initial_engaged);
 }
 
+// What an element engages with at t = 0: its command then, or with an actuator the engagement
+// the actuator has at rest on the command before the run (0 there for a command that rises at t = 0
+// behind a delay or a lag).
+double engagement_at_start(const FrictionRun& run) {
+  const double command = value_at_start(run.command, run.start);
+  if (!(run.fill_delay > 0 || run.time_constant > 0)) return command;
+  rt::ActuatorKnots knots;
+  rt::add_knots(knots, run.start ? rt::held_until_start(run.command, run.start->before) : run.command,
+                -std::numeric_limits<double>::infinity(), run.fill_delay, run.time_constant);
+  return rt::engagement(knots, run.time_constant, 0.0);
+}
+
 // The elements the gear does not engage are open at t = 0: one commanded would slip with a torque
 // the gear's rigid model does not carry, or stick into another mode.
 void check_others_open(const SpecializedScene& model, const std::string& gear) {
@@ -62,7 +76,7 @@ void check_others_open(const SpecializedScene& model, const std::string& gear) {
   const Topology& t = model.derivation.topology;
   for (const FrictionRun& run : model.friction) {
     const bool in_gear = std::find(sc.initial_engaged.begin(), sc.initial_engaged.end(), run.element) != sc.initial_engaged.end();
-    const double command = value_at_start(run.command, run.start);
+    const double command = engagement_at_start(run);
     if (!in_gear && command != 0)
       throw InputError(sc.initial_engaged_where,
                        fmt::format("starting in {}, {} is commanded {:.6g} at t = 0, but the gear does not engage it; "
@@ -81,7 +95,12 @@ void check_stuck_torques(const SpecializedScene& model, const std::string& gear,
     const int k = sc.initial_engaged[j];
     const FrictionElement& e = t.friction_elements[static_cast<std::size_t>(k)];
     const auto run = std::find_if(model.friction.begin(), model.friction.end(), [&](const FrictionRun& f) { return f.element == k; });
-    const double command = run == model.friction.end() ? 0.0 : value_at_start(run->command, run->start);
+    const double command = run == model.friction.end() ? 0.0 : engagement_at_start(*run);
+    if (!(command > 0) && run != model.friction.end() && value_at_start(run->command, run->start) > 0)
+      throw InputError(sc.initial_engaged_where,
+                       fmt::format("{} engages {}, but its actuator has not engaged it at t = 0 (its command rises at "
+                                   "t = 0, behind its fill delay or lag); command it engaged before the run, e.g. {} = \"1\"",
+                                   gear, e.name, e.name));
     if (!(command > 0))
       throw InputError(sc.initial_engaged_where,
                        fmt::format("{} engages {}, but [engagement] leaves it open at t = 0; command it engaged from "

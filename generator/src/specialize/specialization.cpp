@@ -358,7 +358,8 @@ rt::SystemTraits solver_traits(const SpecializedScene& model) {
           .limits_torque = !model.main.limited_controllers.empty(),
           .driveline = !model.main.driveline.empty(),
           .slip_control = has_slip_control(model.scene),
-          .friction_curve = std::any_of(model.friction.begin(), model.friction.end(), [](const FrictionRun& f) { return !f.friction_curve.t.empty(); })};
+          .friction_curve = std::any_of(model.friction.begin(), model.friction.end(), [](const FrictionRun& f) { return !f.friction_curve.t.empty(); }),
+          .actuator_lag = std::any_of(model.friction.begin(), model.friction.end(), [](const FrictionRun& f) { return f.time_constant > 0; })};
 }
 
 GiNaC::numeric output_per_model_force(const Topology& t, const Mesh& m) {
@@ -400,7 +401,12 @@ SpecializedScene specialize(const Scene& scene) {
                                          static_friction_ratio(t, f) / r, e.command,
                                          f.one_way, e.start,
                                          varies_with_slip(f) ? rt::Table{f.curve_slip, f.curve_ratio} : rt::Table{},
-                                         tuned.expand()});
+                                         0.0, 0.0, tuned.expand()});
+    for (const ActuatorSpec& a : scene.actuators)
+      if (a.element == e.element) {
+        model.friction.back().fill_delay = a.fill_delay;
+        model.friction.back().time_constant = a.time_constant;
+      }
   }
   if (const std::optional<StartState> start = start_state(model)) {
     set_initial_values(start->main, model.main);

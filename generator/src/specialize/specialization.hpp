@@ -128,6 +128,7 @@ struct FrictionRun {
   bool one_way = false;
   std::optional<SignalStart> start;  // a command that starts on an event
   rt::Table friction_curve;
+  double fill_delay = 0, time_constant = 0;  // its actuator's ([actuators]), 0 without
   // The capacity in the tunables (a number when none enters it), what a run at other --param values
   // takes: the generated friction_elements(p), and at_parameter_options.
   GiNaC::ex tuned_capacity;
@@ -136,7 +137,7 @@ struct FrictionRun {
 
 // The element as the runtime's runs take it.
 inline rt::FrictionElementData element_data(const FrictionRun& f) {
-  return {f.name, f.capacity, f.static_ratio, f.command, f.one_way, f.friction_curve};
+  return {f.name, f.capacity, f.static_ratio, f.command, f.one_way, f.friction_curve, f.fill_delay, f.time_constant};
 }
 
 struct SpecializedScene {

@@ -269,6 +269,10 @@ Diagnostics system_diagnostics(const SpecializedScene& model, const SpecializedS
     out.suggested_solver = "dopri5";
     out.reason = fmt::format("{}, {}; dopri5 integrates it, its steps held to the event-check step as on every shift",
                              curve->cause, curve->reason);
+  } else if (const auto lag = rt::solver_refusal(rt::Solver::exact, {.actuator_lag = solver_traits(model).actuator_lag})) {
+    out.suggested_solver = "dopri5";
+    out.reason = fmt::format("{}, {}; dopri5 integrates it, its steps held to the event-check step as on every shift",
+                             lag->cause, lag->reason);
   } else if (const auto slip = rt::solver_refusal(rt::Solver::exact, {.slip_control = has_slip_control(model.scene)})) {
     out.suggested_solver = "dopri5";
     out.reason = fmt::format("{}, {}; dopri5 integrates it on its dense output, its steps held to the event-check "
