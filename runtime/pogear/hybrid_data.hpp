@@ -190,6 +190,12 @@ inline double control_start(const HybridSystem& sys, const HybridData& d, int k)
 inline double held_torque(const HybridSystem& sys, const HybridData& d, int k) {
   return d.dir[static_cast<std::size_t>(k)] > 0 ? limit(sys, d, k).torque_max : limit(sys, d, k).torque_min;
 }
+// A controller's torque Tk within its limits: the margins to its upper and lower limit, each widened
+// by `band` (a monitor's, monitor_band), negative beyond. The event functions and mode resolution
+// both judge a limit by these, so that what one finds beyond the other does too.
+inline std::pair<double, double> limit_margins(const HybridSystem& sys, const HybridData& d, int k, double Tk, double band) {
+  return {limit(sys, d, k).torque_max + band - Tk, Tk - limit(sys, d, k).torque_min + band};
+}
 // A controller's law at state x and known inputs v.
 template <class X, class V>
 double law(const HybridSystem& sys, const HybridData& d, int k, const X& x, const V& v) {

@@ -27,8 +27,8 @@ inline void event_values(const HybridSystem& sys, HybridData& d, const ModeMatri
     const int k = m.stuck[j];
     const double Tk = d.T(static_cast<Eigen::Index>(j));
     if (is_limit(d, k)) {
-      const double band = monitor_band(d, k, x);
-      g(k) = std::min(limit(sys, d, k).torque_max + band - Tk, Tk - limit(sys, d, k).torque_min + band);
+      const auto [above, below] = limit_margins(sys, d, k, Tk, monitor_band(d, k, x));
+      g(k) = std::min(above, below);
       continue;
     }
     const auto& e = sys.elements[static_cast<std::size_t>(k)];

@@ -66,6 +66,10 @@ inline void report_starts(const HybridSystem& sys, HybridData& d, double t, cons
     }
 }
 
+// The least ratio of a torque beyond what it can hold: an excess of an ulp, whose quotient rounds
+// to 1, still counts (else the event function that found it stays negative, and the event recurs).
+inline constexpr double kJustBeyond = 1 + std::numeric_limits<double>::epsilon();
+
 // How far element k's torque Tk lies beyond what it can hold, as a ratio above 1 (at most 1 when it
 // holds): a friction element's |T| over its static capacity at its command (infinite for a one-way
 // element pulled forward), a controller's excess over its range.
@@ -73,13 +77,16 @@ inline double overload(const HybridSystem& sys, const HybridData& d, int k, doub
   if (is_limit(d, k)) {
     const double lo = limit(sys, d, k).torque_min - band, hi = limit(sys, d, k).torque_max + band;
     const double range = std::isfinite(hi - lo) ? hi - lo : std::max({1.0, std::abs(std::isfinite(hi) ? hi : lo)});
-    return Tk > hi ? 1 + (Tk - hi) / range : Tk < lo ? 1 + (lo - Tk) / range : 0.0;
+    // Beyond as the event function sees it (limit_margins): lo and hi rounded would differ by an ulp.
+    const auto [above, below] = limit_margins(sys, d, k, Tk, band);
+    return above < 0 ? std::max(kJustBeyond, 1 - above / range) : below < 0 ? std::max(kJustBeyond, 1 - below / range) : 0.0;
   }
   const auto& e = sys.elements[static_cast<std::size_t>(k)];
   const double capacity = e.static_ratio * e.capacity * command(sys, d, k, t);
   const double Tj = std::abs(Tk);
   if (e.one_way && Tk > 0) return std::numeric_limits<double>::infinity();
-  return capacity > 0 ? Tj / capacity : (Tj > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+  if (!(capacity > 0)) return Tj > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+  return Tj > capacity ? std::max(kJustBeyond, Tj / capacity) : Tj / capacity;
 }
 
 // The slip controllers that start at or before t (control_start) begin controlling, bumpless: their

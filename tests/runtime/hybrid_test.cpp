@@ -317,5 +317,41 @@ TEST(Hybrid, UntrustedExponentialStopsTheRun) {
   EXPECT_EQ(samples, 1);  // t = 0 only: no state of an untrusted step was observed
 }
 
+// A speed crossing whose located state lies an ulp beyond its monitor's band: mode resolution judges
+// the monitor's limit by the event function's own margin, so it changes regime there (before, a
+// rounding of the widened limit kept it within, its event function stayed negative, and the run
+// stopped as chattering). One body at 150 rad/s decelerating at 20 rad/s^2 (-10 N m on 0.5 kg m^2);
+// the brake's command starts as the speed falls below the value, at (150 - value) / 20 s.
+TEST_P(HybridMethods, SpeedCrossingOnItsBandStartsOnce) {
+  for (const double value : {139.9, 139.3, 120.7}) {
+    SCOPED_TRACE(value);
+    HybridSystem sys;
+    sys.M = Eigen::MatrixXd::Zero(1, 1);
+    sys.N = Eigen::MatrixXd(1, 2);
+    sys.N << 1 / 0.5, -1 / 0.5;
+    sys.S = Eigen::MatrixXd::Ones(1, 1);
+    sys.inputs = {Constant{-10}};
+    sys.elements.push_back({"B", 20, 1.2, Table{{0, 0.1}, {1, 1}}});
+    CrossingTrigger c;
+    c.speed = Eigen::RowVectorXd::Ones(1);
+    c.value = value;
+    c.output = "omega_a";
+    sys.triggered = {{true, 0, -1, ElementState::slipping, 0, "command_B", Signal{Constant{0}}, c}};
+    Recorded r;
+    HybridEngine engine(sys, 2.0, method());
+    r.status = engine.run(Eigen::VectorXd::Constant(1, 150), 1e-3, [](double, const HybridSample&) { return true; },
+                          [&](const HybridEvent& e) { r.events.push_back(e); });
+    ASSERT_TRUE(r.status.ok) << r.status.message;
+    ASSERT_EQ(r.events.size(), 2u);  // the start, and B engaging at it
+    // The crossing lies beyond the band (256 ulps of 150 rad/s, 8.5e-12 rad/s, 4e-13 s at 20 rad/s^2)
+    // and the exact flow's rounding over the run's steps: within 1e-12 s of the closed form.
+    const double t = (150 - value) / 20;
+    EXPECT_EQ(r.events[0].started, 0);
+    EXPECT_NEAR(r.events[0].t, t, 1e-12);
+    EXPECT_EQ(r.events[1].to, ElementState::slipping);
+    EXPECT_EQ(r.events[1].t, r.events[0].t);
+  }
+}
+
 }  // namespace
 }  // namespace pogear::rt
