@@ -15,12 +15,13 @@ TEST_F(EngagementCommands, SlipControlOfNoElement) {
   expect_error(controlled + "B9 = { target = \"10*rad/s\", kp = \"0.01*s/rad\" }\n",
                R"~(scene.toml:25:1: error: 'B9' is no brake or clutch of the model (it has B1, C1); [slip_control] controls the slip of one of them)~", adaptive);
 }
-// A slip controller's gains and limits are per unit of its element's capacity at the scene's value.
-TEST_F(EngagementCommands, SlipControlNotWithTunables) {
+// A slip controller's gains and limits are its element's capacity at the scene's value times the
+// scene's per-unit values; other tunables are its scene's (SimulateCommand.ParamWithSlipControl).
+TEST_F(EngagementCommands, SlipControlOfATunableCapacity) {
   Edits edits = adaptive;
   edits.push_back({"compare_rigid = true", "compare_rigid = true\ntunable = [\"Tcap_B1\"]"});
   expect_error(controlled + "B1 = { target = \"10*rad/s\", kp = \"0.01*s/rad\" }\n",
-               R"~(scene.toml:7:11: error: a scene with [slip_control] has no tunable parameters yet; set the values in [parameters] and generate one simulator per value)~", edits);
+               R"~(scene.toml:7:11: error: the capacity of B1 (Tcap_B1) depends on tunable 'Tcap_B1', and B1's slip controller takes its gains and limits at the scene's capacity; drop 'Tcap_B1' from tunable, or set it in [parameters] and generate one simulator per value)~", edits);
 }
 // Speed and slip controllers share the scene's 16 (a run's modes are bits of a 32-bit word).
 TEST_F(EngagementCommands, SlipControlBeyondSixteenControllers) {

@@ -80,10 +80,18 @@ void apply_overrides(const SceneReader& r, const toml::node& n, Topology& t) {
 // What loads and controllers cannot be combined with (yet), each refused at the line that asks for it.
 void check_loads_and_controllers(const Scene& s) {
   if (s.loads.empty() && s.controllers.empty()) return;
-  // A slip controller's gains and limits are per unit of its element's capacity at the scene's value.
-  if (!s.tunable.empty() && has_slip_control(s))
-    throw InputError(s.tunable_where, "a scene with [slip_control] has no tunable parameters yet; set the values in "
-                                      "[parameters] and generate one simulator per value");
+  // A slip controller's gains and limits are its element's capacity times the scene's per-unit
+  // values, folded into the controller's law at the scene's capacity.
+  for (const ControllerSpec& c : s.controllers) {
+    if (c.supplies < 0) continue;
+    const FrictionElement& f = s.model.friction_elements[static_cast<std::size_t>(c.supplies)];
+    if (const std::string t = tunable_behind(s.model, s.tunable, f.capacity_parameter); !t.empty())
+      throw InputError(s.tunable_where,
+                       fmt::format("the capacity of {} ({}) depends on tunable '{}', and {}'s slip controller takes its "
+                                   "gains and limits at the scene's capacity; drop '{}' from tunable, or set it in "
+                                   "[parameters] and generate one simulator per value",
+                                   f.name, f.capacity_parameter, t, f.name, t));
+  }
   if (s.start != Start::given && !s.controllers.empty())
     throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [controllers]; give the "
                                     "initial speeds in [initial]");
