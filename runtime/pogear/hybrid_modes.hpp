@@ -34,6 +34,9 @@ struct FrictionElementData {
   Table friction_curve = {};  // "= {}": a brace list that stops before it is complete (-Wmissing-field-initializers)
   // The actuator between command and engagement (actuator.hpp): fill delay and lag [s], 0 without.
   double fill_delay = 0, time_constant = 0;
+  // Stuck at t = 0 by a start in a gear, whose state holds it there: a run whose capacities let it
+  // slip at the start (other --param values than the generator checked) is refused.
+  bool held_at_start = false;
 };
 
 inline bool actuated(const FrictionElementData& e) { return e.fill_delay > 0 || e.time_constant > 0; }

@@ -349,5 +349,60 @@ TEST(SimulateCommand, ParamWithSlipControl) {
   EXPECT_GT(relative_gap(read_csv((dir / "d/tunable.csv").string()), reference), 1e-3);
 }
 
+// A start in a gear with tunable capacities (the shipped 6HP26 upshift, started stuck in 1st): the
+// off-going D's and on-coming C's capacities move the shift, compiled and interpreted, as the values
+// written; a value below the torque 1st gear holds D with at t = 0 is refused by pogear and by the
+// simulator run by itself.
+TEST(StartInGear, ParamMovesTheCapacities) {
+  const fs::path dir = temp_dir("param_in_gear");
+  auto scene = [&](const std::string& name, const std::string& tunable, const std::string& parameters) {
+    return shipped_scene(dir, "zf6hp26_1_2_upshift", name,
+                         {"../zf6hp26.toml", "zf6hp26_D_release.csv", "zf6hp26_C_apply.csv"},
+                         {{"compare_rigid = true", "compare_rigid = true\n" + tunable},
+                          {"[parameters]\n", "[parameters]\n" + parameters + "\n"}});
+  };
+  const fs::path tunable = scene("tunable", "tunable = [\"Tcap_D\", \"Tcap_C\"]", "");
+  const fs::path written = scene("written", "", "Tcap_D = \"1200*N*m\"\nTcap_C = \"700*N*m\"");
+  const std::string values = "--param Tcap_D=1200*N*m --param Tcap_C=700*N*m -o ";
+  const Command first = simulate(tunable, values + (dir / "a").string());
+  simulate(tunable, "--interpreted " + values + (dir / "b").string());
+  simulate(written, "--interpreted -o " + (dir / "c").string());
+  simulate(tunable, "--interpreted -o " + (dir / "d").string());  // the model's 1500 N m and 900 N m
+  for (const std::string suffix : {"", ".rigid"}) {
+    SCOPED_TRACE(suffix);
+    const Csv reference = read_csv((dir / "c" / ("written" + suffix + ".csv")).string());
+    // The same exact numbers reach the same engine.
+    EXPECT_EQ(relative_gap(read_csv((dir / "b" / ("tunable" + suffix + ".csv")).string()), reference), 0);
+    // Exact steps of the generated matrices against the reference model's, equal up to rounding:
+    // 0 and 1.4e-16 of a column's scale (measured), the events at the same times; 1e-9 is the compiled
+    // shift's bound. A stays stuck throughout: its slip is rounding (the zero-slip rule), which a
+    // column's scale leaves out.
+    const Csv compiled = read_csv((dir / "a" / ("tunable" + suffix + ".csv")).string());
+    for (std::size_t col = 1; col < reference.header.size(); ++col) {
+      if (reference.header[col].rfind("slip_A", 0) == 0) continue;
+      EXPECT_LT(column_error(compiled.rows, reference.rows, col), 1e-9) << reference.header[col];
+    }
+    EXPECT_GT(relative_gap(read_csv((dir / "d" / ("tunable" + suffix + ".csv")).string()), reference), 1e-3);
+  }
+  const Command refused = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + tunable.string() +
+                                      " --param Tcap_D=400*N*m -o " + (dir / "e").string());
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("tunable.toml: error: --param: starting in gear '1', D carries -511.193 N m at t = 0, "
+                             "beyond its static capacity of 400 N m (400 N m x static ratio 1 x command 1); raise its "
+                             "capacity or its command, or start with smaller torques"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(dir / "e" / "tunable.csv"));
+  const std::string simulator = simulator_path(first.out);
+  ASSERT_FALSE(simulator.empty()) << first.out;
+  const Command alone = run_command(simulator + " --quiet --param Tcap_D=400*N*m --out " + (dir / "f").string());
+  EXPECT_EQ(alone.status, 3);
+  EXPECT_NE(alone.err.find("D slips at t = 0, where the start in a gear holds it: its torque exceeds its static "
+                           "capacity of 400 N m at full command; raise its capacity (--param), or start with smaller "
+                           "torques"),
+            std::string::npos)
+      << alone.err;
+}
+
 }  // namespace
 }  // namespace pogear::test

@@ -37,9 +37,11 @@ class StartInGear : public ErrorTest {
 };
 
 // Its stuck torques are checked against the capacities at the scene's values.
+// Tunable capacities are allowed (StartInGear.ParamMovesTheCapacities); a tunable that reaches the
+// state is not, named itself or through a parameter defined by it.
 TEST_F(StartInGear, WithTunables) {
-  expect_start_error({{"effects = [", "tunable = [\"Tcap_A\"]\neffects = ["}},
-      R"~(scene.toml:14:8: error: a start in a gear is computed at the scene's parameter values (its stuck torques within the capacities), which tunable parameters change at run time; set them in [parameters], or start from given speeds)~");
+  expect_start_error({{"effects = [", "tunable = [\"Tcap_A\", \"J_out\"]\neffects = ["}},
+      R"~(scene.toml:14:8: error: a start in a gear is computed at the scene's parameter values, which tunable parameters other than brakes' and clutches' capacities change at run time ('J_out' is not a capacity); set it in [parameters], or start from given speeds)~");
 }
 
 TEST_F(StartInGear, UnknownGear) {

@@ -72,10 +72,12 @@ CppText friction_function(const SpecializedScene& model) {
   const bool tuned = has_tuned_capacity(model);
   const auto actuated = [](const FrictionRun& f) { return f.fill_delay > 0 || f.time_constant > 0; };
   const bool actuators = std::any_of(model.friction.begin(), model.friction.end(), actuated);
+  const bool held = std::any_of(model.friction.begin(), model.friction.end(), [](const FrictionRun& f) { return f.held_at_start; });
   CppText s = code("// Brakes and clutches engaged by the scene, in the order of the systems' friction torque inputs:\n"
-                   "// name, kinetic torque capacity [N m], static / kinetic friction, engagement command p(t), one-way{}{}.\n",
+                   "// name, kinetic torque capacity [N m], static / kinetic friction, engagement command p(t), one-way{}{}{}.\n",
                    curves ? code(",\n// friction curve (kinetic torque over capacity against |slip| [rad/s])") : CppText{},
-                   actuators ? code(",\n// actuator fill delay and lag time constant [s] (tau de/dt = p(t - delay) - e)") : CppText{});
+                   actuators || held ? code(",\n// actuator fill delay and lag time constant [s] (tau de/dt = p(t - delay) - e)") : CppText{},
+                   held ? code(",\n// held stuck at t = 0 by the start in a gear") : CppText{});
   if (tuned) {
     s += code("// Capacities follow tunable parameters: p is the Params of the system run.\n");
     s += code("template <class Params>\ninline std::vector<pogear::rt::FrictionElementData> friction_elements(const Params& p) {{\n");
@@ -89,12 +91,15 @@ CppText friction_function(const SpecializedScene& model) {
     const FrictionRun& f = model.friction[i];
     const CppText capacity = GiNaC::is_a<GiNaC::numeric>(f.tuned_capacity) ? number_code(f.capacity)
                                                                             : expression_code(f.tuned_capacity, {});
-    const CppText curve = f.friction_curve.t.empty() ? (actuated(f) ? code(", {{}}") : CppText{})
+    // The optional fields in order, each written where a later one is.
+    const bool actuator = actuated(f) || f.held_at_start;
+    const CppText curve = f.friction_curve.t.empty() ? (actuator ? code(", {{}}") : CppText{})
                                                      : code(", ") + signal_code(f.friction_curve);
     s += (i ? code(",\n          ") : CppText{}) +
-         code("{{{}, {}, {}, {}, {}{}{}}}", string_literal(f.name), capacity, number_code(f.static_ratio),
+         code("{{{}, {}, {}, {}, {}{}{}{}}}", string_literal(f.name), capacity, number_code(f.static_ratio),
               signal_code(f.command), f.one_way ? code("true") : code("false"), curve,
-              actuated(f) ? code(", {}, {}", number_code(f.fill_delay), number_code(f.time_constant)) : CppText{});
+              actuator ? code(", {}, {}", number_code(f.fill_delay), number_code(f.time_constant)) : CppText{},
+              f.held_at_start ? code(", true") : CppText{});
   }
   s += code("}};\n}}\n");
   return s;

@@ -23,6 +23,7 @@
 #include "run/plot.hpp"
 #include "run/shift_metrics.hpp"
 #include "run/simulator_cache.hpp"
+#include "specialize/start_state.hpp"
 
 namespace pogear {
 
@@ -102,6 +103,15 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   if (options.tolerance) rt::set_tolerance(run.options, *options.tolerance);
   const std::vector<ParameterOption> params = read_parameter_options(model, options.params);
   for (const ParameterOption& p : params) run.params.emplace_back(p.name, rt::detail::shortest(p.value));
+  // A start in a gear holds its elements within the capacities, which --param may move: checked at
+  // its values as [parameters]' would be.
+  if (!params.empty() && !model.scene.initial_engaged.empty()) {
+    try {
+      start_state(at_parameter_options(model, params));
+    } catch (const InputError& e) {
+      throw InputError(SourceLocation{model.scene.file, 0, 0}, fmt::format("--param: {}", e.message()));
+    }
+  }
   const rt::SystemTraits traits = solver_traits(model);
   if (const auto refusal = rt::solver_refusal(run.solver, traits))
     throw InputError(SourceLocation{model.scene.file, 0, 0},

@@ -407,6 +407,8 @@ SpecializedScene specialize(const Scene& scene) {
         model.friction.back().fill_delay = a.fill_delay;
         model.friction.back().time_constant = a.time_constant;
       }
+    model.friction.back().held_at_start =
+        std::find(scene.initial_engaged.begin(), scene.initial_engaged.end(), e.element) != scene.initial_engaged.end();
   }
   if (const std::optional<StartState> start = start_state(model)) {
     set_initial_values(start->main, model.main);

@@ -132,12 +132,14 @@ struct FrictionRun {
   // The capacity in the tunables (a number when none enters it), what a run at other --param values
   // takes: the generated friction_elements(p), and at_parameter_options.
   GiNaC::ex tuned_capacity;
+  bool held_at_start = false;  // stuck at t = 0 by the scene's start in a gear
 };
 
 
 // The element as the runtime's runs take it.
 inline rt::FrictionElementData element_data(const FrictionRun& f) {
-  return {f.name, f.capacity, f.static_ratio, f.command, f.one_way, f.friction_curve, f.fill_delay, f.time_constant};
+  return {f.name,         f.capacity,   f.static_ratio,  f.command,      f.one_way,
+          f.friction_curve, f.fill_delay, f.time_constant, f.held_at_start};
 }
 
 struct SpecializedScene {

@@ -2,6 +2,8 @@
 // starts steady stays there to rounding, and one that starts rigid meets eq. (8) at t = 0 to rounding.
 #include "specialize/start_state.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 #include <pogear/driveline.hpp>
 
@@ -9,6 +11,7 @@
 #include "specialize/gear_start.hpp"
 #include "specialize/initial_state.hpp"
 #include "names/symbols.hpp"
+#include "specialize/tunable_parameters.hpp"
 
 namespace pogear {
 namespace {
@@ -151,15 +154,24 @@ std::optional<StartState> start_state(const SpecializedScene& model) {
   auto refuse = [&](const std::string& why) {
     throw InputError(sc.start_where, fmt::format("start = \"{}\" {}", start, why));
   };
-  if (!sc.tunable.empty() && !sc.initial_engaged.empty())
-    throw InputError(sc.initial_engaged_where,
-                     "a start in a gear is computed at the scene's parameter values (its stuck torques within the "
-                     "capacities), which tunable parameters change at run time; set them in [parameters], or start "
-                     "from given speeds");
+  // A gear's state does not depend on the capacities, which only bound its stuck torques: those are
+  // checked again at --param's values (simulate_scene) and by the engine at t = 0 (held_at_start).
+  if (!sc.initial_engaged.empty()) {
+    std::vector<std::string> moved = sc.tunable;
+    for (const auto& [name, value] : tunable_dependents(t.parameters, sc.tunable, model.derivation.symbols))
+      moved.push_back(name);
+    for (const std::string& name : moved)
+      if (std::none_of(t.friction_elements.begin(), t.friction_elements.end(),
+                       [&](const FrictionElement& f) { return f.capacity_parameter == name; }))
+        throw InputError(sc.initial_engaged_where,
+                         fmt::format("a start in a gear is computed at the scene's parameter values, which tunable "
+                                     "parameters other than brakes' and clutches' capacities change at run time ('{}' "
+                                     "is not a capacity); set it in [parameters], or start from given speeds", name));
+    return start_in_gear(model);
+  }
   if (!sc.tunable.empty())
     refuse("is computed at the scene's parameter values, which tunable parameters change at run time; set them in "
            "[parameters], or start from given speeds");
-  if (!sc.initial_engaged.empty()) return start_in_gear(model);
   if (!model.friction.empty())
     refuse("is not available with brakes or clutches engaged (whether each one sticks at t = 0 is a choice of its "
            "own); start in a gear ([initial] gear = \"1\"), or from given speeds");
