@@ -144,12 +144,16 @@ inline RunStatus run(HybridEngineCore& c, const Eigen::VectorXd& x0, double samp
   const EventObserver no_event = [](const HybridEvent&) {};
   if (!resolve_mode(sys, d, 0.0, -1, no_event, error)) return RunStatus{false, error, 0.0};
   for (std::size_t k = 0; k < sys.elements.size(); ++k)
-    if (sys.elements[k].held_at_start && !((d.mask >> k) & 1u))
+    if (const FrictionElementData& e = sys.elements[k]; e.held_at_start && !((d.mask >> k) & 1u)) {
+      const double engaged = command(sys, d, static_cast<int>(k), 0.0);
       return RunStatus{false,
-                       sys.elements[k].name + " slips at t = 0, where the start in a gear holds it: its torque exceeds "
-                           "its static capacity of " + detail::num(sys.elements[k].static_ratio * sys.elements[k].capacity) +
-                           " N m at full command; raise its capacity (--param), or start with smaller torques",
+                       e.name + " slips at t = 0, where the start in a gear holds it: its torque exceeds its static "
+                           "capacity there, " + detail::num(e.static_ratio * e.capacity * engaged) + " N m (" +
+                           detail::num(e.capacity) + " N m x static ratio " + detail::num(e.static_ratio) +
+                           " x command " + detail::num(engaged) + "); raise its capacity (--param), or start with "
+                           "smaller torques",
                        0.0};
+    }
   if (!observe_sample(sys, d, 0.0, d.x, d.energy, obs)) return RunStatus{false, "stopped", 0.0};
   d.triggers_live = true;
   switch (c.method.solver) {

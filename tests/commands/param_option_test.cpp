@@ -393,13 +393,28 @@ TEST(StartInGear, ParamMovesTheCapacities) {
             std::string::npos)
       << refused.err;
   EXPECT_FALSE(fs::exists(dir / "e" / "tunable.csv"));
+  // Just below the torque (511.19326144216495 N m elastic, 511.1932614421659 N m rigid, each exact and
+  // rounded once): refused, the two numbers printed with the digits that tell them apart.
+  const Command close = run_command(std::string(POGEAR_EXECUTABLE) + " simulate " + tunable.string() +
+                                    " --param Tcap_D=511.1932614421655*N*m -o " + (dir / "g").string());
+  EXPECT_EQ(close.status, 2);
+  const auto number_after = [&](const std::string& text, const std::string& before) {
+    const auto at = text.find(before);
+    if (at == std::string::npos) return std::string("none");
+    const auto from = at + before.size();
+    return text.substr(from, text.find(' ', from) - from);
+  };
+  const std::string carried = number_after(close.err, "D carries -"), holds = number_after(close.err, "static capacity of ");
+  EXPECT_NE(carried, "none") << close.err;
+  EXPECT_NE(carried, holds) << close.err;
+  EXPECT_GT(std::stod(carried), std::stod(holds)) << close.err;
   const std::string simulator = simulator_path(first.out);
   ASSERT_FALSE(simulator.empty()) << first.out;
   const Command alone = run_command(simulator + " --quiet --param Tcap_D=400*N*m --out " + (dir / "f").string());
   EXPECT_EQ(alone.status, 3);
   EXPECT_NE(alone.err.find("D slips at t = 0, where the start in a gear holds it: its torque exceeds its static "
-                           "capacity of 400 N m at full command; raise its capacity (--param), or start with smaller "
-                           "torques"),
+                           "capacity there, 400 N m (400 N m x static ratio 1 x command 1); raise its capacity "
+                           "(--param), or start with smaller torques"),
             std::string::npos)
       << alone.err;
 }

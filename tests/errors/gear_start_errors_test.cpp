@@ -44,6 +44,12 @@ TEST_F(StartInGear, WithTunables) {
       R"~(scene.toml:14:8: error: a start in a gear is computed at the scene's parameter values, which tunable parameters other than brakes' and clutches' capacities change at run time ('J_out' is not a capacity); set it in [parameters], or start from given speeds)~");
 }
 
+// The gear's state would need the controller's torque at t = 0, which its state gives.
+TEST_F(StartInGear, WithSlipControl) {
+  expect_start_error({{"[simulation]", "[slip_control]\nD = { target = \"10*rad/s\", kp = \"0.01*s/rad\" }\n\n[simulation]"}},
+      R"~(scene.toml:13:8: error: a start in a gear is not available with [slip_control]; give every initial speed in [initial] instead of the gear)~");
+}
+
 TEST_F(StartInGear, UnknownGear) {
   expect_start_error({{R"(gear = "1")", R"(gear = "7")"}},
       R"~(scene.toml:13:8: error: '7' is not a gear of the model; its gears are 1, 2, 3, 4, 5, 6, R)~");

@@ -92,9 +92,16 @@ void check_loads_and_controllers(const Scene& s) {
                                    "[parameters] and generate one simulator per value",
                                    f.name, f.capacity_parameter, t, f.name, t));
   }
-  if (s.start != Start::given && !s.controllers.empty())
-    throw InputError(s.start_where, "start = \"rigid\" and \"steady\" are not available with [controllers]; give the "
-                                    "initial speeds in [initial]");
+  // A computed start would need the controllers' torques at t = 0, which their states give.
+  if (s.start != Start::given && !s.controllers.empty()) {
+    const bool speed = std::any_of(s.controllers.begin(), s.controllers.end(), [](const ControllerSpec& c) { return c.supplies < 0; });
+    const std::string sections = !speed ? "[slip_control]" : has_slip_control(s) ? "[controllers] and [slip_control]" : "[controllers]";
+    if (!s.initial_engaged.empty())
+      throw InputError(s.start_where, fmt::format("a start in a gear is not available with {}; give every initial speed "
+                                                  "in [initial] instead of the gear", sections));
+    throw InputError(s.start_where, fmt::format("start = \"rigid\" and \"steady\" are not available with {}; give the "
+                                                "initial speeds in [initial]", sections));
+  }
   if (s.start == Start::steady && has_quadratic_load(s))
     throw InputError(s.start_where, "start = \"steady\" solves a linear equilibrium, which a quadratic load does not "
                                     "have; start from given speeds, or with start = \"rigid\"");

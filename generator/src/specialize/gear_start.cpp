@@ -107,12 +107,16 @@ void check_stuck_torques(const SpecializedScene& model, const std::string& gear,
                                    "the start, e.g. {} = \"1\"", gear, e.name, e.name));
     const double torque = to_double(recovered.at(meshes + j));
     const double holds = run->static_ratio * run->capacity * command;
-    if (std::abs(torque) > holds)
+    if (std::abs(torque) > holds) {
+      // Six digits, or as many as tell the torque from the capacity it exceeds.
+      int digits = 6;
+      while (digits < 17 && fmt::format("{:.{}g}", std::abs(torque), digits) == fmt::format("{:.{}g}", holds, digits)) ++digits;
       throw InputError(sc.initial_engaged_where,
-                       fmt::format("starting in {}, {} carries {:.6g} N m at t = 0, beyond its static capacity of "
-                                   "{:.6g} N m ({:.6g} N m x static ratio {:.6g} x command {:.6g}); raise its capacity "
+                       fmt::format("starting in {}, {} carries {:.{}g} N m at t = 0, beyond its static capacity of "
+                                   "{:.{}g} N m ({:.6g} N m x static ratio {:.6g} x command {:.6g}); raise its capacity "
                                    "or its command, or start with smaller torques",
-                                   gear, e.name, torque, holds, run->capacity, run->static_ratio, command));
+                                   gear, e.name, torque, digits, holds, digits, run->capacity, run->static_ratio, command));
+    }
     // A one-way element holds against negative slip only: with T > 0 it freewheels.
     if (e.one_way && torque > 0)
       throw InputError(sc.initial_engaged_where,
