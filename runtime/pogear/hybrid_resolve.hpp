@@ -120,15 +120,24 @@ inline bool start_slip_control(const HybridSystem& sys, HybridData& d, double t,
   return true;
 }
 
+// How far below its static capacity a brake or clutch released at this instant must find its torque
+// to stick again within it, relative: when a signal it triggered starts (a slip controller's, bumpless,
+// say), the mode is resolved again from the same state, and the stuck torques recomputed there differ
+// from those that released it by the rounding of another order of operations (a few ulps of the
+// largest torque, times the mode's condition), not by a change of the gear's state.
+inline constexpr double kReleasedMargin = 1e-12;
+
 // The consistent mode at time t, from d.x and the element states: every element that is stuck, or
 // whose slip is zero (or just reached zero: `trigger`), is tried stuck; the one whose torque exceeds
 // what it holds by the largest factor is released (slipping in its torque's direction) and the rest
 // solved again, until every stuck torque is held. Elements released at an instant stay released
-// within it, so the loop ends after at most one pass per element. Sets d.mask and d.state, projects
-// d.x onto the mode's constraints and reports each change of state; false (with `error`) when the
-// stuck elements over-constrain the gear or an element chatters.
+// within it, so the loop ends after at most one pass per element; `released`, those a resolution at
+// the same instant released before a triggered signal started, stick again only below their
+// capacity by more than kReleasedMargin. Sets d.mask and d.state, projects d.x onto the mode's
+// constraints and reports each change of state; false (with `error`) when the stuck elements
+// over-constrain the gear or an element chatters.
 inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int trigger, const EventObserver& on_event,
-                         std::string& error) {
+                         std::string& error, std::uint32_t released = 0) {
   report_starts(sys, d, t, on_event);
   if (!start_slip_control(sys, d, t, error)) return false;
   d.old_state = d.state;
@@ -181,7 +190,8 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
     int worst = -1;
     double worst_ratio = 1;
     for (std::size_t j = 0; j < m.stuck.size(); ++j) {
-      const double ratio = overload(sys, d, m.stuck[j], d.T(static_cast<Eigen::Index>(j)), t, monitor_band(d, m.stuck[j], *x));
+      double ratio = overload(sys, d, m.stuck[j], d.T(static_cast<Eigen::Index>(j)), t, monitor_band(d, m.stuck[j], *x));
+      if ((released >> m.stuck[j]) & 1u && !is_limit(d, m.stuck[j]) && ratio > 1 - kReleasedMargin) ratio = std::max(ratio, kJustBeyond);
       if (ratio > worst_ratio) {
         worst_ratio = ratio;
         worst = m.stuck[j];
@@ -215,7 +225,10 @@ inline bool resolve_mode(const HybridSystem& sys, HybridData& d, double t, int t
   }
   if (d.started_now) {  // each signal starts once, so this ends
     d.started_now = false;
-    return resolve_mode(sys, d, t, -1, on_event, error);
+    for (int k = 0; k < d.ne; ++k)
+      if (const auto K = static_cast<std::size_t>(k); d.old_state[K] == ElementState::stuck && d.state[K] != ElementState::stuck)
+        released |= 1u << k;
+    return resolve_mode(sys, d, t, -1, on_event, error, released);
   }
   return true;
 }
