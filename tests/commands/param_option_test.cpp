@@ -4,7 +4,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,6 +43,16 @@ std::string simulator_path(const std::string& out) {
   if (at == std::string::npos) return "";
   const auto from = at + 11;
   return out.substr(from, out.find('\n', from) - from);
+}
+
+// An events file's rows past its header: time, and the rest of the row.
+std::vector<std::pair<double, std::string>> event_rows(const fs::path& file) {
+  std::vector<std::pair<double, std::string>> rows;
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) rows.emplace_back(std::stod(line.substr(0, line.find(','))), line.substr(line.find(',')));
+  return rows;
 }
 
 // The largest gap between two runs' columns, each relative to the column's largest magnitude.
@@ -156,15 +165,6 @@ TEST(SimulateCommand, ParamMovesCapacitiesThatFollowATunable) {
   simulate(tunable, "--interpreted --param Tcap_B2=750*N*m -o " + (dir / "b").string());
   simulate(literal, "--interpreted -o " + (dir / "c").string());
   simulate(tunable, "--interpreted -o " + (dir / "d").string());  // at the scene's 800 and 350 N m
-  // An events file's rows past its header: time, and the rest of the row.
-  auto events = [&](const std::string& run, const std::string& file) {
-    std::vector<std::pair<double, std::string>> rows;
-    std::ifstream in(dir / run / file);
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line)) rows.emplace_back(std::stod(line.substr(0, line.find(','))), line.substr(line.find(',')));
-    return rows;
-  };
   for (const std::string suffix : {"", ".rigid"}) {
     SCOPED_TRACE(suffix);
     const Csv reference = read_csv((dir / "c" / ("literal" + suffix + ".csv")).string());
@@ -176,7 +176,7 @@ TEST(SimulateCommand, ParamMovesCapacitiesThatFollowATunable) {
     EXPECT_EQ(relative_gap(read_csv((dir / "b" / ("tunable" + suffix + ".csv")).string()), reference), 0);
     // The same events in the same order; the scene's capacities move the shift by far more than rounding.
     const std::string file = suffix + ".events.csv";
-    const auto compiled = events("a", "tunable" + file), written = events("c", "literal" + file);
+    const auto compiled = event_rows(dir / "a" / ("tunable" + file)), written = event_rows(dir / "c" / ("literal" + file));
     ASSERT_EQ(compiled.size(), written.size());
     ASSERT_GE(compiled.size(), 3u);
     for (std::size_t i = 0; i < compiled.size(); ++i) {
@@ -329,16 +329,7 @@ TEST(SimulateCommand, ParamWithSlipControl) {
   // each event on its own trajectory: both gaps measure 0 here, bounds that leave room for another
   // machine's rounding (the compiled closed-loop shift's, SlipControl.ClosedLoopUpshiftRunsCompiledAsInterpreted).
   EXPECT_LT(relative_gap(read_csv((dir / "a/tunable.csv").string()), reference), 1e-9);
-  const std::string compiled = read_text(dir / "a/tunable.events.csv"), literal = read_text(dir / "c/written.events.csv");
-  auto rows = [](const std::string& text) {
-    std::vector<std::pair<double, std::string>> out;
-    std::stringstream in(text);
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line)) out.emplace_back(std::stod(line.substr(0, line.find(','))), line.substr(line.find(',')));
-    return out;
-  };
-  const auto a = rows(compiled), c = rows(literal);
+  const auto a = event_rows(dir / "a/tunable.events.csv"), c = event_rows(dir / "c/written.events.csv");
   ASSERT_EQ(a.size(), c.size());
   ASSERT_GE(a.size(), 8u);  // B2's release, the controller's start and hand-over, B1's lock-up, the cut's end
   for (std::size_t i = 0; i < a.size(); ++i) {

@@ -103,11 +103,13 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   if (options.tolerance) rt::set_tolerance(run.options, *options.tolerance);
   const std::vector<ParameterOption> params = read_parameter_options(model, options.params);
   for (const ParameterOption& p : params) run.params.emplace_back(p.name, rt::detail::shortest(p.value));
+  std::optional<SpecializedScene> at_params;
+  if (!params.empty()) at_params = at_parameter_options(model, params);
   // A start in a gear holds its elements within the capacities, which --param may move: checked at
   // its values as [parameters]' would be.
-  if (!params.empty() && !model.scene.initial_engaged.empty()) {
+  if (at_params && !model.scene.initial_engaged.empty()) {
     try {
-      start_state(at_parameter_options(model, params));
+      start_state(*at_params);
     } catch (const InputError& e) {
       throw InputError(SourceLocation{model.scene.file, 0, 0}, fmt::format("--param: {}", e.message()));
     }
@@ -125,7 +127,7 @@ int simulate_scene(const SpecializedScene& model, const SimulateOptions& options
   // whose notes (a fixed step's error, an adaptive method's cost, the frequencies) are their own.
   std::optional<SpecializedScene> as_run;
   if (run.solver != model.scene.solver || options.tolerance || !params.empty()) {
-    as_run = params.empty() ? model : at_parameter_options(model, params);
+    as_run = at_params ? std::move(*at_params) : model;
     as_run->scene.solver = run.solver;
     if (options.tolerance) as_run->scene.tolerance = *options.tolerance;
   }
